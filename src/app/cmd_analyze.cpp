@@ -1,0 +1,56 @@
+#include <cstdio>
+
+#include "app/analyze.hpp"
+#include "app/commands.hpp"
+#include "app/data_paths.hpp"
+#include "app/simulate.hpp"
+#include "core/config/app_config_loader.hpp"
+#include "core/config/scene_config.hpp"
+
+namespace mallet::app {
+
+void register_analyze(CLI::App& app) {
+  struct Options {
+    std::filesystem::path dir;
+    std::filesystem::path scene = default_scene();
+    std::optional<std::filesystem::path> config;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "analyze", "Fit Eq. 1 to what `mallet simulate` wrote and compare with the material table");
+  cmd->footer(
+      "Fit Eq. 1, Q(t) = a·e^(−B·t)·sin(2π·f·t + φ), to each impact that `mallet simulate`\n"
+      "wrote into DIR (cursor.csv's offset column for the visual vibration, the actuator\n"
+      "channel of audio.wav for the actuator) and print the fitted A, B, f next to the\n"
+      "scene's material table. A_fit = a / v (visual, seconds) or a / (gain·v) (actuator).");
+  cmd->add_option("--dir", o->dir, "Directory written by mallet simulate")->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("--scene", o->scene, "Scene the simulation used (for its material table)")->capture_default_str();
+  cmd->add_option("--config", o->config, "Settings the simulation used (gain, routing)");
+  cmd->callback([o] {
+    const AppConfig config = o->config ? config::load_app_config(*o->config) : AppConfig{};
+    const Scene scene = config::load_scene(o->scene);
+    const auto results = analyze_simulation(o->dir, config.audio.routing.actuator);
+    std::printf("%-14s %-9s %7s | %-31s | %-31s\n", "impact t (s)", "material", "v (m/s)",
+                "visual: A (s)   B (1/s)  f (Hz)", "actuator: A     B (1/s)  f (Hz)");
+    for (const ImpactAnalysis& a : results) {
+      const Material* m = nullptr;
+      for (const Material& candidate : scene.materials)
+        if (candidate.name == a.material) m = &candidate;
+      auto row = [](const DampedSineFit& fit, double scale) {
+        char buf[64];
+        if (!fit.ok) std::snprintf(buf, sizeof buf, "%-31s", "  (too short to fit)");
+        else std::snprintf(buf, sizeof buf, "%-10.6g %9.4f %9.4f  ", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);
+        return std::string(buf);
+      };
+      std::printf("%-14s %-9s %7.4f | fit   %s | fit   %s\n", format_seconds(a.t_ns).c_str(), a.material.c_str(),
+                  a.velocity, row(a.visual, a.velocity).c_str(),
+                  row(a.actuator, config.actuator.gain * a.velocity).c_str());
+      if (m)
+        std::printf("%-14s %-9s %7s | table %-10.6g %9.4f %9.4f   | table %-10.6g %9.4f %9.4f\n", "", "", "",
+                    m->visual.amplitude, m->visual.decay_per_s, m->visual.freq_hz, m->actuator.amplitude,
+                    m->actuator.decay_per_s, m->actuator.freq_hz);
+    }
+  });
+}
+
+}  // namespace mallet::app

@@ -1,0 +1,66 @@
+#include <cstdio>
+
+#include "app/commands.hpp"
+#include "app/data_paths.hpp"
+#include "app/simulate.hpp"
+
+namespace mallet::app {
+
+void register_simulate(CLI::App& app) {
+  auto options = std::make_shared<SimulateOptions>();
+  auto rate = std::make_shared<int>(0);
+  options->scene = default_scene();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate", "Replay a trajectory through the contact solver; write events, cursor trace and audio");
+  cmd->footer(
+      "Writes the exact stimuli of a session:\n"
+      "  DIR/events.csv  t,target,instrument,material,note,velocity\n"
+      "                  one row per impact; t = exact contact time (s), velocity = normal\n"
+      "                  impact speed (m/s)\n"
+      "  DIR/cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset  at --trace-rate, world metres;\n"
+      "                  cursor = the displayed mallet head (held on the surface while the hand\n"
+      "                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement\n"
+      "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
+      "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample.\n"
+      "                  The acoustic channel is silent until the synthesis engine lands.\n"
+      "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
+      "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
+      "Bad input prints FILE:LINE: problem and exits 2 with nothing written.");
+  cmd->add_option("--scene", options->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--input", options->input, "Trajectory CSV (t,x,y)")->required();
+  cmd->add_option("--out", options->out_dir, "Output directory (created if needed)")->required();
+  cmd->add_option("--config", options->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  auto space = std::make_shared<std::string>("screen");
+  cmd->add_option("--input-space", *space, "screen: x,y normalised 0..1; world: sphere centre in metres")
+      ->check(CLI::IsMember({"screen", "world"}))
+      ->capture_default_str();
+  cmd->add_option("--sample-rate", *rate, "Audio sample rate in Hz (default: [audio].sample_rate_hz, 48000)");
+  cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")->capture_default_str();
+  cmd->add_option("--tail", options->tail_s, "Seconds rendered after the last trajectory sample")
+      ->capture_default_str();
+  cmd->callback([options, rate, space] {
+    if (*rate != 0) options->sample_rate_hz = *rate;
+    options->input_space = *space == "world" ? InputSpace::world : InputSpace::screen;
+    const SimulateResult r = run_simulate(*options);
+    const auto& c = r.counters;
+    std::printf("%zu impact%s from %llu samples", r.impacts.size(), r.impacts.size() == 1 ? "" : "s",
+                static_cast<unsigned long long>(c.accepted));
+    if (c.ignored_non_finite || c.ignored_not_after_previous)
+      std::printf(" (ignored: %llu non-finite, %llu not after the previous sample)",
+                  static_cast<unsigned long long>(c.ignored_non_finite),
+                  static_cast<unsigned long long>(c.ignored_not_after_previous));
+    std::printf("\n");
+    if (c.clamped_speed)
+      std::printf("note: %llu strike(s) faster than max_impact_speed_m_per_s were clamped\n",
+                  static_cast<unsigned long long>(c.clamped_speed));
+    if (c.touches_below_min_speed)
+      std::printf("note: %llu touch(es) slower than min_impact_speed_m_per_s made no impact\n",
+                  static_cast<unsigned long long>(c.touches_below_min_speed));
+    if (r.clipped_samples)
+      std::printf("note: %llu actuator samples passed the soft-clip knee (lower [actuator].gain)\n",
+                  static_cast<unsigned long long>(r.clipped_samples));
+    for (const auto& p : r.written) std::printf("wrote %s\n", p.string().c_str());
+  });
+}
+
+}  // namespace mallet::app

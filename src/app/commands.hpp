@@ -1,0 +1,18 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace mallet::app {
+
+//! Adds every subcommand to the command line; each runs from its parse callback.
+void register_commands(CLI::App& app);
+
+//! The status the last command asked to exit with (0 unless it said otherwise).
+int exit_status();
+void set_exit_status(int status);
+
+void register_simulate(CLI::App& app);
+void register_scene(CLI::App& app);
+void register_analyze(CLI::App& app);
+void register_trajectory(CLI::App& app);
+
+}  // namespace mallet::app

@@ -1,0 +1,211 @@
+#include "app/simulate.hpp"
+
+#include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "audio/actuator_track.hpp"
+#include "audio/wav_file.hpp"
+#include "core/actuator_signal.hpp"
+#include "core/config/app_config_loader.hpp"
+#include "core/config/scene_config.hpp"
+#include "core/file_error.hpp"
+#include "core/visual_vibration.hpp"
+#include "input/trajectory_csv.hpp"
+
+namespace mallet::app {
+
+namespace fs = std::filesystem;
+
+std::string format_seconds(Nanos t_ns) {
+  const bool negative = t_ns < 0;
+  const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(t_ns) : static_cast<std::uint64_t>(t_ns);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%s%" PRIu64 ".%09" PRIu64, negative ? "-" : "",
+                magnitude / 1'000'000'000u, magnitude % 1'000'000'000u);
+  return buf;
+}
+
+namespace {
+
+std::string g9(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+struct HandSample {
+  Nanos t;
+  Vec2 hand;
+};
+
+//! The hand's straight-line path between accepted samples (the solver's model).
+Vec2 hand_at(const std::vector<HandSample>& path, Nanos t) {
+  if (t <= path.front().t) return path.front().hand;
+  if (t >= path.back().t) return path.back().hand;
+  const auto it = std::upper_bound(path.begin(), path.end(), t,
+                                   [](Nanos v, const HandSample& s) { return v < s.t; });
+  const HandSample& b = *it;
+  const HandSample& a = *(it - 1);
+  const double s = static_cast<double>(t - a.t) / static_cast<double>(b.t - a.t);
+  return lerp(a.hand, b.hand, s);
+}
+
+//! Files are written under temporary names and renamed only when all are complete.
+class StagedOutput {
+ public:
+  explicit StagedOutput(fs::path dir) : dir_(std::move(dir)) {}
+  ~StagedOutput() {
+    if (committed_) return;
+    std::error_code ec;
+    for (const fs::path& p : staged_) fs::remove(temp_of(p), ec);
+    if (created_dir_) fs::remove(dir_, ec);  // only if we made it and it is empty again
+  }
+
+  void prepare() {
+    std::error_code ec;
+    if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
+      throw std::runtime_error(dir_.string() + ": exists and is not a directory");
+    if (!fs::exists(dir_, ec)) {
+      fs::create_directories(dir_, ec);
+      if (ec) throw std::runtime_error(dir_.string() + ": cannot create: " + ec.message());
+      created_dir_ = true;
+    }
+  }
+  fs::path stage(const std::string& name) {
+    staged_.push_back(dir_ / name);
+    return temp_of(staged_.back());
+  }
+  std::vector<fs::path> commit() {
+    for (const fs::path& p : staged_) {
+      std::error_code ec;
+      fs::rename(temp_of(p), p, ec);
+      if (ec) throw std::runtime_error(p.string() + ": cannot write: " + ec.message());
+    }
+    committed_ = true;
+    return staged_;
+  }
+
+ private:
+  static fs::path temp_of(const fs::path& p) { return p.string() + ".partial"; }
+  fs::path dir_;
+  std::vector<fs::path> staged_;
+  bool created_dir_ = false;
+  bool committed_ = false;
+};
+
+void check_stream(std::ofstream& out, const fs::path& path) {
+  out.flush();
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+}  // namespace
+
+SimulateResult run_simulate(const SimulateOptions& options) {
+  // --- everything that can be wrong with the input is found before anything is written
+  const AppConfig config =
+      options.config ? config::load_app_config(*options.config) : AppConfig{};
+  SimulateResult result;
+  result.scene = config::load_scene(options.scene);
+  const Scene& scene = result.scene;
+  const input::Trajectory trajectory = input::read_trajectory_csv(options.input);
+
+  const int rate = options.sample_rate_hz.value_or(config.audio.sample_rate_hz);
+  if (rate < 1000 || rate > 384000)
+    throw FileError("--sample-rate", 0, 0, "must be between 1000 and 384000 Hz, got " + std::to_string(rate));
+  if (!(options.trace_rate_hz > 0 && options.trace_rate_hz <= 1e6))
+    throw FileError("--trace-rate", 0, 0, "must be in (0, 1e6] Hz");
+  if (!(options.tail_s >= 0 && options.tail_s <= 3600))
+    throw FileError("--tail", 0, 0, "must be in [0, 3600] s");
+  for (const Material& m : scene.materials)
+    if (auto problem = actuator_band_problem(m, rate)) throw FileError(scene.file, 0, 0, *problem);
+  result.sample_rate_hz = rate;
+
+  // --- the contact solver, fed exactly as the kiosk feeds it
+  Mallet mallet(scene, config.contact);
+  std::vector<HandSample> path;
+  for (const PointerSample& s : trajectory.samples) {
+    const Vec2 hand = options.input_space == InputSpace::screen ? scene.screen_to_world.map(s.x, s.y)
+                                                                : Vec2{s.x, s.y};
+    const auto accepted_before = mallet.counters().accepted;
+    if (auto impact = mallet.update(s.t_ns, hand)) result.impacts.push_back(*impact);
+    if (mallet.counters().accepted != accepted_before) path.push_back({s.t_ns, hand});
+  }
+  result.counters = mallet.counters();
+  if (path.empty())
+    throw FileError(options.input.string(), 0, 0, "no usable sample (every position is nan or inf)");
+
+  const Nanos t_end = path.back().t + static_cast<Nanos>(std::llround(options.tail_s * 1e9));
+
+  StagedOutput out(options.out_dir);
+  out.prepare();
+
+  // --- events.csv
+  {
+    const fs::path path_events = out.stage("events.csv");
+    std::ofstream f(path_events);
+    f << "t,target,instrument,material,note,velocity\n";
+    for (const Impact& i : result.impacts) {
+      const Target& t = scene.targets[i.target];
+      f << format_seconds(i.t_ns) << ',' << t.id << ',' << t.instrument << ','
+        << scene.materials[i.material].name << ',' << i.note << ',' << g9(i.speed_m_per_s) << '\n';
+    }
+    check_stream(f, path_events);
+  }
+
+  // --- cursor.csv: the displayed head = held hand + the visual vibration along the normal
+  {
+    const fs::path path_cursor = out.stage("cursor.csv");
+    std::ofstream f(path_cursor);
+    f << "t,hand_x,hand_y,cursor_x,cursor_y,offset\n";
+    VisualVibration vibration(config.bounce);
+    std::size_t next_impact = 0;
+    const Nanos t0 = path.front().t;
+    for (std::uint64_t k = 0;; ++k) {
+      const Nanos t = t0 + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / options.trace_rate_hz));
+      if (t > t_end) break;
+      while (next_impact < result.impacts.size() && result.impacts[next_impact].t_ns <= t) {
+        const Impact& i = result.impacts[next_impact++];
+        vibration.start(i, scene.materials[i.material].visual);
+      }
+      const Vec2 hand = hand_at(path, t);
+      const Vec2 shown = mallet.displayed_centre(hand);
+      const double offset = vibration.offset_m(t);
+      f << format_seconds(t) << ',' << g9(hand.x) << ',' << g9(hand.y) << ',' << g9(shown.x) << ','
+        << g9(shown.y + offset) << ',' << g9(offset) << '\n';
+      ++result.cursor_rows;
+    }
+    check_stream(f, path_cursor);
+  }
+
+  // --- audio.wav: sample 0 is t = 0 of the trajectory's clock
+  {
+    const AudioRouting& routing = config.audio.routing;
+    audio::WavWriter wav(out.stage("audio.wav"), routing.channels, rate);
+    audio::ActuatorTrack actuator(scene, result.impacts, config.actuator, rate);
+    const SampleAlignment end = align_to_sample(t_end, rate);
+    const std::int64_t frames = std::max<std::int64_t>(end.index, 1);
+    constexpr std::int64_t kBlock = 4096;
+    std::vector<float> actuator_block(kBlock), interleaved(kBlock * routing.channels);
+    for (std::int64_t first = 0; first < frames; first += kBlock) {
+      const std::int64_t n = std::min(kBlock, frames - first);
+      actuator.render(first, std::span<float>(actuator_block.data(), static_cast<std::size_t>(n)));
+      std::fill(interleaved.begin(), interleaved.end(), 0.0f);
+      // The acoustic channel stays silent until the synthesis engine lands (issue 3).
+      for (std::int64_t i = 0; i < n; ++i)
+        interleaved[static_cast<std::size_t>(i * routing.channels + routing.actuator)] += actuator_block[i];
+      wav.write(std::span<const float>(interleaved.data(), static_cast<std::size_t>(n * routing.channels)));
+    }
+    wav.close();
+    result.audio_frames = static_cast<std::uint64_t>(frames);
+    result.clipped_samples = actuator.clipped_samples();
+  }
+
+  result.written = out.commit();
+  return result;
+}
+
+}  // namespace mallet::app

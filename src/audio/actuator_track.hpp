@@ -1,0 +1,43 @@
+#pragma once
+// The actuator channel rendered offline from a list of impacts: each impact's Eq. 1
+// signal starts at its own sample (sub-sample exact phase), overlapping strikes add,
+// and the sum passes the soft clip. This is the reference the real-time engine is
+// measured against; it evaluates Eq. 1 directly (exp and sin per sample), which is
+// exact but not the cheapest way.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/actuator_signal.hpp"
+#include "core/app_config.hpp"
+#include "core/scene.hpp"
+
+namespace mallet::audio {
+
+class ActuatorTrack {
+ public:
+  ActuatorTrack(const Scene& scene, std::span<const Impact> impacts, const ActuatorConfig& config,
+                int sample_rate_hz);
+
+  //! Writes samples [first, first + out.size()) of the channel; call with increasing
+  //! `first` (voices that have finished are retired as the render moves on).
+  void render(std::int64_t first, std::span<float> out);
+
+  std::uint64_t clipped_samples() const { return clipped_; }  //!< samples past the knee
+
+ private:
+  struct Voice {
+    ActuatorSignal signal;
+    std::int64_t end;  //!< INT64_MAX when undamped
+  };
+
+  std::vector<Voice> pending_;  //!< sorted by start sample
+  std::size_t next_ = 0;
+  std::vector<Voice> active_;
+  double knee_;
+  int sample_rate_;
+  std::uint64_t clipped_ = 0;
+  std::vector<double> mix_;
+};
+
+}  // namespace mallet::audio

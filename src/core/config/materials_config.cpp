@@ -1,0 +1,51 @@
+#include "core/config/materials_config.hpp"
+
+#include "core/config/toml_reader.hpp"
+
+namespace mallet::config {
+
+namespace {
+
+VibrationParams read_triple(TableReader t, std::string_view amplitude_key) {
+  VibrationParams p;
+  p.amplitude = t.number(amplitude_key);
+  t.require_non_negative(amplitude_key, p.amplitude);
+  p.decay_per_s = t.number("decay_per_s");
+  t.require_non_negative("decay_per_s", p.decay_per_s);
+  p.freq_hz = t.number("freq_hz");
+  t.require_positive("freq_hz", p.freq_hz);
+  t.finish();
+  return p;
+}
+
+MaterialLibrary read(const toml::table& root, const std::string& file) {
+  TableReader top(root, file);
+  TableReader all = top.table("material");
+  top.finish();
+  std::vector<Material> materials;
+  for (const std::string& name : all.keys()) {
+    TableReader t = all.table(name);
+    Material m;
+    m.name = name;
+    m.display_name = t.string_or("display_name", name);
+    m.source = t.string_or("source", "");
+    m.visual = read_triple(t.table("visual"), "amplitude_s");
+    m.actuator = read_triple(t.table("actuator"), "amplitude");
+    t.finish();
+    materials.push_back(std::move(m));
+  }
+  if (materials.empty()) all.fail("", "defines no material");
+  return MaterialLibrary(std::move(materials));
+}
+
+}  // namespace
+
+MaterialLibrary load_materials(const std::filesystem::path& path) {
+  return read(parse_file(path), path.string());
+}
+
+MaterialLibrary parse_materials(std::string_view text, const std::string& name) {
+  return read(parse_text(text, name), name);
+}
+
+}  // namespace mallet::config

@@ -1,0 +1,210 @@
+#include "core/config/toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mallet::config {
+
+namespace {
+
+std::string describe_value(const toml::node& node) {
+  std::ostringstream out;
+  if (node.is_string()) {
+    out << '"' << node.as_string()->get() << '"';
+  } else if (node.is_number() || node.is_boolean()) {
+    if (auto v = node.value<double>()) out << *v;
+    else if (auto b = node.value<bool>()) out << (*b ? "true" : "false");
+  } else {
+    out << "a " << node.type();
+  }
+  return out.str();
+}
+
+ConfigError error_from(const toml::parse_error& e, const std::string& name) {
+  return ConfigError(name, e.source().begin.line, e.source().begin.column,
+                     std::string(e.description()));
+}
+
+}  // namespace
+
+toml::table parse_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ConfigError(path.string(), 0, 0, "file not found");
+  if (std::filesystem::is_directory(path, ec))
+    throw ConfigError(path.string(), 0, 0, "is a directory, expected a TOML file");
+  try {
+    return toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    throw error_from(e, path.string());
+  }
+}
+
+toml::table parse_text(std::string_view text, const std::string& name) {
+  try {
+    return toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw error_from(e, name);
+  }
+}
+
+TableReader::TableReader(const toml::table& table, std::string file, std::string key_path)
+    : table_(&table), file_(std::move(file)), key_path_(std::move(key_path)) {}
+
+std::string TableReader::dotted(std::string_view key) const {
+  if (key_path_.empty()) return std::string(key);
+  if (key.empty()) return key_path_;
+  return key_path_ + "." + std::string(key);
+}
+
+void TableReader::fail_at(const toml::node* node, std::string_view key,
+                          const std::string& message) const {
+  const toml::source_region& where = node ? node->source() : table_->source();
+  throw ConfigError(file_, where.begin.line, where.begin.column,
+                    dotted(key) + ": " + message);
+}
+
+void TableReader::fail(std::string_view key, const std::string& message) const {
+  fail_at(table_->get(key), key, message);
+}
+
+bool TableReader::has(std::string_view key) const { return table_->contains(key); }
+
+const toml::node& TableReader::required(std::string_view key) {
+  used_.emplace(key);
+  const toml::node* node = table_->get(key);
+  if (!node) fail_at(nullptr, key, "missing (required)");
+  return *node;
+}
+
+double TableReader::number(std::string_view key) {
+  const toml::node& node = required(key);
+  if (!node.is_number()) fail_at(&node, key, "expected a number, got " + describe_value(node));
+  const double v = *node.value<double>();
+  if (!std::isfinite(v)) fail_at(&node, key, "must be finite, got " + describe_value(node));
+  return v;
+}
+
+double TableReader::number_or(std::string_view key, double fallback) {
+  return has(key) ? number(key) : (used_.emplace(key), fallback);
+}
+
+std::int64_t TableReader::integer(std::string_view key) {
+  const toml::node& node = required(key);
+  if (!node.is_integer()) fail_at(&node, key, "expected an integer, got " + describe_value(node));
+  return node.as_integer()->get();
+}
+
+std::int64_t TableReader::integer_or(std::string_view key, std::int64_t fallback) {
+  return has(key) ? integer(key) : (used_.emplace(key), fallback);
+}
+
+std::string TableReader::string(std::string_view key) {
+  const toml::node& node = required(key);
+  if (!node.is_string()) fail_at(&node, key, "expected a string, got " + describe_value(node));
+  return node.as_string()->get();
+}
+
+std::string TableReader::string_or(std::string_view key, std::string fallback) {
+  return has(key) ? string(key) : (used_.emplace(key), std::move(fallback));
+}
+
+bool TableReader::boolean_or(std::string_view key, bool fallback) {
+  if (!has(key)) return used_.emplace(key), fallback;
+  const toml::node& node = required(key);
+  if (!node.is_boolean()) fail_at(&node, key, "expected true or false, got " + describe_value(node));
+  return node.as_boolean()->get();
+}
+
+std::vector<double> TableReader::numbers(std::string_view key) {
+  const toml::node& node = required(key);
+  const toml::array* array = node.as_array();
+  if (!array) fail_at(&node, key, "expected an array of numbers, got " + describe_value(node));
+  std::vector<double> out;
+  for (const toml::node& el : *array) {
+    if (!el.is_number() || !std::isfinite(*el.value<double>()))
+      fail_at(&el, key, "expected a finite number, got " + describe_value(el));
+    out.push_back(*el.value<double>());
+  }
+  return out;
+}
+
+std::vector<std::int64_t> TableReader::integers(std::string_view key) {
+  const toml::node& node = required(key);
+  const toml::array* array = node.as_array();
+  if (!array) fail_at(&node, key, "expected an array of integers, got " + describe_value(node));
+  std::vector<std::int64_t> out;
+  for (const toml::node& el : *array) {
+    if (!el.is_integer()) fail_at(&el, key, "expected an integer, got " + describe_value(el));
+    out.push_back(el.as_integer()->get());
+  }
+  return out;
+}
+
+TableReader TableReader::table(std::string_view key) {
+  const toml::node& node = required(key);
+  const toml::table* t = node.as_table();
+  if (!t) fail_at(&node, key, "expected a table, got " + describe_value(node));
+  return TableReader(*t, file_, dotted(key));
+}
+
+std::optional<TableReader> TableReader::optional_table(std::string_view key) {
+  used_.emplace(key);
+  if (!has(key)) return std::nullopt;
+  return table(key);
+}
+
+std::vector<TableReader> TableReader::tables(std::string_view key) {
+  const toml::node& node = required(key);
+  const toml::array* array = node.as_array();
+  if (!array || !array->is_array_of_tables())
+    fail_at(&node, key, "expected one or more [[" + dotted(key) + "]] tables");
+  std::vector<TableReader> out;
+  std::size_t i = 0;
+  for (const toml::node& el : *array)
+    out.emplace_back(*el.as_table(), file_, dotted(key) + "[" + std::to_string(i++) + "]");
+  return out;
+}
+
+std::vector<std::string> TableReader::keys() const {
+  std::vector<std::pair<std::uint32_t, std::string>> ordered;
+  for (const auto& [k, v] : *table_) ordered.emplace_back(v.source().begin.line, std::string(k.str()));
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> out;
+  for (auto& [line, k] : ordered) out.push_back(std::move(k));
+  return out;
+}
+
+void TableReader::finish() const {
+  for (const auto& [k, v] : *table_) {
+    if (!used_.contains(k.str()))
+      fail_at(&v, k.str(), "unknown key (misspelt? see the comments in the shipped file)");
+  }
+}
+
+namespace {
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+}  // namespace
+
+void TableReader::require_positive(std::string_view key, double value) const {
+  if (!(value > 0.0)) fail(key, "must be > 0, got " + number_text(value));
+}
+
+void TableReader::require_non_negative(std::string_view key, double value) const {
+  if (!(value >= 0.0)) fail(key, "must be >= 0, got " + number_text(value));
+}
+
+void TableReader::require_range(std::string_view key, double value, double lo, double hi) const {
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream msg;
+    msg << "must be in [" << lo << ", " << hi << "], got " << value;
+    fail(key, msg.str());
+  }
+}
+
+}  // namespace mallet::config

@@ -1,0 +1,71 @@
+#pragma once
+// Reading a TOML table with every problem reported as file:line:column and the dotted
+// key, and with unknown keys refused (a misspelt key is the most common operator
+// mistake, and silently using a default instead would change a stimulus).
+// Only the config loaders include this (toml++ is heavy to compile).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "core/file_error.hpp"
+
+namespace mallet::config {
+
+//! Parses a whole file; a syntax error becomes a ConfigError with its position.
+toml::table parse_file(const std::filesystem::path& path);
+
+//! Parses text held in memory (tests, and files read by the caller); `name` is what
+//! error messages call it.
+toml::table parse_text(std::string_view text, const std::string& name);
+
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string file, std::string key_path = {});
+
+  double number(std::string_view key);
+  double number_or(std::string_view key, double fallback);
+  std::int64_t integer(std::string_view key);
+  std::int64_t integer_or(std::string_view key, std::int64_t fallback);
+  std::string string(std::string_view key);
+  std::string string_or(std::string_view key, std::string fallback);
+  bool boolean_or(std::string_view key, bool fallback);
+  std::vector<double> numbers(std::string_view key);
+  std::vector<std::int64_t> integers(std::string_view key);
+  bool has(std::string_view key) const;
+
+  TableReader table(std::string_view key);
+  std::optional<TableReader> optional_table(std::string_view key);
+  std::vector<TableReader> tables(std::string_view key);  //!< an array of tables [[key]]
+  std::vector<std::string> keys() const;                  //!< in file order
+
+  //! Throws if the table holds a key nobody asked for.
+  void finish() const;
+
+  //! A ConfigError located at `key` (or at the table itself if the key is absent).
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+
+  //! Range checks with the value quoted in the message.
+  void require_positive(std::string_view key, double value) const;
+  void require_non_negative(std::string_view key, double value) const;
+  void require_range(std::string_view key, double value, double lo, double hi) const;
+
+  const std::string& file() const { return file_; }
+  std::string dotted(std::string_view key) const;
+
+ private:
+  const toml::node& required(std::string_view key);
+  [[noreturn]] void fail_at(const toml::node* node, std::string_view key,
+                            const std::string& message) const;
+
+  const toml::table* table_;
+  std::string file_;
+  std::string key_path_;
+  std::set<std::string, std::less<>> used_;
+};
+
+}  // namespace mallet::config

@@ -1,0 +1,40 @@
+#pragma once
+// A problem in a file a person wrote or a device produced (config, scene, trajectory,
+// recording), reported as one line they can act on:
+//   config/materials.toml:12:17: material.wood.visual.decay_per_s: must be >= 0, got -8
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace mallet {
+
+class FileError : public std::runtime_error {
+ public:
+  FileError(std::string file, std::uint32_t line, std::uint32_t column, const std::string& message)
+      : std::runtime_error(format(file, line, column, message)),
+        file_(std::move(file)),
+        line_(line),
+        column_(column) {}
+
+  const std::string& file() const { return file_; }
+  std::uint32_t line() const { return line_; }      //!< 1-based; 0 = the file as a whole
+  std::uint32_t column() const { return column_; }  //!< 1-based; 0 = unknown
+
+ private:
+  static std::string format(const std::string& file, std::uint32_t line, std::uint32_t column,
+                            const std::string& message) {
+    std::string out = file;
+    if (line > 0) out += ":" + std::to_string(line);
+    if (line > 0 && column > 0) out += ":" + std::to_string(column);
+    return out + ": " + message;
+  }
+
+  std::string file_;
+  std::uint32_t line_;
+  std::uint32_t column_;
+};
+
+//! A configuration or scene file that cannot be used.
+using ConfigError = FileError;
+
+}  // namespace mallet

@@ -1,0 +1,112 @@
+#include "core/mallet.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mallet {
+
+std::vector<ContactZone> contact_zones(const Scene& scene) {
+  const double r = scene.mallet_radius_m;
+  std::vector<ContactZone> zones;
+  for (const Target& t : scene.targets)
+    zones.push_back({t.id, t.x_min - r, t.x_max + r, false, t.top_y + r});
+  // Cut overlapping zones of equal height at the middle of the gap between the bars.
+  for (ContactZone& a : zones) {
+    for (ContactZone& b : zones) {
+      if (&a == &b || a.plane_y != b.plane_y) continue;
+      const Target& ta = scene.targets[a.target];
+      const Target& tb = scene.targets[b.target];
+      if (ta.x_max <= tb.x_min && a.hi > b.lo) {  // a left of b, zones overlap
+        const double mid = 0.5 * (ta.x_max + tb.x_min);
+        a.hi = mid;
+        a.hi_open = true;  // the cut itself belongs to the bar on the right
+        b.lo = mid;
+      }
+    }
+  }
+  return zones;
+}
+
+Mallet::Mallet(const Scene& scene, ContactConfig config)
+    : scene_(&scene), config_(config), zones_(contact_zones(scene)) {}
+
+void Mallet::reset() { last_.reset(); }
+
+const ContactZone* Mallet::zone_at(double x) const {
+  const ContactZone* best = nullptr;
+  for (const ContactZone& z : zones_)
+    if (z.contains(x) && (!best || z.plane_y > best->plane_y)) best = &z;
+  return best;
+}
+
+Vec2 Mallet::displayed_centre(Vec2 hand) const {
+  const ContactZone* z = zone_at(hand.x);
+  if (z && hand.y < z->plane_y) return {hand.x, z->plane_y};
+  return hand;
+}
+
+std::optional<Impact> Mallet::update(Nanos t_ns, Vec2 hand) {
+  if (!std::isfinite(hand.x) || !std::isfinite(hand.y)) {
+    ++counters_.ignored_non_finite;
+    return std::nullopt;
+  }
+  if (last_ && t_ns <= last_->t_ns) {
+    ++counters_.ignored_not_after_previous;
+    return std::nullopt;
+  }
+  ++counters_.accepted;
+
+  std::optional<Impact> impact;
+  if (last_ && armed_) {
+    const Vec2 a = last_->hand;
+    const Nanos dt = t_ns - last_->t_ns;
+    // Earliest downward crossing of a contact plane inside its zone.
+    const ContactZone* hit = nullptr;
+    double hit_s = 2.0;
+    for (const ContactZone& z : zones_) {
+      if (!(a.y > z.plane_y && hand.y <= z.plane_y)) continue;
+      const double s = (a.y - z.plane_y) / (a.y - hand.y);
+      const double x = a.x + (hand.x - a.x) * s;
+      if (z.contains(x) && s < hit_s) {
+        hit = &z;
+        hit_s = s;
+      }
+    }
+    if (hit) {
+      armed_ = false;
+      rearm_y_ = hit->plane_y + config_.rearm_height_m;
+      double v = (a.y - hand.y) / to_seconds(dt);
+      if (v < config_.min_impact_speed_m_per_s) {
+        ++counters_.touches_below_min_speed;
+      } else {
+        if (v > config_.max_impact_speed_m_per_s) {
+          v = config_.max_impact_speed_m_per_s;
+          ++counters_.clamped_speed;
+        }
+        const Target& target = scene_->targets[hit->target];
+        Impact out;
+        out.t_ns = last_->t_ns + static_cast<Nanos>(std::llround(hit_s * static_cast<double>(dt)));
+        out.target = target.id;
+        out.material = target.material;
+        out.note = target.note;
+        out.speed_m_per_s = v;
+        out.x_m = a.x + (hand.x - a.x) * hit_s;
+        ++counters_.impacts;
+        impact = out;
+      }
+    }
+  }
+
+  // Any contact (a strike, a touch, a sideways entry, a first sample on a bar) disarms
+  // until the hand rises clear of the plane it touched.
+  if (const ContactZone* z = zone_at(hand.x); z && hand.y <= z->plane_y) {
+    armed_ = false;
+    rearm_y_ = z->plane_y + config_.rearm_height_m;
+  } else if (!armed_ && hand.y >= rearm_y_) {
+    armed_ = true;
+  }
+  last_ = Last{t_ns, hand};
+  return impact;
+}
+
+}  // namespace mallet

@@ -1,0 +1,100 @@
+#pragma once
+// The contact solver: the mallet head is a sphere of radius r whose centre follows the
+// hand in the vertical plane. Between two pointer samples the hand moves on a straight
+// line; the solver sweeps that segment against the bars' top faces, finds the exact
+// fractional contact time and the normal impact speed, and emits one Impact per strike.
+//
+// Contact model (documented in README "How a strike is detected"):
+//  * Each bar has a contact zone: its top face widened by r on both sides (the sphere's
+//    edge touching the bar's corner counts), cut at the middle of the gap where two
+//    zones of the same height would overlap. A point on that cut belongs to the bar on
+//    the right. Every x inside an instrument therefore names exactly one bar; a gap
+//    wider than 2r (e.g. between the two instruments) lets the mallet pass.
+//  * A strike happens when the segment crosses the zone's contact plane (top + r)
+//    downwards while armed. Its time is where the segment meets the plane; its speed is
+//    the segment's downward speed (exact for straight-line motion), clamped to
+//    `max_impact_speed_m_per_s`. A crossing slower than `min_impact_speed_m_per_s` is a
+//    touch: it disarms but makes no sound.
+//  * The displayed sphere never goes below a contact plane: while the hand is below it,
+//    the sphere rests on the surface ("stopping the cursor at the collision point").
+//  * After a strike (or any contact) the solver re-arms only when the hand rises
+//    `rearm_height_m` above the plane it touched: jitter around a surface makes no
+//    second strike, and sliding along the bars is not a strike.
+//  * Entering a zone sideways below its plane (from a gap, or past an instrument's end)
+//    is a contact without a strike: nothing crossed the top face.
+//  * Samples with a non-finite position, or a time not after the previous sample's,
+//    are ignored and counted (see Counters).
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/impact.hpp"
+#include "core/scene.hpp"
+
+namespace mallet {
+
+struct ContactConfig {
+  double rearm_height_m = 0.003;          //!< hysteresis above the contact plane
+  double min_impact_speed_m_per_s = 0.005;
+  double max_impact_speed_m_per_s = 10.0; //!< faster strikes are clamped (and counted)
+};
+
+//! A bar's contact zone in terms of the sphere's centre.
+struct ContactZone {
+  int target = -1;
+  double lo = 0, hi = 0;   //!< centre x range; `hi` excluded when `hi_open`
+  bool hi_open = false;
+  double plane_y = 0;      //!< centre height at contact: top_y + r
+
+  bool contains(double x) const { return x >= lo && (hi_open ? x < hi : x <= hi); }
+};
+
+class Mallet {
+ public:
+  struct Counters {
+    std::uint64_t accepted = 0;
+    std::uint64_t ignored_non_finite = 0;
+    std::uint64_t ignored_not_after_previous = 0;  //!< dt <= 0 (duplicates, reordering)
+    std::uint64_t impacts = 0;
+    std::uint64_t touches_below_min_speed = 0;
+    std::uint64_t clamped_speed = 0;
+  };
+
+  Mallet(const Scene& scene, ContactConfig config);
+
+  //! Feeds the hand (the sphere centre, world metres) at time t. Returns the strike that
+  //! happened in the segment from the previous accepted sample to this one, if any.
+  std::optional<Impact> update(Nanos t_ns, Vec2 hand);
+
+  //! Where the sphere is drawn for a hand position: held on the surface while the hand
+  //! is below a contact plane, free otherwise. A pure function of the hand.
+  Vec2 displayed_centre(Vec2 hand) const;
+
+  //! The zone under a centre x, the highest if zones of different heights overlap.
+  const ContactZone* zone_at(double x) const;
+
+  const std::vector<ContactZone>& zones() const { return zones_; }
+  const Counters& counters() const { return counters_; }
+  bool armed() const { return armed_; }
+  void reset();  //!< forget the previous sample (e.g. tracking was lost)
+
+ private:
+  struct Last {
+    Nanos t_ns;
+    Vec2 hand;
+  };
+
+  const Scene* scene_;
+  ContactConfig config_;
+  std::vector<ContactZone> zones_;
+  std::optional<Last> last_;
+  bool armed_ = true;
+  double rearm_y_ = 0;
+  Counters counters_;
+};
+
+//! Builds the contact zones of a scene for a sphere of the scene's radius.
+std::vector<ContactZone> contact_zones(const Scene& scene);
+
+}  // namespace mallet

@@ -1,0 +1,46 @@
+#pragma once
+// A scene: the instruments' bars (targets) in the vertical plane, their materials and
+// notes, the mallet head's radius and the screen → world mapping.
+#include <string>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/screen_to_world.hpp"
+
+namespace mallet {
+
+//! One strikeable bar. Its top face spans [x_min, x_max] at height top_y.
+struct Target {
+  int id = 0;                //!< index in Scene::targets, stable in config order
+  std::string instrument;    //!< "xylophone", "glockenspiel", ...
+  int material = 0;          //!< index in Scene::materials
+  int note = 60;             //!< MIDI note number
+  double frequency_hz = 0;   //!< equal temperament from the scene's A4
+  double x_min = 0;          //!< metres
+  double x_max = 0;          //!< metres
+  double top_y = 0;          //!< metres
+  double length_m = 0;       //!< along the depth axis (drawn, not used by contact)
+  double thickness_m = 0;    //!< drawn, not used by contact
+};
+
+//! An instrument as configured: a row of bars of one material.
+struct Instrument {
+  std::string name;
+  int material = 0;
+  std::vector<int> targets;  //!< ids, left to right
+};
+
+struct Scene {
+  std::string name;
+  std::string file;                  //!< where it was loaded from (for messages)
+  double mallet_radius_m = 0.015;
+  double tuning_a4_hz = 440.0;
+  ScreenToWorld screen_to_world;
+  std::vector<Material> materials;   //!< only those the scene uses
+  std::vector<Instrument> instruments;
+  std::vector<Target> targets;
+
+  const Material& material_of(const Target& t) const { return materials.at(t.material); }
+};
+
+}  // namespace mallet
