@@ -59,19 +59,31 @@ DampedSineFit fit_damped_sine(std::span<const double> y, double rate, double t0)
   for (double v : y) peak = std::max(peak, std::fabs(v));
   if (!(peak > 0) || !std::isfinite(peak)) return out;
 
-  // Use the part of the signal above 1e-3 of its peak: below it, rounding dominates.
+  // Fit the part of the signal down to 2% of its peak: past it, noise and rounding
+  // carry more weight than the decay.
   std::size_t n = y.size();
-  while (n > 8 && std::fabs(y[n - 1]) < 1e-3 * peak) --n;
+  while (n > 8 && std::fabs(y[n - 1]) < 0.02 * peak) --n;
   y = y.first(n);
   auto time = [&](double i) { return t0 + i / rate; };
 
-  // Zero crossings (linearly interpolated) → f and φ.
+  // Start values come from the strong part of the signal (down to 10% of the peak).
+  // Zero crossings give f and φ, with hysteresis so that noise around zero does not
+  // count: a crossing is confirmed when the signal reaches ±5% of the peak on the other
+  // side, and placed where the sign last changed before that.
+  std::size_t strong = y.size();
+  while (strong > 8 && std::fabs(y[strong - 1]) < 0.1 * peak) --strong;
+  const double h = 0.05 * peak;
   std::vector<double> crossings;
-  for (std::size_t i = 1; i < y.size(); ++i) {
-    if ((y[i - 1] < 0) != (y[i] < 0) && y[i - 1] != y[i]) {
-      const double s = y[i - 1] / (y[i - 1] - y[i]);
-      crossings.push_back(time(static_cast<double>(i - 1) + s));
+  int side = 0;
+  std::size_t last_change = 0;
+  for (std::size_t i = 1; i < strong; ++i) {
+    if ((y[i - 1] < 0) != (y[i] < 0)) last_change = i;
+    const int now = y[i] > h ? 1 : (y[i] < -h ? -1 : 0);
+    if (now != 0 && side != 0 && now != side && last_change > 0) {
+      const double a = y[last_change - 1], b = y[last_change];
+      crossings.push_back(time(static_cast<double>(last_change - 1) + a / (a - b)));
     }
+    if (now != 0) side = now;
   }
   if (crossings.size() < 2) return out;
   Params p{};
@@ -82,8 +94,8 @@ DampedSineFit fit_damped_sine(std::span<const double> y, double rate, double t0)
   std::size_t start = 0;
   for (std::size_t k = 0; k <= crossings.size(); ++k) {
     const std::size_t end = k < crossings.size()
-                                ? std::min(y.size(), static_cast<std::size_t>(std::max(0.0, (crossings[k] - t0) * rate)) + 1)
-                                : y.size();
+                                ? std::min(strong, static_cast<std::size_t>(std::max(0.0, (crossings[k] - t0) * rate)) + 1)
+                                : strong;
     std::size_t best = start;
     for (std::size_t i = start; i < end; ++i)
       if (std::fabs(y[i]) > std::fabs(y[best])) best = i;

@@ -1,0 +1,42 @@
+// `mallet scene describe` prints the contract's JSON: check it with a real JSON parser.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "run_cli.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+TEST(SceneDescribeCli, PrintsValidJsonWithTheContractKeys) {
+  const auto dir = test::scratch_dir();
+  const test::CliResult r = test::run_mallet("scene describe --scene " + test::percussion_scene().string() + " > " +
+                                             (dir / "scene.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  // python3 is part of every Debian system; its json module is the independent parser.
+  const std::string check =
+      "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); t=d['targets'];"
+      "assert isinstance(d['mallet_radius'], float);"
+      "assert len(t)==16 and all(set(['id','instrument','material','note','frequency_hz','x_min','x_max','top_y'])<=set(x) for x in t);"
+      "assert [x['note'] for x in t]==[72,74,76,77,79,81,83,84,84,86,88,89,91,93,95,96];"
+      "assert t[0]['instrument']=='xylophone' and t[15]['material']=='metal';"
+      "assert abs(t[5]['frequency_hz']-880.0)<1e-9;"
+      "assert all(x['x_min']<x['x_max'] for x in t);"
+      "assert set(['left_m','right_m','top_m','bottom_m'])<=set(d['screen_to_world'])\" " +
+      (dir / "scene.json").string();
+  EXPECT_EQ(std::system(check.c_str()), 0);
+}
+
+TEST(SceneDescribeCli, ABrokenSceneExitsTwoNamingTheLine) {
+  const auto dir = test::scratch_dir();
+  std::ofstream(dir / "s.toml") << "name = \"x\"\nmallet_radius_m = -1\nmaterials_file = \""
+                                << (test::config_dir() / "materials.toml").string() << "\"\n";
+  const test::CliResult r = test::run_mallet("scene describe --scene " + (dir / "s.toml").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("s.toml:2:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mallet_radius_m: must be > 0"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace mallet::app

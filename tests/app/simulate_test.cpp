@@ -1,0 +1,242 @@
+// `mallet simulate` end to end: a scripted strike on wood and one on metal produce the
+// expected events, cursor trace and audio; bad input exits 2 with nothing written.
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "app/analyze.hpp"
+#include "app/csv_table.hpp"
+#include "app/simulate.hpp"
+#include "audio/wav_file.hpp"
+#include "core/config/scene_config.hpp"
+#include "run_cli.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Two straight downward strikes in world space (sphere centre): bar 2 (E5, wood) at
+// 1.2 m/s and bar 11 (F6, metal) at 0.8 m/s, sampled at 60 Hz; contact times follow
+// from the geometry: the centre crosses top_y + r.
+struct Scripted {
+  fs::path csv;
+  double t_wood, v_wood = 1.2, t_metal, v_metal = 0.8;
+};
+
+Scripted write_two_strikes(const fs::path& dir, const Scene& scene) {
+  Scripted s;
+  s.csv = dir / "traj.csv";
+  std::ofstream f(s.csv);
+  f << "t,x,y\n";
+  const double plane = scene.targets[2].top_y + scene.mallet_radius_m;
+  const double x_wood = 0.5 * (scene.targets[2].x_min + scene.targets[2].x_max);
+  const double x_metal = 0.5 * (scene.targets[11].x_min + scene.targets[11].x_max);
+  const double y0 = plane + 0.1;
+  f.precision(17);
+  // Wood: y = y0 − v·t from t = 0 to 0.2 s, then rise.
+  for (int k = 0; k <= 12; ++k) f << k / 60.0 << ',' << x_wood << ',' << y0 - s.v_wood * (k / 60.0) << '\n';
+  s.t_wood = 0.1 / s.v_wood;
+  f << 0.4 << ',' << x_wood << ',' << y0 << '\n';
+  // Metal: move over, then y = y0 − v·(t − 1).
+  for (int k = 0; k <= 15; ++k)
+    f << 1.0 + k / 60.0 << ',' << x_metal << ',' << y0 - s.v_metal * (k / 60.0) << '\n';
+  s.t_metal = 1.0 + 0.1 / s.v_metal;
+  return s;
+}
+
+TEST(Simulate, ScriptedWoodAndMetalStrikesGiveExactStimuli) {
+  const fs::path dir = test::scratch_dir();
+  const Scene scene = config::load_scene(test::percussion_scene());
+  const Scripted s = write_two_strikes(dir, scene);
+  SimulateOptions o;
+  o.scene = test::percussion_scene();
+  o.input = s.csv;
+  o.out_dir = dir / "out";
+  o.input_space = InputSpace::world;
+  const SimulateResult r = run_simulate(o);
+  ASSERT_EQ(r.impacts.size(), 2u);
+
+  // events.csv
+  const CsvTable events = read_csv_table(o.out_dir / "events.csv");
+  EXPECT_EQ(events.header, (std::vector<std::string>{"t", "target", "instrument", "material", "note", "velocity"}));
+  ASSERT_EQ(events.rows.size(), 2u);
+  EXPECT_NEAR(events.number(0, 0), s.t_wood, 1e-6);
+  EXPECT_EQ(events.rows[0][1], "2");
+  EXPECT_EQ(events.rows[0][2], "xylophone");
+  EXPECT_EQ(events.rows[0][3], "wood");
+  EXPECT_EQ(events.rows[0][4], "76");
+  // Speeds are exact up to the nanosecond quantisation of the sample times (1 ns in 16.7 ms).
+  EXPECT_NEAR(events.number(0, 5), s.v_wood, 1e-7 * s.v_wood);
+  EXPECT_NEAR(events.number(1, 0), s.t_metal, 1e-6);
+  EXPECT_EQ(events.rows[1][3], "metal");
+  EXPECT_EQ(events.rows[1][4], "89");
+  EXPECT_NEAR(events.number(1, 5), s.v_metal, 1e-7 * s.v_metal);
+
+  // audio.wav: channel 1 is Eq. 1 with the actuator triple from the impact's own
+  // sample; channel 0 (acoustic) is silent until the synthesis engine lands.
+  const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
+  ASSERT_EQ(wav.channels, 2);
+  ASSERT_EQ(wav.sample_rate_hz, 48000);
+  const auto acoustic = wav.channel(0), actuator = wav.channel(1);
+  for (double x : acoustic) ASSERT_EQ(x, 0.0);
+  const double gain = AppConfig{}.actuator.gain;
+  const Impact& wood = r.impacts[0];
+  const auto first = static_cast<std::size_t>(std::ceil(static_cast<double>(wood.t_ns) * 48e-6));
+  for (std::size_t n = 0; n < first; ++n) ASSERT_EQ(actuator[n], 0.0) << n;
+  for (std::size_t n = first; n < first + 4800; ++n) {
+    const double t = static_cast<double>(n) / 48000 - static_cast<double>(wood.t_ns) * 1e-9;
+    const double want = gain * 1.0 * s.v_wood * std::exp(-80 * t) * std::sin(2 * std::numbers::pi * 100 * t);
+    ASSERT_NEAR(actuator[n], want, 2e-7) << n;
+  }
+
+  // cursor.csv: offset is the visual Eq. 1 of the latest impact; while the hand is
+  // below the surface the displayed head rests on it (plus the offset).
+  const CsvTable cursor = read_csv_table(o.out_dir / "cursor.csv");
+  EXPECT_EQ(cursor.header,
+            (std::vector<std::string>{"t", "hand_x", "hand_y", "cursor_x", "cursor_y", "offset"}));
+  const double plane = scene.targets[2].top_y + scene.mallet_radius_m;
+  int checked_held = 0;
+  for (std::size_t row = 0; row < cursor.rows.size(); ++row) {
+    const double t = cursor.number(row, 0);
+    if (t < s.t_wood || t >= s.t_metal) continue;
+    const double since = t - static_cast<double>(wood.t_ns) * 1e-9;
+    const double want = 0.009 * s.v_wood * std::exp(-8 * since) * std::sin(2 * std::numbers::pi * 5 * since);
+    ASSERT_NEAR(cursor.number(row, 5), want, 1e-9) << "t=" << t;
+    if (cursor.number(row, 2) < plane) {
+      ASSERT_NEAR(cursor.number(row, 4), plane + cursor.number(row, 5), 1e-9);
+      ++checked_held;
+    }
+  }
+  EXPECT_GT(checked_held, 10);
+  EXPECT_EQ(cursor.number(1, 0) - cursor.number(0, 0), 0.001);  // --trace-rate 1000
+}
+
+TEST(Simulate, ScreenSpaceInputIsMappedThroughTheScene) {
+  const fs::path dir = test::scratch_dir();
+  const Scene scene = config::load_scene(test::percussion_scene());
+  const Target& bar = scene.targets[12];
+  const double x = scene.screen_to_world.unmap({0.5 * (bar.x_min + bar.x_max), 0}).x;
+  const double y_above = scene.screen_to_world.unmap({0, 0.2}).y;
+  const double y_below = scene.screen_to_world.unmap({0, -0.05}).y;
+  std::ofstream f(dir / "t.csv");
+  f.precision(17);
+  f << "t,x,y\n0," << x << ',' << y_above << "\n0.25," << x << ',' << y_below << '\n';
+  f.close();
+  SimulateOptions o;
+  o.scene = test::percussion_scene();
+  o.input = dir / "t.csv";
+  o.out_dir = dir / "out";
+  const SimulateResult r = run_simulate(o);
+  ASSERT_EQ(r.impacts.size(), 1u);
+  EXPECT_EQ(r.impacts[0].target, 12);
+  // 0.25 m at 1 m/s from 0.2 to −0.05: contact when the centre is r above the bar.
+  EXPECT_NEAR(r.impacts[0].speed_m_per_s, 1.0, 1e-9);
+  EXPECT_NEAR(static_cast<double>(r.impacts[0].t_ns) * 1e-9, 0.2 - scene.mallet_radius_m, 1e-9);
+}
+
+TEST(Simulate, MonoRoutingMixesBothIntoOneChannel) {
+  const fs::path dir = test::scratch_dir();
+  const Scene scene = config::load_scene(test::percussion_scene());
+  const Scripted s = write_two_strikes(dir, scene);
+  std::ofstream(dir / "mono.toml") << "[audio.routing]\nchannels = 1\nacoustic = 0\nactuator = 0\n";
+  SimulateOptions o;
+  o.scene = test::percussion_scene();
+  o.input = s.csv;
+  o.out_dir = dir / "out";
+  o.input_space = InputSpace::world;
+  o.config = dir / "mono.toml";
+  o.sample_rate_hz = 8000;
+  run_simulate(o);
+  const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
+  EXPECT_EQ(wav.channels, 1);
+  EXPECT_EQ(wav.sample_rate_hz, 8000);
+  double energy = 0;
+  for (float x : wav.samples) energy += double(x) * x;
+  EXPECT_GT(energy, 0.0);
+}
+
+TEST(SimulateCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
+  const fs::path dir = test::scratch_dir();
+  std::ofstream(dir / "unsorted.csv") << "t,x,y\n0,0.5,0.5\n0.2,0.5,0.5\n0.1,0.5,0.5\n";
+  std::ofstream(dir / "empty.csv") << "";
+  std::ofstream(dir / "nocol.csv") << "t,x\n0,0\n";
+  std::ofstream(dir / "nant.csv") << "t,x,y\n0,0,0\nnan,0,0\n";
+  std::ofstream(dir / "broken.toml") << "name = \"x\"\nmallet_radius_m = [\n";
+  const std::string good = (dir / "unsorted.csv").string();
+  const struct {
+    std::string args, expect;
+  } cases[] = {
+      {"--input " + good, "unsorted.csv:4: t = 0.1 is before the previous row's t = 0.2"},
+      {"--input " + (dir / "empty.csv").string(), "empty.csv: empty file"},
+      {"--input " + (dir / "nocol.csv").string(), "nocol.csv:1: missing column \"y\""},
+      {"--input " + (dir / "nant.csv").string(), "nant.csv:3: t is not a finite number"},
+      {"--input " + (dir / "nocol.csv").string() + " --scene " + (dir / "broken.toml").string(), "broken.toml:"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = dir / "out";
+    const test::CliResult r = test::run_mallet("simulate " + c.args + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+TEST(SimulateCli, ActuatorAboveNyquistIsRefused) {
+  const fs::path dir = test::scratch_dir();
+  std::ofstream(dir / "t.csv") << "t,x,y\n0,0.5,0.2\n0.1,0.5,0.9\n";
+  // The shipped scene with a metal whose actuator frequency is above 24 kHz.
+  std::ifstream scene_in(test::percussion_scene());
+  std::string scene((std::istreambuf_iterator<char>(scene_in)), std::istreambuf_iterator<char>());
+  scene.replace(scene.find("../materials.toml"), 17, "materials.toml");
+  std::ofstream(dir / "scene.toml") << scene;
+  std::ofstream(dir / "materials.toml")
+      << "[material.wood]\nvisual = { amplitude_s = 0.009, decay_per_s = 8.0, freq_hz = 5.0 }\n"
+         "actuator = { amplitude = 1.0, decay_per_s = 80.0, freq_hz = 100.0 }\n"
+         "[material.metal]\nvisual = { amplitude_s = 0.02, decay_per_s = 9.0, freq_hz = 15.0 }\n"
+         "actuator = { amplitude = 2.0, decay_per_s = 90.0, freq_hz = 30000.0 }\n";
+  const test::CliResult r = test::run_mallet("simulate --input " + (dir / "t.csv").string() + " --scene " +
+                                             (dir / "scene.toml").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("Nyquist"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(SimulateCli, NonFiniteSamplesAreIgnoredAndCounted) {
+  const fs::path dir = test::scratch_dir();
+  std::ofstream(dir / "t.csv") << "t,x,y\n0,0.3,0.2\n0.05,nan,0.5\n0.1,0.3,inf\n0.1,0.3,0.3\n0.2,0.3,0.9\n";
+  const test::CliResult r = test::run_mallet("simulate --input " + (dir / "t.csv").string() + " --out " +
+                                             (dir / "out").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("1 impact from 3 samples (ignored: 2 non-finite, 0 not after the previous sample)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "audio.wav"));
+}
+
+TEST(AnalyzeCli, FitsTheShippedDemoBackToTableOne) {
+  const fs::path dir = test::scratch_dir();
+  const std::string demo = (test::config_dir() / "trajectories" / "demo.csv").string();
+  ASSERT_EQ(test::run_mallet("simulate --input " + demo + " --out " + (dir / "out").string()).status, 0);
+  const test::CliResult r = test::run_mallet("analyze --dir " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto results = analyze_simulation(dir / "out", 1);
+  ASSERT_GE(results.size(), 10u);
+  const Scene scene = config::load_scene(test::percussion_scene());
+  for (const ImpactAnalysis& a : results) {
+    const Material& m = *(a.material == "wood" ? &scene.materials[0] : &scene.materials[1]);
+    ASSERT_TRUE(a.visual.ok && a.actuator.ok);
+    EXPECT_NEAR(a.visual.decay_per_s, m.visual.decay_per_s, 0.01 * m.visual.decay_per_s);
+    EXPECT_NEAR(a.visual.freq_hz, m.visual.freq_hz, 0.01 * m.visual.freq_hz);
+    EXPECT_NEAR(a.visual.amplitude / a.velocity, m.visual.amplitude, 0.01 * m.visual.amplitude);
+    EXPECT_NEAR(a.actuator.decay_per_s, m.actuator.decay_per_s, 0.01 * m.actuator.decay_per_s);
+    EXPECT_NEAR(a.actuator.freq_hz, m.actuator.freq_hz, 0.01 * m.actuator.freq_hz);
+  }
+}
+
+}  // namespace
+}  // namespace mallet::app

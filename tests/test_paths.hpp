@@ -1,0 +1,24 @@
+#pragma once
+// Paths the tests need: the source tree's shipped data and a scratch directory per test.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace mallet::test {
+
+inline std::filesystem::path source_dir() { return MALLET_TEST_SOURCE_DIR; }
+inline std::filesystem::path config_dir() { return source_dir() / "config"; }
+inline std::filesystem::path percussion_scene() { return config_dir() / "scenes" / "percussion.toml"; }
+
+//! A fresh, empty directory named after the running test.
+inline std::filesystem::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mallet-tests" /
+                                    (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace mallet::test
