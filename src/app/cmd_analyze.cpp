@@ -30,23 +30,23 @@ void register_analyze(CLI::App& app) {
     const AppConfig config = o->config ? config::load_app_config(*o->config) : AppConfig{};
     const Scene scene = config::load_scene(o->scene);
     const auto results = analyze_simulation(o->dir, config.audio.routing.actuator);
-    std::printf("%-14s %-9s %7s | %-31s | %-31s\n", "impact t (s)", "material", "v (m/s)",
-                "visual: A (s)   B (1/s)  f (Hz)", "actuator: A     B (1/s)  f (Hz)");
+    std::printf("%-14s %-9s %7s | %-39s | %-39s\n", "impact t (s)", "material", "v (m/s)",
+                "visual:   A (s)      B (1/s)     f (Hz)", "actuator: A         B (1/s)     f (Hz)");
     for (const ImpactAnalysis& a : results) {
       const Material* m = nullptr;
       for (const Material& candidate : scene.materials)
         if (candidate.name == a.material) m = &candidate;
       auto row = [](const DampedSineFit& fit, double scale) {
         char buf[64];
-        if (!fit.ok) std::snprintf(buf, sizeof buf, "%-31s", "  (too short to fit)");
-        else std::snprintf(buf, sizeof buf, "%-10.6g %9.4f %9.4f  ", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);
+        if (!fit.ok) std::snprintf(buf, sizeof buf, "%-33s", "(too short to fit)");
+        else std::snprintf(buf, sizeof buf, "%-11.7g %10.6f %10.6f", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);
         return std::string(buf);
       };
       std::printf("%-14s %-9s %7.4f | fit   %s | fit   %s\n", format_seconds(a.t_ns).c_str(), a.material.c_str(),
                   a.velocity, row(a.visual, a.velocity).c_str(),
                   row(a.actuator, config.actuator.gain * a.velocity).c_str());
       if (m)
-        std::printf("%-14s %-9s %7s | table %-10.6g %9.4f %9.4f   | table %-10.6g %9.4f %9.4f\n", "", "", "",
+        std::printf("%-14s %-9s %7s | table %-11.7g %10.6f %10.6f | table %-11.7g %10.6f %10.6f\n", "", "", "",
                     m->visual.amplitude, m->visual.decay_per_s, m->visual.freq_hz, m->actuator.amplitude,
                     m->actuator.decay_per_s, m->actuator.freq_hz);
     }

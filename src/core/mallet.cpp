@@ -17,10 +17,14 @@ std::vector<ContactZone> contact_zones(const Scene& scene) {
       const Target& ta = scene.targets[a.target];
       const Target& tb = scene.targets[b.target];
       if (ta.x_max <= tb.x_min && a.hi > b.lo) {  // a left of b, zones overlap
+        // Only ever narrow a zone: with a large head, bars two apart overlap too, and
+        // their cut must not undo the cut between neighbours (each x keeps its nearest bar).
         const double mid = 0.5 * (ta.x_max + tb.x_min);
-        a.hi = mid;
-        a.hi_open = true;  // the cut itself belongs to the bar on the right
-        b.lo = mid;
+        if (mid <= a.hi) {
+          a.hi = mid;
+          a.hi_open = true;  // the cut itself belongs to the bar on the right
+        }
+        b.lo = std::max(b.lo, mid);
       }
     }
   }

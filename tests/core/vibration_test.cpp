@@ -34,7 +34,8 @@ TEST(Table1, ShippedMaterialsHoldThePapersValues) {
 }
 
 TEST(Eq1, MatchesLongDoubleReferenceForEveryShippedTriple) {
-  for (const Material& m : shipped().all()) {
+  const MaterialLibrary lib = shipped();
+  for (const Material& m : lib.all()) {
     for (const VibrationParams* p : {&m.visual, &m.actuator}) {
       for (double v : {0.1, 1.0, 2.5, 7.0}) {
         for (Nanos t = 0; t < 2 * kNanosPerSecond; t += 1'234'567) {
