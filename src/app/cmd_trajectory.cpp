@@ -52,12 +52,18 @@ void register_trajectory(CLI::App& app) {
       strikes.push_back({id, static_cast<Nanos>(std::llround((o->start_s + static_cast<double>(k) * o->interval_s) * 1e9)),
                          o->speed});
     }
-    const auto path = ghost_player_path(scene, strikes, o->rate_hz);
+    const GhostPath path = ghost_player(scene, strikes, o->rate_hz);
+    for (std::size_t k = 0; k < strikes.size(); ++k) {
+      if (path.contacts[k] != strikes[k].t_ns)
+        std::fprintf(stderr, "mallet: warning: strike %zu (target %d) lands %.1f ms late: the mallet needs more time "
+                             "to lift and travel (raise --interval)\n",
+                     k, strikes[k].target, to_seconds(path.contacts[k] - strikes[k].t_ns) * 1e3);
+    }
     std::ofstream f(o->out);
     if (!f) throw std::runtime_error(o->out.string() + ": cannot create");
     f << "t,x,y\n";
     char buf[96];
-    for (const PointerSample& s : path) {
+    for (const PointerSample& s : path.samples) {
       const Vec2 p = o->space == "screen" ? scene.screen_to_world.unmap({s.x, s.y}) : Vec2{s.x, s.y};
       if (s.t_ns < 0) continue;  // an approach before t = 0 is cut: TRAJ.csv starts at 0
       std::snprintf(buf, sizeof buf, ",%.12g,%.12g\n", p.x, p.y);
@@ -65,7 +71,7 @@ void register_trajectory(CLI::App& app) {
     }
     f.flush();
     if (!f) throw std::runtime_error(o->out.string() + ": write failed");
-    std::printf("wrote %s (%zu strikes, %zu samples)\n", o->out.string().c_str(), strikes.size(), path.size());
+    std::printf("wrote %s (%zu strikes, %zu samples)\n", o->out.string().c_str(), strikes.size(), path.samples.size());
   });
 }
 

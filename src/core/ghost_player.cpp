@@ -18,9 +18,9 @@ Nanos seconds_ns(double s) { return static_cast<Nanos>(std::llround(s * 1e9)); }
 
 }  // namespace
 
-std::vector<PointerSample> ghost_player_path(const Scene& scene, const std::vector<ScriptedStrike>& strikes,
-                                             double rate_hz, const GhostPlayerStyle& style) {
-  std::vector<PointerSample> out;
+GhostPath ghost_player(const Scene& scene, const std::vector<ScriptedStrike>& strikes, double rate_hz,
+                       const GhostPlayerStyle& style) {
+  GhostPath out;
   if (strikes.empty() || !(rate_hz > 0)) return out;
   const double r = scene.mallet_radius_m;
   std::vector<Waypoint> path;
@@ -43,6 +43,7 @@ std::vector<PointerSample> ghost_player_path(const Scene& scene, const std::vect
     }
     path.push_back({start, {x, hover}});
     const Nanos contact = start + down;
+    out.contacts.push_back(contact);
     // The follow-through lasts at least two sample intervals, so the samples on both
     // sides of the contact lie on the straight descent: its time and speed are exact.
     const double depth = std::max(style.follow_through_m, 2.0 * v / rate_hz);
@@ -61,7 +62,7 @@ std::vector<PointerSample> ghost_player_path(const Scene& scene, const std::vect
     const Waypoint& b = path[std::min(seg + 1, path.size() - 1)];
     const double s = b.t > a.t ? static_cast<double>(t - a.t) / static_cast<double>(b.t - a.t) : 1.0;
     const Vec2 p = lerp(a.p, b.p, std::clamp(s, 0.0, 1.0));
-    out.push_back({t, p.x, p.y});
+    out.samples.push_back({t, p.x, p.y});
   }
   return out;
 }

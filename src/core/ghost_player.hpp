@@ -22,11 +22,16 @@ struct GhostPlayerStyle {
   double lift_speed_m_per_s = 0.6;
 };
 
-//! The hand (sphere centre, world metres) sampled at `rate_hz` from the first strike's
-//! approach to the last strike's lift. Strikes must be in time order and leave enough
-//! time between them to lift and travel (at 1 m/s); otherwise the path arrives late
-//! and the strike happens when it arrives (still one impact each).
-std::vector<PointerSample> ghost_player_path(const Scene& scene, const std::vector<ScriptedStrike>& strikes,
-                                             double rate_hz, const GhostPlayerStyle& style = {});
+struct GhostPath {
+  std::vector<PointerSample> samples;  //!< the hand: sphere centre, world metres
+  std::vector<Nanos> contacts;         //!< when each strike really meets its bar
+};
+
+//! The hand sampled at `rate_hz` from the first strike's approach to the last strike's
+//! lift. Strikes must be in time order and leave enough time between them to lift and
+//! travel (at 1 m/s); otherwise the path arrives late and the strike happens when it
+//! arrives (still one impact each): `contacts` says when.
+GhostPath ghost_player(const Scene& scene, const std::vector<ScriptedStrike>& strikes, double rate_hz,
+                       const GhostPlayerStyle& style = {});
 
 }  // namespace mallet
