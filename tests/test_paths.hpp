@@ -5,11 +5,22 @@
 
 #include <gtest/gtest.h>
 
+#include "core/config/scene_config.hpp"
+
 namespace mallet::test {
 
 inline std::filesystem::path source_dir() { return MALLET_TEST_SOURCE_DIR; }
 inline std::filesystem::path config_dir() { return source_dir() / "config"; }
 inline std::filesystem::path percussion_scene() { return config_dir() / "scenes" / "percussion.toml"; }
+
+//! The shipped percussion scene, loaded once per test binary.
+inline const Scene& percussion() {
+  static const Scene scene = config::load_scene(percussion_scene());
+  return scene;
+}
+
+inline constexpr Nanos kDay = 86'400 * kNanosPerSecond;
+inline constexpr Nanos kMicrosecond = 1'000;
 
 //! A fresh, empty directory named after the running test.
 inline std::filesystem::path scratch_dir() {

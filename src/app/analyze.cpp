@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "app/csv_table.hpp"
 #include "audio/wav_file.hpp"

@@ -20,13 +20,9 @@
 namespace mallet {
 namespace {
 
-constexpr Nanos kDay = 86'400 * kNanosPerSecond;
-constexpr Nanos kMicrosecond = 1'000;
-
-const Scene& percussion() {
-  static const Scene scene = config::load_scene(test::percussion_scene());
-  return scene;
-}
+using test::kDay;
+using test::kMicrosecond;
+using test::percussion;
 
 struct Played {
   std::vector<PointerSample> path;

@@ -21,13 +21,9 @@
 namespace mallet {
 namespace {
 
-constexpr Nanos kDay = 86'400 * kNanosPerSecond;
-constexpr Nanos kMicrosecond = 1'000;
-
-const Scene& percussion() {
-  static const Scene scene = config::load_scene(test::percussion_scene());
-  return scene;
-}
+using test::kDay;
+using test::kMicrosecond;
+using test::percussion;
 
 //! The sphere centre's height when its bottom meets the top of `target`.
 double contact_plane(const Scene& scene, int target) {
