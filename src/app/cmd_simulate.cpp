@@ -21,8 +21,8 @@ void register_simulate(CLI::App& app) {
       "                  cursor = the displayed mallet head (held on the surface while the hand\n"
       "                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement\n"
       "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
-      "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample.\n"
-      "                  The acoustic channel is silent until the synthesis engine lands.\n"
+      "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample\n"
+      "                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.\n"
       "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
       "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
       "Bad input prints FILE:LINE: problem and exits 2 with nothing written.");

@@ -14,6 +14,8 @@ void register_commands(CLI::App& app) {
   register_scene(app);
   register_analyze(app);
   register_trajectory(app);
+  register_audio(app);
+  register_bench(app);
 }
 
 }  // namespace mallet::app

@@ -14,5 +14,7 @@ void register_simulate(CLI::App& app);
 void register_scene(CLI::App& app);
 void register_analyze(CLI::App& app);
 void register_trajectory(CLI::App& app);
+void register_audio(CLI::App& app);
+void register_bench(CLI::App& app);
 
 }  // namespace mallet::app

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "audio/actuator_track.hpp"
+#include "app/audio_setup.hpp"
 #include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -123,6 +123,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   for (const Material& m : scene.materials)
     if (auto problem = actuator_band_problem(m, rate)) throw FileError(scene.file, 0, 0, *problem);
   result.sample_rate_hz = rate;
+  AudioRig rig = make_audio_rig(scene, config, rate);
 
   // --- the contact solver, fed exactly as the kiosk feeds it
   Mallet mallet(scene, config.contact);
@@ -181,27 +182,29 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     check_stream(f, path_cursor);
   }
 
-  // --- audio.wav: sample 0 is t = 0 of the trajectory's clock
+  // --- audio.wav: sample 0 is t = 0 of the trajectory's clock. The engine is the
+  // kiosk's own; each impact is posted just before the block it falls in, as the input
+  // thread would, so every strike starts on its own sample.
   {
     const AudioRouting& routing = config.audio.routing;
     audio::WavWriter wav(out.stage("audio.wav"), routing.channels, rate);
-    audio::ActuatorTrack actuator(scene, result.impacts, config.actuator, rate);
     const SampleAlignment end = align_to_sample(t_end, rate);
     const std::int64_t frames = std::max<std::int64_t>(end.index, 1);
-    constexpr std::int64_t kBlock = 4096;
-    std::vector<float> actuator_block(kBlock), interleaved(kBlock * routing.channels);
+    constexpr int kBlock = 1024;
+    std::vector<float> block(static_cast<std::size_t>(kBlock * routing.channels));
+    std::size_t next_impact = 0;
     for (std::int64_t first = 0; first < frames; first += kBlock) {
-      const std::int64_t n = std::min(kBlock, frames - first);
-      actuator.render(first, std::span<float>(actuator_block.data(), static_cast<std::size_t>(n)));
-      std::fill(interleaved.begin(), interleaved.end(), 0.0f);
-      // The acoustic channel stays silent until the synthesis engine lands (issue 3).
-      for (std::int64_t i = 0; i < n; ++i)
-        interleaved[static_cast<std::size_t>(i * routing.channels + routing.actuator)] += actuator_block[i];
-      wav.write(std::span<const float>(interleaved.data(), static_cast<std::size_t>(n * routing.channels)));
+      const int n = static_cast<int>(std::min<std::int64_t>(kBlock, frames - first));
+      const std::int64_t block_end = first + n;
+      while (next_impact < result.impacts.size() &&
+             align_to_sample(result.impacts[next_impact].t_ns, rate).index < block_end)
+        rig.engine->post(result.impacts[next_impact++]);
+      rig.engine->process(block.data(), n);
+      wav.write(std::span<const float>(block.data(), static_cast<std::size_t>(n * routing.channels)));
     }
     wav.close();
     result.audio_frames = static_cast<std::uint64_t>(frames);
-    result.clipped_samples = actuator.clipped_samples();
+    result.clipped_samples = rig.engine->counters().clipped;
   }
 
   result.written = out.commit();

@@ -1,6 +1,8 @@
 #pragma once
 // The kiosk's settings (config/mallet.toml). The defaults here are the shipped file's
 // values; a test keeps the two equal.
+#include <string>
+
 #include "core/mallet.hpp"
 #include "core/visual_vibration.hpp"
 
@@ -18,8 +20,22 @@ struct AudioRouting {
   int actuator = 1;
 };
 
+//! Where the speaker's note comes from.
+enum class AcousticRoute {
+  modal,  //!< built-in modal bar synthesis (default)
+  midi,   //!< the paper's route: FluidSynth with a General MIDI soundfont
+};
+
 struct AudioConfig {
   int sample_rate_hz = 48000;
+  std::string device;               //!< PortAudio output: name substring or index; empty = default
+  int frames_per_buffer = 64;
+  double suggested_latency_ms = 0;  //!< 0 = the device's default low latency
+  double schedule_ahead_ms = 0;     //!< 0 = as soon as possible; > 0 = constant latency, no jitter
+  int max_voices = 64;
+  double volume = 0.8;              //!< speaker channel gain (the operator's volume)
+  AcousticRoute acoustic = AcousticRoute::modal;
+  std::string soundfont = "/usr/share/sounds/sf2/TimGM6mb.sf2";  //!< for the midi route
   AudioRouting routing;
 };
 

@@ -26,6 +26,8 @@ struct Target {
 //! An instrument as configured: a row of bars of one material.
 struct Instrument {
   std::string name;
+  std::string voice;         //!< acoustic preset in the instruments file (default: name)
+  int midi_program = 0;      //!< General MIDI program for the midi route (0-based)
   int material = 0;
   std::vector<int> targets;  //!< ids, left to right
 };
@@ -33,6 +35,7 @@ struct Instrument {
 struct Scene {
   std::string name;
   std::string file;                  //!< where it was loaded from (for messages)
+  std::string instruments_file;      //!< acoustic presets, resolved against the scene's folder
   double mallet_radius_m = 0.015;
   double tuning_a4_hz = 440.0;
   ScreenToWorld screen_to_world;

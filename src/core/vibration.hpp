@@ -21,9 +21,10 @@ struct VibrationParams {
   friend bool operator==(const VibrationParams&, const VibrationParams&) = default;
 };
 
-//! Beyond this exponent e^(−B·t) is below 1e-304: return an exact zero instead of
-//! walking through the subnormal range (slow on x86 and useless to the output).
-inline constexpr double kDecayCutoffExponent = 700.0;
+//! Beyond this exponent e^(−B·t) is below 1e-260: return an exact zero. The margin
+//! keeps e^(−B·t)·sin(...) out of the subnormal range (below 2.2e-308) even next to a
+//! zero crossing, where subnormal arithmetic is slow on x86 and useless to the output.
+inline constexpr double kDecayCutoffExponent = 600.0;
 
 //! e^(−B·t) · sin(2π·f·t) for t seconds since the impact; 0 for t < 0.
 //! The phase is reduced with the whole and fractional seconds kept apart so an

@@ -77,16 +77,22 @@ TEST(Simulate, ScriptedWoodAndMetalStrikesGiveExactStimuli) {
   EXPECT_NEAR(events.number(1, 5), s.v_metal, 1e-7 * s.v_metal);
 
   // audio.wav: channel 1 is Eq. 1 with the actuator triple from the impact's own
-  // sample; channel 0 (acoustic) is silent until the synthesis engine lands.
+  // sample; channel 0 is the note, starting on the same sample.
   const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
   ASSERT_EQ(wav.channels, 2);
   ASSERT_EQ(wav.sample_rate_hz, 48000);
   const auto acoustic = wav.channel(0), actuator = wav.channel(1);
-  for (double x : acoustic) ASSERT_EQ(x, 0.0);
   const double gain = AppConfig{}.actuator.gain;
   const Impact& wood = r.impacts[0];
   const auto first = static_cast<std::size_t>(std::ceil(static_cast<double>(wood.t_ns) * 48e-6));
-  for (std::size_t n = 0; n < first; ++n) ASSERT_EQ(actuator[n], 0.0) << n;
+  for (std::size_t n = 0; n < first; ++n) {
+    ASSERT_EQ(actuator[n], 0.0) << n;
+    ASSERT_EQ(acoustic[n], 0.0) << n;
+  }
+  EXPECT_NE(acoustic[first], 0.0);
+  double note_energy = 0;
+  for (std::size_t n = first; n < first + 4800; ++n) note_energy += acoustic[n] * acoustic[n];
+  EXPECT_GT(note_energy, 1.0);  // a clearly audible note, not a click
   for (std::size_t n = first; n < first + 4800; ++n) {
     const double t = static_cast<double>(n) / 48000 - static_cast<double>(wood.t_ns) * 1e-9;
     const double want = gain * 1.0 * s.v_wood * std::exp(-80 * t) * std::sin(2 * std::numbers::pi * 100 * t);

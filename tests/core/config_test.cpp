@@ -167,6 +167,14 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.actuator.gain, defaults.actuator.gain);
   EXPECT_EQ(shipped.actuator.soft_clip_knee, defaults.actuator.soft_clip_knee);
   EXPECT_EQ(shipped.audio.sample_rate_hz, defaults.audio.sample_rate_hz);
+  EXPECT_EQ(shipped.audio.device, defaults.audio.device);
+  EXPECT_EQ(shipped.audio.frames_per_buffer, defaults.audio.frames_per_buffer);
+  EXPECT_EQ(shipped.audio.suggested_latency_ms, defaults.audio.suggested_latency_ms);
+  EXPECT_EQ(shipped.audio.schedule_ahead_ms, defaults.audio.schedule_ahead_ms);
+  EXPECT_EQ(shipped.audio.max_voices, defaults.audio.max_voices);
+  EXPECT_EQ(shipped.audio.volume, defaults.audio.volume);
+  EXPECT_EQ(shipped.audio.acoustic, defaults.audio.acoustic);
+  EXPECT_EQ(shipped.audio.soundfont, defaults.audio.soundfont);
   EXPECT_EQ(shipped.audio.routing.channels, defaults.audio.routing.channels);
   EXPECT_EQ(shipped.audio.routing.acoustic, defaults.audio.routing.acoustic);
   EXPECT_EQ(shipped.audio.routing.actuator, defaults.audio.routing.actuator);

@@ -39,6 +39,23 @@ AppConfig read(const toml::table& root, const std::string& file) {
     c.audio.sample_rate_hz =
         static_cast<int>(t->integer_or("sample_rate_hz", c.audio.sample_rate_hz));
     t->require_range("sample_rate_hz", c.audio.sample_rate_hz, 8000, 384000);
+    AudioConfig& a = c.audio;
+    a.device = t->string_or("device", a.device);
+    a.frames_per_buffer = static_cast<int>(t->integer_or("frames_per_buffer", a.frames_per_buffer));
+    t->require_range("frames_per_buffer", a.frames_per_buffer, 16, 8192);
+    a.suggested_latency_ms = t->number_or("suggested_latency_ms", a.suggested_latency_ms);
+    t->require_range("suggested_latency_ms", a.suggested_latency_ms, 0, 1000);
+    a.schedule_ahead_ms = t->number_or("schedule_ahead_ms", a.schedule_ahead_ms);
+    t->require_range("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
+    a.max_voices = static_cast<int>(t->integer_or("max_voices", a.max_voices));
+    t->require_range("max_voices", a.max_voices, 1, 4096);
+    a.volume = t->number_or("volume", a.volume);
+    t->require_range("volume", a.volume, 0, 4);
+    const std::string route = t->string_or("acoustic", "modal");
+    if (route == "modal") a.acoustic = AcousticRoute::modal;
+    else if (route == "midi") a.acoustic = AcousticRoute::midi;
+    else t->fail("acoustic", "expected \"modal\" or \"midi\", got \"" + route + "\"");
+    a.soundfont = t->string_or("soundfont", a.soundfont);
     if (auto r = t->optional_table("routing")) {
       AudioRouting& routing = c.audio.routing;
       routing.channels = static_cast<int>(r->integer_or("channels", routing.channels));

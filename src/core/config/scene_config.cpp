@@ -21,6 +21,9 @@ int add_material(Scene& scene, const Material& m) {
 void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene) {
   Instrument inst;
   inst.name = t.string("name");
+  inst.voice = t.string_or("voice", inst.name);
+  inst.midi_program = static_cast<int>(t.integer_or("midi_program", 0));
+  t.require_range("midi_program", inst.midi_program, 0, 127);
   const std::string material_name = t.string("material");
   const Material* material = library.find(material_name);
   if (!material)
@@ -71,6 +74,7 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
   scene.file = file;
   scene.name = top.string("name");
   top.string_or("materials_file", "");  // resolved by the caller
+  scene.instruments_file = top.string_or("instruments_file", "../instruments.toml");
   scene.mallet_radius_m = top.number("mallet_radius_m");
   top.require_positive("mallet_radius_m", scene.mallet_radius_m);
   scene.tuning_a4_hz = top.number_or("tuning_a4_hz", 440.0);
@@ -117,7 +121,10 @@ Scene load_scene(const std::filesystem::path& path) {
       top.fail("materials_file", std::string(e.what()));
     throw;
   }
-  return read(root, path.string(), library);
+  Scene scene = read(root, path.string(), library);
+  if (!std::filesystem::path(scene.instruments_file).is_absolute())
+    scene.instruments_file = (path.parent_path() / scene.instruments_file).lexically_normal().string();
+  return scene;
 }
 
 Scene parse_scene(std::string_view text, const std::string& name, const MaterialLibrary& materials) {

@@ -1,0 +1,45 @@
+#include "app/audio_setup.hpp"
+
+#include "core/config/instruments_config.hpp"
+#include "core/file_error.hpp"
+
+namespace mallet::app {
+
+AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz, bool acoustic_enabled) {
+  const std::vector<ModalPreset> library = config::load_instruments(scene.instruments_file);
+  std::vector<ModalPreset> presets;
+  std::vector<int> programs;
+  for (const Instrument& inst : scene.instruments) {
+    const ModalPreset* found = nullptr;
+    for (const ModalPreset& p : library)
+      if (p.name == inst.voice) found = &p;
+    if (!found) {
+      std::string known;
+      for (const ModalPreset& p : library) known += (known.empty() ? "" : ", ") + p.name;
+      throw FileError(scene.file, 0, 0, "instrument " + inst.name + ": no voice \"" + inst.voice + "\" in " +
+                                            scene.instruments_file + " (known: " + known + ")");
+    }
+    presets.push_back(*found);
+    programs.push_back(inst.midi_program);
+  }
+  audio::EngineSettings s;
+  s.sample_rate_hz = sample_rate_hz;
+  s.routing = config.audio.routing;
+  s.actuator = config.actuator;
+  s.schedule_ahead_ms = config.audio.schedule_ahead_ms;
+  s.max_voices = config.audio.max_voices;
+  s.acoustic_volume = config.audio.volume;
+  s.acoustic_enabled = acoustic_enabled;
+  AudioRig rig;
+  if (config.audio.acoustic == AcousticRoute::midi)
+    rig.midi = std::make_unique<audio::FluidSynthRoute>(config.audio.soundfont, sample_rate_hz, programs);
+  try {
+    rig.engine = std::make_unique<audio::AudioEngine>(scene, std::move(presets), s);
+  } catch (const std::invalid_argument& e) {
+    throw FileError(scene.file, 0, 0, e.what());
+  }
+  if (rig.midi) rig.engine->set_external_acoustic(rig.midi.get());
+  return rig;
+}
+
+}  // namespace mallet::app

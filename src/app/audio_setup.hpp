@@ -1,0 +1,24 @@
+#pragma once
+// Builds the audio engine for a scene and a configuration, the same way for the kiosk,
+// `mallet simulate` (offline, into a WAV) and `mallet audio test`.
+#include <memory>
+
+#include "audio/engine.hpp"
+#include "audio/fluidsynth_route.hpp"
+#include "core/app_config.hpp"
+#include "core/scene.hpp"
+
+namespace mallet::app {
+
+struct AudioRig {
+  std::unique_ptr<audio::FluidSynthRoute> midi;  //!< only for the midi route
+  std::unique_ptr<audio::AudioEngine> engine;
+};
+
+//! Loads the scene's acoustic presets (Scene::instruments_file; each instrument's
+//! `voice`), and for the midi route the soundfont. Bad files → FileError (exit 2);
+//! a missing soundfont → std::runtime_error naming the Debian package.
+AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz,
+                        bool acoustic_enabled = true);
+
+}  // namespace mallet::app

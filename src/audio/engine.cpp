@@ -1,0 +1,184 @@
+#include "audio/engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "audio/denormals.hpp"
+#include "core/actuator_signal.hpp"
+#include "core/sample_clock.hpp"
+#include "core/soft_clip.hpp"
+
+namespace mallet::audio {
+
+namespace {
+constexpr int kMaxBlock = 4096;  // longer requests are rendered in pieces
+constexpr double kAcousticKnee = 0.9;
+}  // namespace
+
+AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, EngineSettings settings)
+    : settings_(settings),
+      presets_(std::move(presets)),
+      volume_(settings.acoustic_volume),
+      gain_(settings.actuator.gain) {
+  const AudioRouting& r = settings_.routing;
+  if (settings_.sample_rate_hz < 1000) throw std::invalid_argument("audio: sample rate below 1000 Hz");
+  if (r.channels < 1 || r.acoustic < 0 || r.acoustic >= r.channels || r.actuator < 0 || r.actuator >= r.channels)
+    throw std::invalid_argument("audio: routing names a channel the device does not have");
+  if (settings_.max_voices < 1 || settings_.max_voices > 4096)
+    throw std::invalid_argument("audio: max_voices must be in [1, 4096]");
+  if (!(settings_.schedule_ahead_ms >= 0 && settings_.schedule_ahead_ms <= 1000))
+    throw std::invalid_argument("audio: schedule_ahead_ms must be in [0, 1000]");
+  if (presets_.size() != scene.instruments.size())
+    throw std::invalid_argument("audio: one acoustic preset per instrument is needed");
+  for (const Material& m : scene.materials)
+    if (auto problem = actuator_band_problem(m, settings_.sample_rate_hz)) throw std::invalid_argument(*problem);
+
+  targets_.resize(scene.targets.size());
+  for (std::size_t i = 0; i < scene.instruments.size(); ++i) {
+    for (int id : scene.instruments[i].targets) {
+      const Target& t = scene.targets[static_cast<std::size_t>(id)];
+      targets_[static_cast<std::size_t>(id)] = {scene.materials[static_cast<std::size_t>(t.material)].actuator,
+                                                &presets_[i], t.frequency_hz, static_cast<int>(i), t.note};
+    }
+  }
+  voices_.resize(static_cast<std::size_t>(settings_.max_voices));
+  pending_.reserve(kMaxPending);
+  acoustic_bus_.resize(kMaxBlock);
+  actuator_bus_.resize(kMaxBlock);
+  ahead_ns_ = static_cast<Nanos>(std::llround(settings_.schedule_ahead_ms * 1e6));
+}
+
+bool AudioEngine::post(const Impact& impact) {
+  if (ring_.push(impact)) return true;
+  dropped_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+EngineCounters AudioEngine::counters() const {
+  EngineCounters c;
+  c.impacts = impacts_.load(std::memory_order_relaxed);
+  c.dropped = dropped_.load(std::memory_order_relaxed);
+  c.late = late_.load(std::memory_order_relaxed);
+  c.stolen = stolen_.load(std::memory_order_relaxed);
+  c.clipped = clipped_.load(std::memory_order_relaxed);
+  c.active_voices = active_.load(std::memory_order_relaxed);
+  return c;
+}
+
+void AudioEngine::schedule(const Impact& impact, std::int64_t block_start) {
+  impacts_.fetch_add(1, std::memory_order_relaxed);
+  if (impact.target < 0 || static_cast<std::size_t>(impact.target) >= targets_.size() ||
+      !std::isfinite(impact.speed_m_per_s) || pending_.size() == kMaxPending) {
+    dropped_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  Pending p{impact, block_start, 0.0};
+  const SampleAlignment a = align_to_sample(impact.t_ns + ahead_ns_ - origin_ns_, settings_.sample_rate_hz);
+  if (a.index >= block_start) {
+    p.start = a.index;
+    p.delay_s = a.delay_s;
+  } else if (ahead_ns_ > 0) {
+    late_.fetch_add(1, std::memory_order_relaxed);  // later than the promised constant latency
+  }
+  pending_.push_back(p);  // within the reserved capacity: no allocation
+}
+
+void AudioEngine::start_voice(const Pending& p) {
+  Voice* voice = nullptr;
+  for (Voice& v : voices_) {
+    if (!v.active) {
+      voice = &v;
+      break;
+    }
+  }
+  if (!voice) {  // steal the quietest, the oldest among equals
+    voice = &voices_.front();
+    for (Voice& v : voices_) {
+      const double e = v.envelope(), best = voice->envelope();
+      if (e < best || (e == best && v.serial < voice->serial)) voice = &v;
+    }
+    stolen_.fetch_add(1, std::memory_order_relaxed);
+  }
+  const TargetTable& t = targets_[static_cast<std::size_t>(p.impact.target)];
+  const int fs = settings_.sample_rate_hz;
+  const double v = p.impact.speed_m_per_s;
+  voice->actuator.start(gain_.load(std::memory_order_relaxed) * t.actuator.amplitude * v, t.actuator.decay_per_s,
+                        t.actuator.freq_hz, p.delay_s, fs);
+  if (settings_.acoustic_enabled && !external_) voice->acoustic.strike(*t.preset, t.fundamental_hz, v, p.delay_s, fs);
+  else voice->acoustic.stop();
+  // An external synth has no sub-sample phase: its note starts on this sample.
+  if (settings_.acoustic_enabled && external_) external_->note_on(t.instrument, t.note, v);
+  voice->active = true;
+  voice->serial = serial_++;
+}
+
+void AudioEngine::render(double* acoustic, double* actuator, int frames) {
+  for (Voice& v : voices_) {
+    if (!v.active) continue;
+    for (int i = 0; i < frames; ++i) {
+      actuator[i] += v.actuator.tick();
+      acoustic[i] += v.acoustic.tick();
+    }
+    if (v.envelope() < kSilenceAmplitude) {
+      v.active = false;
+      v.actuator.stop();
+      v.acoustic.stop();
+    }
+  }
+}
+
+void AudioEngine::process(float* out, int frames) {
+  ScopedFlushDenormals ftz;
+  const AudioRouting& routing = settings_.routing;
+  const int channels = routing.channels;
+  std::fill(out, out + static_cast<std::ptrdiff_t>(frames) * channels, 0.0f);
+  for (int done = 0; done < frames;) {
+    const int n = std::min(frames - done, kMaxBlock);
+    const std::int64_t block_start = position_;
+    while (auto impact = ring_.pop()) schedule(*impact, block_start);
+
+    std::fill_n(acoustic_bus_.begin(), n, 0.0);
+    std::fill_n(actuator_bus_.begin(), n, 0.0);
+    // Render in segments that end where the next impact starts, so every voice begins
+    // on its own sample.
+    for (int frame = 0; frame < n;) {
+      const std::int64_t now = block_start + frame;
+      for (std::size_t i = 0; i < pending_.size();) {
+        if (pending_[i].start <= now) {
+          start_voice(pending_[i]);
+          pending_[i] = pending_.back();
+          pending_.pop_back();
+        } else {
+          ++i;
+        }
+      }
+      std::int64_t next = block_start + n;
+      for (const Pending& p : pending_) next = std::min(next, p.start);
+      const int end = static_cast<int>(next - block_start);
+      render(acoustic_bus_.data() + frame, actuator_bus_.data() + frame, end - frame);
+      if (external_) external_->render(acoustic_bus_.data() + frame, end - frame);
+      frame = end;
+    }
+
+    const double volume = volume_.load(std::memory_order_relaxed);
+    const double knee = settings_.actuator.soft_clip_knee;
+    std::uint64_t clipped = 0;
+    float* o = out + static_cast<std::ptrdiff_t>(done) * channels;
+    for (int i = 0; i < n; ++i) {
+      const double a = acoustic_bus_[static_cast<std::size_t>(i)] * volume;
+      const double t = actuator_bus_[static_cast<std::size_t>(i)];
+      clipped += (std::fabs(a) > kAcousticKnee) + (std::fabs(t) > knee);
+      o[i * channels + routing.acoustic] += static_cast<float>(soft_clip(a, kAcousticKnee));
+      o[i * channels + routing.actuator] += static_cast<float>(soft_clip(t, knee));
+    }
+    if (clipped) clipped_.fetch_add(clipped, std::memory_order_relaxed);
+    int active = 0;
+    for (const Voice& v : voices_) active += v.active;
+    active_.store(active, std::memory_order_relaxed);
+    position_ += n;
+    done += n;
+  }
+}
+
+}  // namespace mallet::audio

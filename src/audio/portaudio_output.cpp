@@ -1,0 +1,510 @@
+#include "audio/portaudio_output.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include <dlfcn.h>
+#include <portaudio.h>
+#if __has_include(<alsa/error.h>)
+#include <alsa/asoundlib.h>  // only snd_lib_error_set_handler; libasound is in portaudio-2.0's Libs
+#define MALLET_HAVE_ALSA_ERROR_HANDLER 1
+#endif
+
+namespace mallet::audio {
+
+namespace {
+
+constexpr int kScratchFrames = 4096;  // int16 conversion and silent rendering, in pieces
+
+//! PortAudio is not thread-safe: every call outside the audio callback holds this.
+std::mutex& pa_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// One whole line per call, so lines from two threads never interleave.
+void log_line(const char* priority, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void log_line(const char* priority, const char* format, ...) {
+  char text[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  std::fprintf(stderr, "%saudio: %s\n", priority, text);
+}
+constexpr const char* kWarning = "<4>";
+constexpr const char* kInfo = "<6>";
+
+std::string error_text(PaError e) {
+  std::string text = Pa_GetErrorText(e);
+  if (e == paUnanticipatedHostError) {
+    const PaHostErrorInfo* host = Pa_GetLastHostErrorInfo();
+    if (host && host->errorText && *host->errorText) text += std::string(" (") + host->errorText + ")";
+  }
+  return text;
+}
+
+#ifdef MALLET_HAVE_ALSA_ERROR_HANDLER
+void ignore_alsa(const char*, int, const char*, int, const char*, ...) {}
+#endif
+void ignore_jack(const char*) {}
+
+// Pa_Initialize probes every PCM in ALSA's configuration and tries to reach a JACK
+// server; on a kiosk with one card (or none, in CI) that prints dozens of lines about
+// devices that do not exist, and the supervisor re-initialises on every reopen attempt.
+// Those diagnostics are dropped while probing (MALLET_AUDIO_DEBUG=1 keeps them). What
+// matters is reported by PortAudio's own error codes. libjack is not linked by us: its
+// handler is set only if PortAudio loaded it.
+class QuietProbe {
+ public:
+  QuietProbe() : active_(!debug()) {
+    if (!active_) return;
+#ifdef MALLET_HAVE_ALSA_ERROR_HANDLER
+    snd_lib_error_set_handler(&ignore_alsa);
+#endif
+    set_jack(&ignore_jack);
+  }
+  ~QuietProbe() {
+    if (!active_) return;
+#ifdef MALLET_HAVE_ALSA_ERROR_HANDLER
+    snd_lib_error_set_handler(nullptr);  // back to ALSA's default (stderr)
+#endif
+    // JACK keeps ours: its later messages (a server that vanished) are as noisy and the
+    // stream's state tells the supervisor the same thing.
+  }
+  QuietProbe(const QuietProbe&) = delete;
+  QuietProbe& operator=(const QuietProbe&) = delete;
+
+ private:
+  static bool debug() {
+    const char* env = std::getenv("MALLET_AUDIO_DEBUG");
+    return env && *env && std::string(env) != "0";
+  }
+  static void set_jack(void (*handler)(const char*)) {
+    using Setter = void (*)(void (*)(const char*));
+    for (const char* name : {"jack_set_error_function", "jack_set_info_function"})
+      if (void* f = dlsym(RTLD_DEFAULT, name)) reinterpret_cast<Setter>(f)(handler);
+  }
+  bool active_;
+};
+
+class PaSession {
+ public:
+  PaSession() {
+    QuietProbe quiet;
+    if (const PaError e = Pa_Initialize(); e != paNoError)
+      throw std::runtime_error("audio: cannot initialise PortAudio: " + error_text(e));
+  }
+  ~PaSession() { Pa_Terminate(); }
+  PaSession(const PaSession&) = delete;
+  PaSession& operator=(const PaSession&) = delete;
+};
+
+// With PortAudio initialised and pa_mutex() held.
+DeviceInfo describe(PaDeviceIndex index) {
+  const PaDeviceInfo* d = Pa_GetDeviceInfo(index);
+  DeviceInfo info;
+  info.index = index;
+  if (!d) return info;
+  info.name = d->name ? d->name : "";
+  if (const PaHostApiInfo* api = Pa_GetHostApiInfo(d->hostApi); api && api->name) info.host_api = api->name;
+  info.max_output_channels = d->maxOutputChannels;
+  info.default_sample_rate_hz = d->defaultSampleRate;
+  info.default_low_latency_s = d->defaultLowOutputLatency;
+  info.is_default = index == Pa_GetDefaultOutputDevice();
+  return info;
+}
+
+std::vector<DeviceInfo> outputs_locked() {
+  std::vector<DeviceInfo> out;
+  const PaDeviceIndex count = Pa_GetDeviceCount();
+  for (PaDeviceIndex i = 0; i < count; ++i) {
+    const PaDeviceInfo* d = Pa_GetDeviceInfo(i);
+    if (d && d->maxOutputChannels > 0) out.push_back(describe(i));
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string known_devices(const std::vector<DeviceInfo>& outputs) {
+  if (outputs.empty()) return "PortAudio sees no output device at all";
+  std::string text = "output devices:";
+  for (const DeviceInfo& d : outputs) text += " " + std::to_string(d.index) + " \"" + d.name + "\";";
+  text.pop_back();
+  return text + " (see `mallet audio devices`)";
+}
+
+// config.device → a device: empty = default, all digits = index, else a case-insensitive
+// part of the name (an exact name wins over a part of a longer one).
+DeviceInfo resolve_locked(const std::string& spec) {
+  const std::vector<DeviceInfo> outputs = outputs_locked();
+  if (spec.empty()) {
+    const PaDeviceIndex def = Pa_GetDefaultOutputDevice();
+    if (outputs.empty())
+      throw std::runtime_error(
+          "audio: no audio output device found (PortAudio sees none: no sound card, or ALSA is not configured)");
+    if (def == paNoDevice)
+      throw std::runtime_error("audio: there is no default output device; set [audio].device to one of the " +
+                               known_devices(outputs));
+    return describe(def);
+  }
+  if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    for (const DeviceInfo& d : outputs)
+      if (spec.size() < 10 && d.index == std::stoi(spec)) return d;
+    throw std::runtime_error("audio: device " + spec + " is not an output device; " + known_devices(outputs));
+  }
+  const std::string want = lower(spec);
+  for (const DeviceInfo& d : outputs)
+    if (lower(d.name) == want) return d;
+  for (const DeviceInfo& d : outputs)
+    if (lower(d.name).find(want) != std::string::npos) return d;
+  throw std::runtime_error("audio: no output device matches \"" + spec + "\"; " + known_devices(outputs));
+}
+
+// Nanoseconds of `frames` at `rate`, without overflow for any run length.
+Nanos frames_to_ns(std::int64_t frames, int rate) {
+  return (frames / rate) * kNanosPerSecond + (frames % rate) * kNanosPerSecond / rate;
+}
+
+Nanos steady_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+class PortAudioOutput::Session : public PaSession {};
+
+struct PortAudioOutput::Trampoline {
+  static int callback(const void*, void* output, unsigned long frames, const PaStreamCallbackTimeInfo*,
+                      PaStreamCallbackFlags flags, void* self) {
+    return static_cast<PortAudioOutput*>(self)->render(output, frames, flags);
+  }
+  static void finished(void* self) {
+    static_cast<PortAudioOutput*>(self)->stream_finished_.store(true, std::memory_order_relaxed);
+  }
+};
+
+std::vector<DeviceInfo> list_output_devices() {
+  std::lock_guard lock(pa_mutex());
+  PaSession session;
+  return outputs_locked();
+}
+
+PortAudioOutput::PortAudioOutput(AudioEngine& engine, const AudioConfig& config, Options options)
+    : engine_(engine),
+      config_(config),
+      options_(options),
+      channels_(engine.settings().routing.channels),
+      sample_rate_(engine.settings().sample_rate_hz) {
+  if (config.sample_rate_hz != sample_rate_ || config.routing.channels != channels_)
+    throw std::invalid_argument("audio: the engine and [audio] disagree on sample rate or channel count");
+  if (config.frames_per_buffer < 0 || config.frames_per_buffer > 8192)
+    throw std::invalid_argument("audio: frames_per_buffer must be in [0, 8192] (0 = PortAudio chooses)");
+  if (!(config.suggested_latency_ms >= 0 && config.suggested_latency_ms <= 2000))
+    throw std::invalid_argument("audio: suggested_latency_ms must be in [0, 2000] (0 = the device's default)");
+  scratch_.resize(static_cast<std::size_t>(kScratchFrames) * static_cast<std::size_t>(channels_));
+  std::lock_guard lock(pa_mutex());
+  session_ = std::make_unique<Session>();
+  open_locked();
+}
+
+PortAudioOutput::~PortAudioOutput() {
+  stop();
+  std::lock_guard lock(pa_mutex());
+  close_locked(false);
+  session_.reset();
+}
+
+void PortAudioOutput::open_locked() {
+  if (!session_) session_ = std::make_unique<Session>();
+  const DeviceInfo device = resolve_locked(config_.device);
+  if (device.max_output_channels < channels_)
+    throw std::runtime_error("audio: \"" + device.name + "\" has " + std::to_string(device.max_output_channels) +
+                             " output channel(s); [audio.routing] needs " + std::to_string(channels_));
+  PaStreamParameters p{};
+  p.device = device.index;
+  p.channelCount = channels_;
+  p.sampleFormat = options_.format == StreamFormat::int16 ? paInt16 : paFloat32;
+  p.suggestedLatency =
+      config_.suggested_latency_ms > 0 ? config_.suggested_latency_ms / 1000.0 : device.default_low_latency_s;
+  p.hostApiSpecificStreamInfo = nullptr;
+  const unsigned long fpb = config_.frames_per_buffer > 0 ? static_cast<unsigned long>(config_.frames_per_buffer)
+                                                          : paFramesPerBufferUnspecified;
+  PaStream* stream = nullptr;
+  const PaError e = Pa_OpenStream(&stream, nullptr, &p, sample_rate_, fpb, paClipOff | paDitherOff,
+                                  &Trampoline::callback, this);
+  if (e != paNoError)
+    throw std::runtime_error("audio: cannot open \"" + device.name + "\" (" + std::to_string(channels_) + " ch, " +
+                             std::to_string(sample_rate_) + " Hz, " +
+                             (options_.format == StreamFormat::int16 ? "int16" : "float32") +
+                             "): " + error_text(e));
+  Pa_SetStreamFinishedCallback(stream, &Trampoline::finished);
+  const PaStreamInfo* info = Pa_GetStreamInfo(stream);
+  stream_ = stream;
+  device_ = device;
+  latency_s_ = info ? info->outputLatency : p.suggestedLatency;
+  stream_rate_ = info ? info->sampleRate : sample_rate_;
+}
+
+void PortAudioOutput::start_stream_locked() {
+  stream_finished_.store(false, std::memory_order_relaxed);
+  // Frame 0 is heard one output latency after the start; frames already rendered (a
+  // restart, a reopen) lie before it. See FRAME 0'S TIME in the header.
+  const Nanos latency_ns = static_cast<Nanos>(std::llround(latency_s_ * 1e9));
+  engine_.set_origin(steady_now_ns() + latency_ns - frames_to_ns(engine_.position(), sample_rate_));
+  if (const PaError e = Pa_StartStream(static_cast<PaStream*>(stream_)); e != paNoError)
+    throw std::runtime_error("audio: cannot start \"" + device_.name + "\": " + error_text(e));
+}
+
+void PortAudioOutput::close_locked(bool abort) {
+  if (!stream_) return;
+  auto* stream = static_cast<PaStream*>(stream_);
+  if (abort) Pa_AbortStream(stream);  // errors ignored: the device may be gone
+  Pa_CloseStream(stream);
+  stream_ = nullptr;
+}
+
+void PortAudioOutput::start() {
+  if (running_) return;
+  {
+    std::lock_guard lock(pa_mutex());
+    if (!stream_) open_locked();
+    start_stream_locked();
+  }
+  running_ = true;
+  device_ok_.store(true, std::memory_order_relaxed);
+  {
+    std::lock_guard lock(wake_mutex_);
+    quit_ = false;
+  }
+  watched_callbacks_ = callbacks_.load(std::memory_order_relaxed);
+  last_progress_ = std::chrono::steady_clock::now();
+  supervisor_ = std::thread([this] { supervise(); });
+}
+
+void PortAudioOutput::stop() {
+  if (!running_) return;
+  {
+    std::lock_guard lock(wake_mutex_);
+    quit_ = true;
+  }
+  wake_.notify_all();
+  supervisor_.join();
+  {
+    std::lock_guard lock(pa_mutex());
+    if (stream_) Pa_StopStream(static_cast<PaStream*>(stream_));
+  }
+  device_ok_.store(false, std::memory_order_relaxed);
+  running_ = false;
+}
+
+void PortAudioOutput::drop_device() {
+  if (!running_) return;
+  std::lock_guard lock(pa_mutex());
+  if (stream_) Pa_AbortStream(static_cast<PaStream*>(stream_));
+}
+
+DeviceInfo PortAudioOutput::device() const {
+  std::lock_guard lock(pa_mutex());
+  return device_;
+}
+
+double PortAudioOutput::output_latency_s() const {
+  std::lock_guard lock(pa_mutex());
+  return latency_s_;
+}
+
+double PortAudioOutput::sample_rate_hz() const {
+  std::lock_guard lock(pa_mutex());
+  return stream_rate_;
+}
+
+OutputCounters PortAudioOutput::counters() const {
+  OutputCounters c;
+  c.callbacks = callbacks_.load(std::memory_order_relaxed);
+  c.frames = frames_.load(std::memory_order_relaxed);
+  c.xruns = xruns_.load(std::memory_order_relaxed);
+  c.silent_frames = silent_frames_.load(std::memory_order_relaxed);
+  c.device_losses = losses_.load(std::memory_order_relaxed);
+  c.reopen_attempts = reopen_attempts_.load(std::memory_order_relaxed);
+  c.reopens = reopens_.load(std::memory_order_relaxed);
+  return c;
+}
+
+// The audio thread. See THE CALLBACK CONTRACT in the header.
+int PortAudioOutput::render(void* output, unsigned long frames, unsigned long status_flags) {
+  if (status_flags & paOutputUnderflow) xruns_.fetch_add(1, std::memory_order_relaxed);
+  if (options_.format == StreamFormat::float32) {
+    auto* out = static_cast<float*>(output);
+    for (unsigned long done = 0; done < frames;) {
+      const auto n = static_cast<int>(std::min<unsigned long>(frames - done, kScratchFrames));
+      engine_.process(out + done * static_cast<unsigned long>(channels_), n);
+      done += static_cast<unsigned long>(n);
+    }
+  } else {
+    auto* out = static_cast<std::int16_t*>(output);
+    for (unsigned long done = 0; done < frames;) {
+      const auto n = static_cast<int>(std::min<unsigned long>(frames - done, kScratchFrames));
+      engine_.process(scratch_.data(), n);
+      const std::size_t samples = static_cast<std::size_t>(n) * static_cast<std::size_t>(channels_);
+      std::int16_t* o = out + done * static_cast<unsigned long>(channels_);
+      for (std::size_t i = 0; i < samples; ++i)  // same scaling as WavWriter's pcm16
+        o[i] = static_cast<std::int16_t>(std::lrint(std::clamp(scratch_[i], -1.0f, 1.0f) * 32767.0f));
+      done += static_cast<unsigned long>(n);
+    }
+  }
+  frames_.fetch_add(frames, std::memory_order_relaxed);
+  callbacks_.fetch_add(1, std::memory_order_relaxed);
+  return paContinue;
+}
+
+bool PortAudioOutput::stream_lost_locked(std::string& why) {
+  auto* stream = static_cast<PaStream*>(stream_);
+  if (!stream) {
+    why = "no stream";
+    return true;
+  }
+  if (stream_finished_.load(std::memory_order_relaxed)) {
+    why = "the stream ended";
+    return true;
+  }
+  if (const PaError active = Pa_IsStreamActive(stream); active != 1) {
+    why = active == 0 ? "the stream stopped" : error_text(active);
+    return true;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  const std::uint64_t callbacks = callbacks_.load(std::memory_order_relaxed);
+  const auto stall = std::max<std::chrono::steady_clock::duration>(
+      options_.stall_timeout, std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(4 * latency_s_)));
+  if (callbacks != watched_callbacks_) {
+    watched_callbacks_ = callbacks;
+    last_progress_ = now;
+  } else if (now - last_progress_ > stall) {
+    why = "no audio callback for " +
+          std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now - last_progress_).count()) + " ms";
+    return true;
+  }
+  return false;
+}
+
+// While the device is gone the engine still consumes impacts and lets voices decay, at
+// the wall-clock rate, so that nothing stale bursts out when the device comes back.
+void PortAudioOutput::render_silent(std::int64_t frames) {
+  while (frames > 0) {
+    const auto n = static_cast<int>(std::min<std::int64_t>(frames, kScratchFrames));
+    engine_.process(scratch_.data(), n);
+    silent_frames_.fetch_add(static_cast<std::uint64_t>(n), std::memory_order_relaxed);
+    frames -= n;
+  }
+}
+
+void PortAudioOutput::supervise() {
+  using Clock = std::chrono::steady_clock;
+  const auto xrun_interval = std::chrono::duration_cast<Clock::duration>(options_.xrun_log_interval);
+  auto last_xrun_log = Clock::now() - xrun_interval;
+  std::uint64_t xruns_logged = xruns_.load(std::memory_order_relaxed);
+  bool lost = false;
+  bool retry_failure_logged = false;
+  std::uint64_t attempts = 0;  // in this outage
+  std::chrono::milliseconds backoff = options_.first_retry;
+  Clock::time_point retry_at{}, silent_since{};
+  std::int64_t silent_base = 0;
+
+  for (;;) {
+    {
+      std::unique_lock lock(wake_mutex_);
+      if (wake_.wait_for(lock, options_.poll_interval, [this] { return quit_; })) break;
+    }
+    const auto now = Clock::now();
+
+    if (!lost) {
+      std::string why;
+      bool gone = false;
+      std::string name;
+      {
+        std::lock_guard lock(pa_mutex());
+        gone = stream_lost_locked(why);
+        name = device_.name;
+        if (gone) close_locked(true);  // joins the audio thread: the engine is ours now
+      }
+      if (gone) {
+        lost = true;
+        retry_failure_logged = false;
+        attempts = 0;
+        device_ok_.store(false, std::memory_order_relaxed);
+        losses_.fetch_add(1, std::memory_order_relaxed);
+        log_line(kWarning, "output \"%s\" lost (%s); running silent, retrying to open \"%s\"", name.c_str(),
+                 why.c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
+        backoff = options_.first_retry;
+        retry_at = now + backoff;
+        silent_since = now;
+        silent_base = engine_.position();
+      }
+    }
+
+    if (lost) {
+      const double elapsed = std::chrono::duration<double>(now - silent_since).count();
+      const auto due = static_cast<std::int64_t>(elapsed * sample_rate_) - (engine_.position() - silent_base);
+      if (due > sample_rate_) {  // far behind (a stalled machine): skip, do not catch up
+        silent_since = now;
+        silent_base = engine_.position();
+      } else {
+        render_silent(due);
+      }
+      if (now >= retry_at) {
+        reopen_attempts_.fetch_add(1, std::memory_order_relaxed);
+        ++attempts;
+        std::string name;
+        double latency = 0;
+        try {
+          std::lock_guard lock(pa_mutex());
+          close_locked(true);
+          session_.reset();  // re-initialise so that PortAudio enumerates a replugged card
+          session_ = std::make_unique<Session>();
+          open_locked();
+          start_stream_locked();
+          name = device_.name;
+          latency = latency_s_;
+          watched_callbacks_ = callbacks_.load(std::memory_order_relaxed);
+          last_progress_ = Clock::now();
+        } catch (const std::exception& e) {
+          if (!retry_failure_logged)
+            log_line(kWarning, "reopening failed (%s); retrying with backoff up to %lld ms", e.what(),
+                     static_cast<long long>(options_.max_retry.count()));
+          retry_failure_logged = true;
+          backoff = std::min(backoff * 2, options_.max_retry);
+          retry_at = Clock::now() + backoff;
+          continue;
+        }
+        lost = false;
+        device_ok_.store(true, std::memory_order_relaxed);
+        reopens_.fetch_add(1, std::memory_order_relaxed);
+        log_line(kInfo, "output \"%s\" reopened after %llu attempt(s); output latency %.1f ms", name.c_str(),
+                 static_cast<unsigned long long>(attempts), latency * 1e3);
+      }
+    }
+
+    const std::uint64_t xruns = xruns_.load(std::memory_order_relaxed);
+    if (xruns > xruns_logged && now - last_xrun_log >= xrun_interval) {
+      log_line(kWarning,
+               "%llu output underrun(s) since the last report (%llu in all); raise [audio].frames_per_buffer or "
+               "suggested_latency_ms if they persist",
+               static_cast<unsigned long long>(xruns - xruns_logged), static_cast<unsigned long long>(xruns));
+      xruns_logged = xruns;
+      last_xrun_log = now;
+    }
+  }
+}
+
+}  // namespace mallet::audio

@@ -1,0 +1,181 @@
+#pragma once
+// The kiosk's real audio output: one PortAudio stream (ALSA host API on Debian) whose
+// callback is AudioEngine::process(). Channel 0/1 carry what [audio.routing] says
+// (default 0 = the speaker's note, 1 = the voice coil's Eq. 1).
+//
+// THE CALLBACK CONTRACT. The PortAudio callback (a private static function) runs on
+// PortAudio's audio thread and only: calls engine.process() into PortAudio's buffer
+// (or, for int16 streams, into a buffer preallocated by the constructor, then converts),
+// counts callbacks and frames, and counts output underruns (paOutputUnderflow) in
+// relaxed atomics. It never locks, allocates, logs, throws or waits; nothing it
+// touches is created or destroyed while the stream runs. Everything else — logging,
+// reopening, every other PortAudio call — happens on the caller's thread or on the
+// supervisor thread, under one process-wide mutex (PortAudio is not thread-safe).
+//
+// FRAME 0'S TIME. start() sets engine.set_origin(now + outputLatency − position/fs)
+// just before Pa_StartStream: now on std::chrono::steady_clock, outputLatency as
+// PortAudio reports it for the opened stream (Pa_GetStreamInfo), position the frames
+// the engine has already rendered (0 on the first start; continued across reopens). We
+// do not use the first callback's PaStreamCallbackTimeInfo: on Linux PortAudio 19.6
+// stamps it with CLOCK_REALTIME (PaUtil_GetTime), not the monotonic clock of Impact::t_ns,
+// and the engine's origin may only change while no callback runs. The error is the
+// start-up time between Pa_StartStream and the first callback (under a millisecond) plus
+// whatever PortAudio's latency figure leaves out; it is constant while the stream runs.
+//
+// DEVICE LOSS. A supervisor thread (not the audio thread) polls every
+// Options::poll_interval: if the stream is no longer active (Pa_IsStreamActive false,
+// e.g. a USB card unplugged → paUnanticipatedHostError), PortAudio called the
+// stream-finished callback (an atomic flag set on the audio thread), or no callback
+// arrived for Options::stall_timeout while the stream claims to run, it logs one
+// warning, aborts and closes the stream, and from then on renders the engine silently
+// into a scratch buffer at the wall-clock rate (so posted impacts are consumed and the
+// timeline keeps moving instead of bursting out on recovery) while it retries to open
+// the configured device — looked up again by name, after re-initialising PortAudio so
+// that a replugged card is seen — with exponential backoff (first_retry doubling up to
+// max_retry). Recovery logs one info line with the new latency. The application is never
+// restarted and start() / the destructor remain valid throughout.
+//
+// XRUNS. The callback counts paOutputUnderflow; the supervisor logs the count at most
+// once per Options::xrun_log_interval (10 s by default).
+//
+// LOGGING. Plain stderr lines with journald priority prefixes: "<4>" warning, "<6>" info,
+// written only by the supervisor and the caller's threads.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "audio/engine.hpp"
+#include "core/app_config.hpp"
+
+namespace mallet::audio {
+
+//! One PortAudio output device, as `mallet audio devices` lists it.
+struct DeviceInfo {
+  int index = -1;                    //!< PortAudio device index (valid until PortAudio is re-initialised)
+  std::string name;
+  std::string host_api;              //!< "ALSA", "JACK Audio Connection Kit", ...
+  int max_output_channels = 0;
+  double default_sample_rate_hz = 0;
+  double default_low_latency_s = 0;  //!< PortAudio's defaultLowOutputLatency
+  bool is_default = false;           //!< the default output device of the default host API
+};
+
+//! Every output device PortAudio sees (initialises and terminates PortAudio itself).
+//! Throws std::runtime_error if PortAudio cannot be initialised.
+std::vector<DeviceInfo> list_output_devices();
+
+//! The sample type of the device stream. The engine always renders float; int16 is
+//! converted in the callback, for devices or ALSA plugins that must be fed 16-bit
+//! (the ALSA file plugin labels float data as integer PCM in its WAV header).
+enum class StreamFormat { float32, int16 };
+
+struct OutputCounters {
+  std::uint64_t callbacks = 0;       //!< audio callbacks run
+  std::uint64_t frames = 0;          //!< frames delivered to the device by callbacks
+  std::uint64_t xruns = 0;           //!< callbacks flagged paOutputUnderflow
+  std::uint64_t silent_frames = 0;   //!< frames rendered to nowhere while the device was gone
+  std::uint64_t device_losses = 0;   //!< times the stream was found stopped or stalled
+  std::uint64_t reopen_attempts = 0; //!< tries to open the device again
+  std::uint64_t reopens = 0;         //!< successful reopens
+};
+
+class PortAudioOutput {
+ public:
+  struct Options {
+    StreamFormat format = StreamFormat::float32;
+    std::chrono::milliseconds poll_interval{20};
+    std::chrono::milliseconds stall_timeout{2000};   //!< no callback this long = device lost
+    std::chrono::milliseconds first_retry{250};
+    std::chrono::milliseconds max_retry{5000};
+    std::chrono::milliseconds xrun_log_interval{10000};
+  };
+
+  //! Initialises PortAudio and opens (does not start) an output stream on
+  //! config.device: empty = the default output device, all digits = a device index,
+  //! otherwise a case-insensitive part of the device name (the first match). Channels,
+  //! sample rate and routing come from the engine's settings (which must agree with
+  //! config); frames_per_buffer (0 = PortAudio chooses) and suggested_latency_ms (0 = the
+  //! device's default low latency) from config. Throws std::runtime_error with one clear
+  //! line (no such device: the list of those that exist) on failure. `engine` must
+  //! outlive this object.
+  PortAudioOutput(AudioEngine& engine, const AudioConfig& config, Options options);
+  PortAudioOutput(AudioEngine& engine, const AudioConfig& config) : PortAudioOutput(engine, config, Options{}) {}
+  //! Stops the supervisor and the stream, closes it, terminates PortAudio.
+  ~PortAudioOutput();
+  PortAudioOutput(const PortAudioOutput&) = delete;
+  PortAudioOutput& operator=(const PortAudioOutput&) = delete;
+
+  //! Sets the engine's origin (see FRAME 0'S TIME), starts the stream and the
+  //! supervisor. Throws std::runtime_error if the stream cannot start.
+  void start();
+  //! Stops the supervisor, then the stream (letting queued buffers play). Idempotent.
+  //! start() may be called again afterwards.
+  void stop();
+
+  //! Aborts the device stream as a vanished device would (tests; an operator's
+  //! "reconnect audio" action). The supervisor then logs the loss, runs silent and
+  //! reopens the device with backoff. No effect unless started.
+  void drop_device();
+
+  //! The device now in use (as opened, or as last reopened).
+  DeviceInfo device() const;
+  //! The stream's output latency in seconds, as PortAudio reports it (Pa_GetStreamInfo).
+  double output_latency_s() const;
+  //! The sample rate the stream runs at (Pa_GetStreamInfo).
+  double sample_rate_hz() const;
+  //! True while a device stream is open and running (false while silent after a loss).
+  bool device_ok() const { return device_ok_.load(std::memory_order_relaxed); }
+
+  OutputCounters counters() const;
+
+ private:
+  class Session;      // RAII Pa_Initialize / Pa_Terminate
+  struct Trampoline;  // the PortAudio callbacks (they need PortAudio's types)
+
+  int render(void* output, unsigned long frames, unsigned long status_flags);  // audio thread
+
+  // All below with pa_mutex held.
+  void open_locked();
+  void start_stream_locked();
+  void close_locked(bool abort);
+
+  void supervise();
+  void render_silent(std::int64_t frames);
+  bool stream_lost_locked(std::string& why);
+
+  AudioEngine& engine_;
+  AudioConfig config_;
+  Options options_;
+  int channels_;
+  int sample_rate_;
+
+  std::unique_ptr<Session> session_;
+  void* stream_ = nullptr;  // PaStream*
+  DeviceInfo device_;
+  double latency_s_ = 0;
+  double stream_rate_ = 0;
+  std::vector<float> scratch_;  // int16 conversion and silent rendering; sized once
+
+  std::thread supervisor_;
+  std::mutex wake_mutex_;
+  std::condition_variable wake_;
+  bool quit_ = false;     // under wake_mutex_
+  std::uint64_t watched_callbacks_ = 0;                // supervisor: the stall watchdog
+  std::chrono::steady_clock::time_point last_progress_;
+  bool running_ = false;  // start() called and not stopped; caller's thread only
+
+  std::atomic<bool> device_ok_{false};
+  std::atomic<bool> stream_finished_{false};
+  std::atomic<std::uint64_t> callbacks_{0}, frames_{0}, xruns_{0}, silent_frames_{0}, losses_{0},
+      reopen_attempts_{0}, reopens_{0};
+  static_assert(std::atomic<std::uint64_t>::is_always_lock_free);
+  static_assert(std::atomic<bool>::is_always_lock_free);
+};
+
+}  // namespace mallet::audio

@@ -1,0 +1,202 @@
+// The real-time engine, without a device: sample-accurate starts inside blocks, both
+// channels on the same sample, the actuator channel equal to the exact reference,
+// scheduling modes, voice stealing, and no allocation in the callback.
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "audio/engine.hpp"
+#include "test_paths.hpp"
+
+// Counts heap allocations made while `g_counting` is set (i.e. inside process()).
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<std::uint64_t> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace mallet::audio {
+namespace {
+
+using test::percussion;
+
+std::vector<ModalPreset> simple_presets() {
+  ModalPreset wood{"xylophone", {{1.0, 1.0, 10.0}, {3.0, 0.4, 30.0}}, 0.3, 2.0, 1.0};
+  ModalPreset metal{"glockenspiel", {{1.0, 1.0, 2.0}, {2.756, 0.5, 6.0}, {5.404, 0.25, 12.0}}, 0.3, 2.0, 1.0};
+  return {wood, metal};
+}
+
+Impact strike(int target, Nanos t, double v) {
+  const Target& bar = percussion().targets[static_cast<std::size_t>(target)];
+  Impact i;
+  i.t_ns = t;
+  i.target = target;
+  i.material = bar.material;
+  i.note = bar.note;
+  i.speed_m_per_s = v;
+  return i;
+}
+
+// Renders `frames` frames in blocks of `block`, posting each impact just before the
+// block in which it falls (as a live input thread would, with no lateness).
+std::vector<float> run(AudioEngine& engine, std::vector<Impact> impacts, std::int64_t frames, int block) {
+  const int ch = engine.settings().routing.channels;
+  const int fs = engine.settings().sample_rate_hz;
+  std::vector<float> out(static_cast<std::size_t>(frames * ch));
+  std::size_t next = 0;
+  for (std::int64_t first = 0; first < frames; first += block) {
+    const auto n = static_cast<int>(std::min<std::int64_t>(block, frames - first));
+    const Nanos block_end_ns = (first + n) * kNanosPerSecond / fs;
+    while (next < impacts.size() && impacts[next].t_ns < block_end_ns) engine.post(impacts[next++]);
+    engine.process(out.data() + first * ch, n);
+  }
+  return out;
+}
+
+std::vector<double> channel(const std::vector<float>& interleaved, int channels, int c) {
+  std::vector<double> out;
+  for (std::size_t i = static_cast<std::size_t>(c); i < interleaved.size(); i += static_cast<std::size_t>(channels))
+    out.push_back(interleaved[i]);
+  return out;
+}
+
+std::int64_t first_nonzero(const std::vector<double>& x) {
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i] != 0.0) return static_cast<std::int64_t>(i);
+  return -1;
+}
+
+TEST(AudioEngine, ImpactInsideABlockStartsOnItsOwnSampleOnBothChannels) {
+  for (int block : {16, 64, 256, 2048}) {
+    AudioEngine engine(percussion(), simple_presets(), EngineSettings{});
+    // 1.5 blocks of 64 in, plus 7 µs: between two samples.
+    const Nanos t = 96 * kNanosPerSecond / 48000 + 7'000;
+    const auto out = run(engine, {strike(3, t, 1.0)}, 4800, block);
+    const auto acoustic = channel(out, 2, 0), actuator = channel(out, 2, 1);
+    const std::int64_t own = (t * 48000 + kNanosPerSecond - 1) / kNanosPerSecond;  // first sample at or after t
+    EXPECT_EQ(first_nonzero(actuator), own) << "block " << block;
+    EXPECT_EQ(first_nonzero(acoustic), own) << "block " << block;
+  }
+}
+
+TEST(AudioEngine, ActuatorChannelEqualsExactEquationOneForAnyBlockSize) {
+  std::vector<Impact> impacts;
+  for (int k = 0; k < 30; ++k) impacts.push_back(strike(k % 16, 2'000'000 + k * 13'131'313, 0.3 + 0.05 * k));
+  // The exact sum of Eq. 1 over the impacts, and how many voices are in their last
+  // −100 dB (where the engine may already have retired them, by design).
+  const double gain = ActuatorConfig{}.gain;
+  std::vector<double> exact(48000, 0.0);
+  std::vector<int> in_tail(48000, 0);
+  for (const Impact& i : impacts) {
+    const VibrationParams& p = percussion().materials[static_cast<std::size_t>(i.material)].actuator;
+    for (std::size_t n = 0; n < exact.size(); ++n) {
+      const long double t = static_cast<long double>(n) / 48000 - static_cast<long double>(i.t_ns) * 1e-9L;
+      if (t < 0) continue;
+      const long double env = gain * p.amplitude * i.speed_m_per_s * std::exp(-p.decay_per_s * t);
+      exact[n] += static_cast<double>(env * std::sin(2 * std::numbers::pi_v<long double> * p.freq_hz * t));
+      in_tail[n] += env < 2e-5L;
+    }
+  }
+  for (int block : {16, 64, 1000, 2048}) {
+    AudioEngine engine(percussion(), simple_presets(), EngineSettings{});
+    const auto actuator = channel(run(engine, impacts, 48000, block), 2, 1);
+    for (std::size_t n = 0; n < exact.size(); ++n)
+      ASSERT_NEAR(actuator[n], exact[n], 1e-6 + 1e-5 * in_tail[n]) << "block " << block << " sample " << n;
+  }
+}
+
+TEST(AudioEngine, AsSoonAsPossibleStartsALateImpactAtTheNextBlock) {
+  AudioEngine engine(percussion(), simple_presets(), EngineSettings{});
+  std::vector<float> out(2 * 64 * 4);
+  engine.process(out.data(), 64);
+  engine.process(out.data() + 128, 64);
+  engine.post(strike(2, 10'000, 1.0));  // happened in block 0, known only now
+  engine.process(out.data() + 256, 64);
+  EXPECT_EQ(first_nonzero(channel(out, 2, 1)), 128 + 1);  // starts at phase 0 on sample 128
+  EXPECT_EQ(engine.counters().late, 0u);  // no latency was promised
+}
+
+TEST(AudioEngine, ScheduleAheadGivesAConstantLatencyWithZeroJitter) {
+  EngineSettings s;
+  s.schedule_ahead_ms = 5.0;  // 240 samples
+  for (int block : {32, 64, 128}) {
+    for (Nanos t : {Nanos{1'000'007}, Nanos{1'333'333}, Nanos{2'020'202}}) {  // between samples
+      AudioEngine engine(percussion(), simple_presets(), s);
+      const auto actuator = channel(run(engine, {strike(9, t, 1.0)}, 2400, block), 2, 1);
+      const std::int64_t want = ((t + 5'000'000) * 48000 + kNanosPerSecond - 1) / kNanosPerSecond;
+      EXPECT_EQ(first_nonzero(actuator), want) << "block " << block << " t " << t;
+      EXPECT_EQ(engine.counters().late, 0u);
+    }
+  }
+}
+
+TEST(AudioEngine, ThousandSimultaneousStrikesNeitherClipUncontrolledNorAllocate) {
+  EngineSettings s;
+  s.max_voices = 32;
+  AudioEngine engine(percussion(), simple_presets(), s);
+  for (int k = 0; k < 1000; ++k) engine.post(strike(k % 16, 1'000'000, 100.0));
+  std::vector<float> out(2 * 256);
+  g_allocations = 0;
+  for (int b = 0; b < 200; ++b) {
+    g_counting = true;
+    engine.process(out.data(), 256);
+    g_counting = false;
+    for (float x : out) {
+      ASSERT_TRUE(std::isfinite(x));
+      ASSERT_LE(std::fabs(x), 1.0f);
+    }
+  }
+  EXPECT_EQ(g_allocations.load(), 0u);
+  const EngineCounters c = engine.counters();
+  EXPECT_EQ(c.impacts, 1000u);
+  EXPECT_EQ(c.dropped, 0u);
+  EXPECT_EQ(c.stolen, 1000u - 32u);
+  EXPECT_GT(c.clipped, 0u);
+}
+
+TEST(AudioEngine, VoicesRetireBelowMinusHundredDecibels) {
+  AudioEngine engine(percussion(), simple_presets(), EngineSettings{});
+  engine.post(strike(0, 0, 1.0));
+  std::vector<float> out(2 * 4800);
+  engine.process(out.data(), 4800);
+  EXPECT_EQ(engine.counters().active_voices, 1);
+  for (int i = 0; i < 30; ++i) engine.process(out.data(), 4800);  // 3 s: wood fundamental decays at 10/s
+  EXPECT_EQ(engine.counters().active_voices, 0);
+}
+
+TEST(AudioEngine, MonoRoutingMixesBothSignalsIntoOneChannel) {
+  EngineSettings stereo;
+  EngineSettings mono;
+  mono.routing = {1, 0, 0};
+  AudioEngine a(percussion(), simple_presets(), stereo), b(percussion(), simple_presets(), mono);
+  const std::vector<Impact> impacts{strike(10, 500'000, 0.8)};
+  const auto s = run(a, impacts, 4800, 64);
+  const auto m = run(b, impacts, 4800, 64);
+  ASSERT_EQ(m.size() * 2, s.size());
+  for (std::size_t i = 0; i < m.size(); ++i) ASSERT_NEAR(m[i], s[2 * i] + s[2 * i + 1], 1e-6) << i;
+}
+
+TEST(AudioEngine, RefusesSettingsItCannotHonourBeforeAnyAudioRuns) {
+  EngineSettings bad_routing;
+  bad_routing.routing = {2, 0, 2};
+  EXPECT_THROW(AudioEngine(percussion(), simple_presets(), bad_routing), std::invalid_argument);
+  EngineSettings low_rate;
+  low_rate.sample_rate_hz = 500;  // metal's 300 Hz actuator is above Nyquist
+  EXPECT_THROW(AudioEngine(percussion(), simple_presets(), low_rate), std::invalid_argument);
+  EXPECT_THROW(AudioEngine(percussion(), {}, EngineSettings{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mallet::audio
