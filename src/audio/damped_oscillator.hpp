@@ -7,6 +7,7 @@
 // near Nyquist, at ~2 multiply-adds per sample.
 //
 // Real-time safe: no allocation, no locks, no exceptions; tick() is a few flops.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -46,6 +47,43 @@ class DampedOscillator {
       re_ = re;
     }
     return out;
+  }
+
+  //! Adds the next `n` samples to `out` (the same values as n calls of tick(), in a
+  //! tight loop between re-seeds: the engine's hot path).
+  void add_to(double* out, int n) {
+    int i = 0;
+    while (i < n) {
+      const int m = std::min(n - i, static_cast<int>(kReseed - n_ % kReseed));
+      double re = re_, im = im_;
+      const double c = step_re_, s = step_im_;
+      for (int k = 0; k < m; ++k) {
+        out[i + k] += im;
+        const double r = re * c - im * s;
+        im = re * s + im * c;
+        re = r;
+      }
+      re_ = re;
+      im_ = im;
+      n_ += m;
+      i += m;
+      if (n_ % kReseed == 0) seed();
+    }
+  }
+
+  //! For voices that run several oscillators side by side (ModalBarVoice): the rotator
+  //! state, how many samples remain before the next re-seed, and how to hand the state
+  //! back after advancing it `m` samples (m ≤ until_reseed()).
+  struct Lane {
+    double re = 0, im = 0, c = 1, s = 0;
+  };
+  Lane lane() const { return {re_, im_, step_re_, step_im_}; }
+  int until_reseed() const { return static_cast<int>(kReseed - n_ % kReseed); }
+  void finish_run(const Lane& l, int m) {
+    re_ = l.re;
+    im_ = l.im;
+    n_ += m;
+    if (n_ % kReseed == 0) seed();
   }
 
   //! The envelope a·e^(−b·t) at the current sample (for retiring and stealing voices).

@@ -116,10 +116,8 @@ void AudioEngine::start_voice(const Pending& p) {
 void AudioEngine::render(double* acoustic, double* actuator, int frames) {
   for (Voice& v : voices_) {
     if (!v.active) continue;
-    for (int i = 0; i < frames; ++i) {
-      actuator[i] += v.actuator.tick();
-      acoustic[i] += v.acoustic.tick();
-    }
+    v.actuator.add_to(actuator, frames);
+    v.acoustic.add_to(acoustic, frames);
     if (v.envelope() < kSilenceAmplitude) {
       v.active = false;
       v.actuator.stop();

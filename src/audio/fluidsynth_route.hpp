@@ -26,7 +26,7 @@ class FluidSynthRoute final : public ExternalAcoustic {
   //! soundfont is missing or unreadable. `programs[i]` is the GM program (0-based) of
   //! instrument i; each instrument gets its own MIDI channel.
   FluidSynthRoute(const std::string& soundfont, int sample_rate_hz, const std::vector<int>& programs,
-                  double gain = 0.6);
+                  double gain = 2.0);
   ~FluidSynthRoute() override;
   FluidSynthRoute(const FluidSynthRoute&) = delete;
   FluidSynthRoute& operator=(const FluidSynthRoute&) = delete;

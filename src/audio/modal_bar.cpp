@@ -81,6 +81,49 @@ double ModalBarVoice::tick() {
   return sum;
 }
 
+namespace {
+
+// The modes of one voice advance side by side: `Lanes` independent rotators per sample
+// instead of one long dependency chain each, so the CPU overlaps them (and the compiler
+// can vectorise the rotation). Unused lanes are zero and add exactly 0.0; the modes are
+// summed in the same order as tick(), so the output is the same to the last bit.
+template <int Lanes>
+void add_modes(std::array<DampedOscillator, ModalBarVoice::kMaxModes>& modes, int count, double* out, int n) {
+  int i = 0;
+  while (i < n) {
+    const int m = std::min(n - i, modes[0].until_reseed());  // all modes started together
+    std::array<double, Lanes> re{}, im{}, c{}, s{};
+    for (int j = 0; j < count; ++j) {
+      const DampedOscillator::Lane l = modes[static_cast<std::size_t>(j)].lane();
+      re[j] = l.re;
+      im[j] = l.im;
+      c[j] = l.c;
+      s[j] = l.s;
+    }
+    for (int k = 0; k < m; ++k) {
+      double sum = 0.0;
+      for (int j = 0; j < Lanes; ++j) sum += im[j];
+      for (int j = 0; j < Lanes; ++j) {
+        const double r = re[j] * c[j] - im[j] * s[j];
+        im[j] = re[j] * s[j] + im[j] * c[j];
+        re[j] = r;
+      }
+      out[i + k] += sum;
+    }
+    for (int j = 0; j < count; ++j)
+      modes[static_cast<std::size_t>(j)].finish_run({re[j], im[j], c[j], s[j]}, m);
+    i += m;
+  }
+}
+
+}  // namespace
+
+void ModalBarVoice::add_to(double* out, int n) {
+  if (count_ == 0) return;
+  if (count_ <= 4) add_modes<4>(modes_, count_, out, n);
+  else add_modes<kMaxModes>(modes_, count_, out, n);
+}
+
 double ModalBarVoice::envelope() const {
   double sum = 0.0;
   for (int k = 0; k < count_; ++k) sum += modes_[static_cast<std::size_t>(k)].envelope();

@@ -30,6 +30,8 @@ class ModalBarVoice {
   void strike(const ModalPreset& preset, double fundamental_hz, double speed_m_per_s, double delay_s,
               int sample_rate_hz);
   double tick();
+  //! Adds the next `n` samples to `out` (same values as n calls of tick()).
+  void add_to(double* out, int n);
   double envelope() const;  //!< sum of the modes' envelopes: an upper bound of |output|
   void stop();
   int active_modes() const { return count_; }  //!< modes sounding since the last strike()

@@ -19,21 +19,24 @@
 // do not use the first callback's PaStreamCallbackTimeInfo: on Linux PortAudio 19.6
 // stamps it with CLOCK_REALTIME (PaUtil_GetTime), not the monotonic clock of Impact::t_ns,
 // and the engine's origin may only change while no callback runs. The error is the
-// start-up time between Pa_StartStream and the first callback (under a millisecond) plus
-// whatever PortAudio's latency figure leaves out; it is constant while the stream runs.
+// start-up time between Pa_StartStream and the first callback plus whatever PortAudio's
+// latency figure leaves out; it is fixed at start and does not grow while the stream runs
+// (apart from the drift between the sound card's clock and the system's).
 //
 // DEVICE LOSS. A supervisor thread (not the audio thread) polls every
 // Options::poll_interval: if the stream is no longer active (Pa_IsStreamActive false,
 // e.g. a USB card unplugged → paUnanticipatedHostError), PortAudio called the
 // stream-finished callback (an atomic flag set on the audio thread), or no callback
 // arrived for Options::stall_timeout while the stream claims to run, it logs one
-// warning, aborts and closes the stream, and from then on renders the engine silently
+// warning (and, if the first reopen fails, its reason once), aborts and closes the stream, and from then on renders the engine silently
 // into a scratch buffer at the wall-clock rate (so posted impacts are consumed and the
 // timeline keeps moving instead of bursting out on recovery) while it retries to open
 // the configured device — looked up again by name, after re-initialising PortAudio so
 // that a replugged card is seen — with exponential backoff (first_retry doubling up to
 // max_retry). Recovery logs one info line with the new latency. The application is never
-// restarted and start() / the destructor remain valid throughout.
+// restarted and start() / the destructor remain valid throughout. (Pa_Initialize is
+// reference-counted: a rescan happens only if nothing else in the process holds
+// PortAudio open at that moment.)
 //
 // XRUNS. The callback counts paOutputUnderflow; the supervisor logs the count at most
 // once per Options::xrun_log_interval (10 s by default).

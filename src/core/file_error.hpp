@@ -24,9 +24,17 @@ class FileError : public std::runtime_error {
   static std::string format(const std::string& file, std::uint32_t line, std::uint32_t column,
                             const std::string& message) {
     std::string out = file;
-    if (line > 0) out += ":" + std::to_string(line);
-    if (line > 0 && column > 0) out += ":" + std::to_string(column);
-    return out + ": " + message;
+    if (line > 0) {
+      out += ':';
+      out += std::to_string(line);
+      if (column > 0) {
+        out += ':';
+        out += std::to_string(column);
+      }
+    }
+    out += ": ";
+    out += message;
+    return out;
   }
 
   std::string file_;

@@ -71,6 +71,15 @@ TEST(DampedOscillator, HeavyDecayEndsInExactZerosNotSubnormals) {
   EXPECT_EQ(osc.envelope(), 0.0);
 }
 
+TEST(DampedOscillator, BlockRenderingEqualsTickByTick) {
+  DampedOscillator a, b;
+  a.start(0.7, 80.0, 100.0, 3e-6, 48000);
+  b.start(0.7, 80.0, 100.0, 3e-6, 48000);
+  std::vector<double> blocks(5000, 0.0);
+  for (int first = 0, n = 1; first < 5000; first += n, n = n % 300 + 7) b.add_to(blocks.data() + first, std::min(n, 5000 - first));
+  for (int i = 0; i < 5000; ++i) ASSERT_EQ(blocks[static_cast<std::size_t>(i)], a.tick()) << i;
+}
+
 TEST(Denormals, FlushedInsideTheScopeRestoredAfter) {
   const bool before = ScopedFlushDenormals::active();
   {

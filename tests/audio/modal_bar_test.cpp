@@ -334,3 +334,22 @@ TEST(ModalBar, EnvelopeIsTheSumOfTheModesAndBoundsTheOutput) {
 
 }  // namespace
 }  // namespace mallet::audio
+
+namespace mallet::audio {
+namespace {
+
+// The engine renders voices in blocks (add_to); the block path must be the tick path.
+TEST(ModalBar, BlockRenderingEqualsTickByTickForEveryPreset) {
+  for (const ModalPreset& preset : config::load_instruments(test::config_dir() / "instruments.toml")) {
+    ModalBarVoice a, b;
+    a.strike(preset, 659.26, 1.2, 4e-6, 48000);
+    b.strike(preset, 659.26, 1.2, 4e-6, 48000);
+    std::vector<double> blocks(6000, 0.0);
+    for (int first = 0, n = 1; first < 6000; first += n, n = n % 500 + 13)
+      b.add_to(blocks.data() + first, std::min(n, 6000 - first));
+    for (std::size_t i = 0; i < blocks.size(); ++i) ASSERT_EQ(blocks[i], a.tick()) << preset.name << " " << i;
+  }
+}
+
+}  // namespace
+}  // namespace mallet::audio
