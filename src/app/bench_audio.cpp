@@ -210,12 +210,10 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
   print_rows("Impact → first output sample, 200 random impact times", "max ms", latency_rows);
 }
 
-void register_bench(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: programs that print tables (speed, measured here)");
-  bench->require_subcommand(1);
+void add_bench_audio(CLI::App& bench) {
   auto scene = std::make_shared<std::filesystem::path>(default_scene());
   auto seconds = std::make_shared<int>(2);
-  CLI::App* audio_cmd = bench->add_subcommand("audio", "Cost per voice, engine load and impact-to-sample latency");
+  CLI::App* audio_cmd = bench.add_subcommand("audio", "Cost per voice, engine load and impact-to-sample latency");
   audio_cmd->add_option("--scene", *scene, "Scene file")->capture_default_str();
   audio_cmd->add_option("--seconds", *seconds, "Seconds of audio rendered per measurement")->capture_default_str();
   audio_cmd->callback([scene, seconds] { run_bench_audio(*scene, std::max(1, *seconds)); });

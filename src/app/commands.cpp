@@ -16,6 +16,8 @@ void register_commands(CLI::App& app) {
   register_trajectory(app);
   register_audio(app);
   register_bench(app);
+  register_wiimote(app);
+  register_calibrate(app);
 }
 
 }  // namespace mallet::app

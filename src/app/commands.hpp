@@ -16,5 +16,11 @@ void register_analyze(CLI::App& app);
 void register_trajectory(CLI::App& app);
 void register_audio(CLI::App& app);
 void register_bench(CLI::App& app);
+void register_wiimote(CLI::App& app);
+void register_calibrate(CLI::App& app);
+
+//! `mallet bench` subcommands, each in its own file.
+void add_bench_audio(CLI::App& bench);
+void add_bench_input(CLI::App& bench);
 
 }  // namespace mallet::app

@@ -1,0 +1,12 @@
+#include "app/commands.hpp"
+
+namespace mallet::app {
+
+void register_bench(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: programs that print tables (speed, measured here)");
+  bench->require_subcommand(1);
+  add_bench_audio(*bench);
+  add_bench_input(*bench);
+}
+
+}  // namespace mallet::app
