@@ -1,0 +1,226 @@
+#include "core/calibration_file.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "core/config/toml_reader.hpp"
+
+namespace mallet {
+
+namespace {
+
+constexpr std::int64_t kFormatVersion = 1;
+
+// The first problem that would stop the kiosk from using a calibration: {key, message}.
+std::optional<std::pair<std::string, std::string>> problem_of(const Calibration& c) {
+  for (double v : c.camera_to_screen.h)
+    if (!std::isfinite(v)) return std::pair{std::string("matrix"), std::string("must hold 9 finite numbers")};
+  if (!c.camera_to_screen.inverse())
+    return std::pair{std::string("matrix"), std::string("is singular (not invertible): refit the calibration")};
+  if (!(c.screen.width_px > 0 && std::isfinite(c.screen.width_px)))
+    return std::pair{std::string("screen_width_px"), std::string("must be > 0")};
+  if (!(c.screen.height_px > 0 && std::isfinite(c.screen.height_px)))
+    return std::pair{std::string("screen_height_px"), std::string("must be > 0")};
+  if (c.points < 4) return std::pair{std::string("points"), std::string("must be >= 4 (a homography needs 4 points)")};
+  const std::pair<const char*, double> errors[] = {{"rms_error_screen_px", c.rms_error_screen_px},
+                                                   {"max_error_screen_px", c.max_error_screen_px},
+                                                   {"rms_error_camera_px", c.rms_error_camera_px},
+                                                   {"max_error_camera_px", c.max_error_camera_px}};
+  for (const auto& [key, v] : errors)
+    if (!(v >= 0 && std::isfinite(v))) return std::pair{std::string(key), std::string("must be finite and >= 0")};
+  return std::nullopt;
+}
+
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// A TOML basic string.
+std::string toml_string(std::string_view s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+// Text safe inside a one-line comment.
+std::string one_line(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = ' ';
+  return out;
+}
+
+std::string errno_text(int e) { return std::strerror(e); }
+
+}  // namespace
+
+std::string utc_timestamp_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buf;
+}
+
+Calibration calibration_from_fit(const HomographyFit& fit, std::string created_by, std::string remote) {
+  Calibration c;
+  c.camera_to_screen = fit.h;
+  c.screen = fit.screen;
+  c.points = static_cast<std::int64_t>(fit.reprojection_error_px.size());
+  c.rms_error_screen_px = fit.rms_px;
+  c.max_error_screen_px = fit.max_px;
+  c.rms_error_camera_px = fit.camera_rms_px;
+  c.max_error_camera_px = fit.camera_max_px;
+  c.remote = std::move(remote);
+  c.created_utc = utc_timestamp_now();
+  c.created_by = std::move(created_by);
+  return c;
+}
+
+namespace {
+
+Calibration read(const toml::table& root, const std::string& name) {
+  config::TableReader top(root, name);
+  Calibration c;
+  const std::int64_t version = top.integer("format_version");
+  if (version != kFormatVersion)
+    top.fail("format_version", "this mallet reads format_version = " + std::to_string(kFormatVersion) + ", got " +
+                                   std::to_string(version));
+  c.created_utc = top.string_or("created_utc", "");
+  c.created_by = top.string_or("created_by", "");
+  c.remote = top.string_or("remote", "");
+  config::TableReader t = top.table("camera_to_screen");
+  const std::vector<double> m = t.numbers("matrix");
+  if (m.size() != 9)
+    t.fail("matrix", "expected 9 numbers (a row-major 3x3 matrix), got " + std::to_string(m.size()));
+  std::copy(m.begin(), m.end(), c.camera_to_screen.h.begin());
+  c.screen.width_px = t.number("screen_width_px");
+  c.screen.height_px = t.number("screen_height_px");
+  c.points = t.integer("points");
+  c.rms_error_screen_px = t.number("rms_error_screen_px");
+  c.max_error_screen_px = t.number("max_error_screen_px");
+  c.rms_error_camera_px = t.number("rms_error_camera_px");
+  c.max_error_camera_px = t.number("max_error_camera_px");
+  t.finish();
+  top.finish();
+  if (const auto p = problem_of(c)) t.fail(p->first, p->second);
+  return c;
+}
+
+}  // namespace
+
+Calibration parse_calibration(std::string_view text, const std::string& name) {
+  return read(config::parse_text(text, name), name);
+}
+
+Calibration load_calibration(const std::filesystem::path& path) {
+  return read(config::parse_file(path), path.string());
+}
+
+std::string format_calibration(const Calibration& c) {
+  const auto& h = c.camera_to_screen.h;
+  std::string out;
+  out += "# Mallet camera -> screen calibration.\n";
+  out += "# Written by " + one_line(c.created_by.empty() ? "mallet" : c.created_by) + " at " +
+         one_line(c.created_utc.empty() ? "an unknown time" : c.created_utc) + ".\n";
+  out += "# Maps raw Wii Remote IR camera pixels (x 0..1023, y 0..767, not mirrored) to normalised\n"
+         "# screen coordinates (0..1, origin top-left): [sx*w, sy*w, w] = matrix . [cam_x, cam_y, 1].\n"
+         "# Refit (mallet calibrate fit) whenever the remote or the screen moves.\n";
+  out += "format_version = " + std::to_string(kFormatVersion) + "\n";
+  out += "created_utc = " + toml_string(c.created_utc) + "\n";
+  out += "created_by = " + toml_string(c.created_by) + "\n";
+  if (!c.remote.empty()) out += "remote = " + toml_string(c.remote) + "  # the Wii Remote it was made with\n";
+  out += "\n[camera_to_screen]\n";
+  out += "# row-major 3x3 homography, camera pixels -> normalised screen\n";
+  out += "matrix = [\n";
+  for (int r = 0; r < 3; ++r)
+    out += "  " + number_text(h[r * 3]) + ", " + number_text(h[r * 3 + 1]) + ", " + number_text(h[r * 3 + 2]) + ",\n";
+  out += "]\n";
+  out += "screen_width_px = " + number_text(c.screen.width_px) + "  # the screen the errors are measured on\n";
+  out += "screen_height_px = " + number_text(c.screen.height_px) + "\n";
+  out += "points = " + std::to_string(c.points) + "  # calibration points used in the fit\n";
+  out += "rms_error_screen_px = " + number_text(c.rms_error_screen_px) + "  # |H(cam) - screen| in screen pixels\n";
+  out += "max_error_screen_px = " + number_text(c.max_error_screen_px) + "\n";
+  out += "rms_error_camera_px = " + number_text(c.rms_error_camera_px) +
+         "  # |inverse(H)(screen) - cam| in camera pixels\n";
+  out += "max_error_camera_px = " + number_text(c.max_error_camera_px) + "\n";
+  return out;
+}
+
+void write_calibration_file(const std::filesystem::path& path, const Calibration& calibration) {
+  if (const auto p = problem_of(calibration))
+    throw std::invalid_argument(path.string() + ": refusing to write a calibration whose " + p->first + " " +
+                                p->second);
+  const std::string text = format_calibration(calibration);
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  // Unique per process and call, in the same folder so that rename() is atomic.
+  static std::atomic<unsigned> counter{0};
+  std::string tmp_name = ".";  // built by appends: GCC 12 -O3 misreads "." + string (-Wrestrict)
+  tmp_name.append(path.filename().string());
+  tmp_name.append(".tmp-");
+  tmp_name.append(std::to_string(::getpid()));
+  tmp_name.push_back('-');
+  tmp_name.append(std::to_string(counter++));
+  const std::filesystem::path tmp = dir / tmp_name;
+  auto fail = [&](const std::string& what, int e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error(path.string() + ": " + what + ": " + errno_text(e) + " (the old file, if any, is unchanged)");
+  };
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int e = errno;
+    throw std::runtime_error(path.string() + ": cannot create the temporary file " + tmp.string() + ": " +
+                             errno_text(e) + " (the old file, if any, is unchanged)");
+  }
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      ::close(fd);
+      fail("write failed", e);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int e = errno;
+    ::close(fd);
+    fail("fsync failed", e);
+  }
+  if (::close(fd) != 0) fail("close failed", errno);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot replace the file", errno);
+  // Make the rename itself durable (a power cut must not bring the old file back).
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+}  // namespace mallet
