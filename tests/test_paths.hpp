@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/config/scene_config.hpp"
+#include "core/file_error.hpp"
 
 namespace mallet::test {
 
@@ -21,6 +22,18 @@ inline const Scene& percussion() {
 
 inline constexpr Nanos kDay = 86'400 * kNanosPerSecond;
 inline constexpr Nanos kMicrosecond = 1'000;
+
+//! Runs `load` and returns the FileError it throws (the test fails if none is thrown).
+template <typename F>
+FileError file_error_of(F&& load) {
+  try {
+    load();
+  } catch (const FileError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no FileError thrown";
+  return FileError("", 0, 0, "");
+}
 
 //! A fresh, empty directory named after the running test.
 inline std::filesystem::path scratch_dir() {

@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "core/calibration_file.hpp"
 #include "core/file_error.hpp"
+#include "core/text_lines.hpp"
 #include "core/homography.hpp"
 
 namespace mallet::app {
@@ -23,29 +24,7 @@ struct PointPairs {
   std::vector<std::uint32_t> lines;  //!< the CSV line of each pair
 };
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
-    if (comma == std::string_view::npos) return out;
-    start = comma + 1;
-  }
-}
-
-bool parse_double(std::string_view text, double& out) {
-  if (text.empty()) return false;
-  if (text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc() && end == text.data() + text.size();
-}
+using text::parse_double;
 
 // Strict: a header naming the four columns (any order, no others), then one pair per line;
 // '#' comments and blank lines are skipped; every problem is FILE:LINE: problem.
@@ -54,15 +33,12 @@ PointPairs parse_points_csv(std::string_view text, const std::string& name) {
   PointPairs out;
   int col[4] = {-1, -1, -1, -1};
   std::size_t columns = 0;
-  std::uint32_t line_no = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    const std::string_view line = trim(text.substr(pos, nl == std::string_view::npos ? nl : nl - pos));
-    pos = nl == std::string_view::npos ? text.size() : nl + 1;
-    ++line_no;
+  text::Lines lines(text);
+  while (auto raw = lines.next()) {
+    const std::uint32_t line_no = lines.number();
+    const std::string_view line = text::trim(*raw);
     if (line.empty() || line.front() == '#') continue;
-    const std::vector<std::string_view> fields = split(line);
+    const std::vector<std::string_view> fields = text::split_fields(line);
     if (columns == 0) {  // the header
       for (std::size_t i = 0; i < fields.size(); ++i) {
         int k = 0;

@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "core/file_error.hpp"
+#include "core/text_lines.hpp"
 #include "input/wiimote/reports.hpp"
 
 namespace mallet::app {
@@ -39,15 +40,11 @@ std::string format_slots(const IrSlots& slots) {
 //! The whole `decode` output, or FileError on the first malformed line (nothing printed).
 std::string decode_hex_text(std::string_view text, const std::string& name) {
   std::string out;
-  std::uint32_t line_no = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-    pos = nl == std::string_view::npos ? text.size() : nl + 1;
-    ++line_no;
+  text::Lines lines(text);
+  while (auto next = lines.next()) {
+    const std::uint32_t line_no = lines.number();
+    std::string_view line = *next;
     if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     std::string problem;
     std::size_t column = 0;
     const auto bytes = wm::parse_hex_bytes(line, problem, column);

@@ -12,17 +12,7 @@
 namespace mallet {
 namespace {
 
-// Runs `load` and returns the error it throws (fails the test if none).
-template <typename F>
-FileError error_of(F&& load) {
-  try {
-    load();
-  } catch (const FileError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no FileError thrown";
-  return FileError("", 0, 0, "");
-}
+using test::file_error_of;
 
 const char* kGoodMaterial = R"(
 [material.wood]
@@ -31,7 +21,7 @@ actuator = { amplitude = 1.0, decay_per_s = 80.0, freq_hz = 100.0 }
 )";
 
 TEST(MaterialsConfig, SyntaxErrorGivesFileLineAndColumn) {
-  const FileError e = error_of([] { config::parse_materials("[material.wood]\nvisual = { amplitude_s = }\n", "m.toml"); });
+  const FileError e = file_error_of([] { config::parse_materials("[material.wood]\nvisual = { amplitude_s = }\n", "m.toml"); });
   EXPECT_EQ(e.file(), "m.toml");
   EXPECT_EQ(e.line(), 2u);
   EXPECT_GT(e.column(), 0u);
@@ -44,14 +34,14 @@ TEST(MaterialsConfig, NegativeDecayNamesTheKeyAndItsLine) {
 visual   = { amplitude_s = 0.02, decay_per_s = -9.0, freq_hz = 15.0 }
 actuator = { amplitude = 2.0, decay_per_s = 90.0, freq_hz = 300.0 }
 )";
-  const FileError e = error_of([&] { config::parse_materials(text, "m.toml"); });
+  const FileError e = file_error_of([&] { config::parse_materials(text, "m.toml"); });
   EXPECT_EQ(e.line(), 7u);
   EXPECT_NE(std::string(e.what()).find("material.metal.visual.decay_per_s"), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find("-9"), std::string::npos) << e.what();
 }
 
 TEST(MaterialsConfig, MissingKeyWrongTypeAndMisspeltKeyAreRefused) {
-  const FileError missing = error_of([] {
+  const FileError missing = file_error_of([] {
     config::parse_materials("[material.wood]\nvisual = { amplitude_s = 0.009, freq_hz = 5.0 }\n"
                             "actuator = { amplitude = 1.0, decay_per_s = 80.0, freq_hz = 100.0 }\n",
                             "m.toml");
@@ -59,14 +49,14 @@ TEST(MaterialsConfig, MissingKeyWrongTypeAndMisspeltKeyAreRefused) {
   EXPECT_EQ(missing.line(), 2u);
   EXPECT_NE(std::string(missing.what()).find("decay_per_s: missing"), std::string::npos) << missing.what();
 
-  const FileError type = error_of([] {
+  const FileError type = file_error_of([] {
     config::parse_materials("[material.wood]\nvisual = { amplitude_s = \"big\", decay_per_s = 8.0, freq_hz = 5.0 }\n"
                             "actuator = { amplitude = 1.0, decay_per_s = 80.0, freq_hz = 100.0 }\n",
                             "m.toml");
   });
   EXPECT_NE(std::string(type.what()).find("expected a number"), std::string::npos) << type.what();
 
-  const FileError typo = error_of([] {
+  const FileError typo = file_error_of([] {
     config::parse_materials(std::string(kGoodMaterial) + "decay_per_sec = 3\n", "m.toml");
   });
   EXPECT_EQ(typo.line(), 5u);
@@ -102,7 +92,7 @@ TEST(SceneConfig, ShippedSceneHasTwoOctavesInEqualTemperament) {
 
 TEST(SceneConfig, UnknownMaterialListsTheKnownOnes) {
   const MaterialLibrary lib = config::parse_materials(kGoodMaterial, "m.toml");
-  const FileError e = error_of([&] {
+  const FileError e = file_error_of([&] {
     config::parse_scene(R"(name = "x"
 mallet_radius_m = 0.015
 [screen_to_world]
@@ -131,7 +121,7 @@ TEST(SceneConfig, LengthsMustMatchNotesAndBarsMustNotOverlap) {
   const MaterialLibrary lib = config::parse_materials(kGoodMaterial, "m.toml");
   const std::string head = "name = \"x\"\nmallet_radius_m = 0.015\n[screen_to_world]\nleft_m = -1\nright_m = 1\n"
                            "top_m = 1\nbottom_m = 0\n";
-  const FileError lengths = error_of([&] {
+  const FileError lengths = file_error_of([&] {
     config::parse_scene(head + "[[instrument]]\nname = \"a\"\nmaterial = \"wood\"\nx_start_m = 0\ntop_y_m = 0\n"
                                "bar_width_m = 0.04\ngap_m = 0.01\nnotes = [60, 62]\nbar_lengths_m = [0.3]\n",
                         "s.toml", lib);
@@ -141,7 +131,7 @@ TEST(SceneConfig, LengthsMustMatchNotesAndBarsMustNotOverlap) {
 
   const std::string bar = "material = \"wood\"\ntop_y_m = 0\nbar_width_m = 0.04\ngap_m = 0.01\nnotes = [60, 62]\n"
                           "bar_lengths_m = [0.3, 0.29]\n";
-  const FileError overlap = error_of([&] {
+  const FileError overlap = file_error_of([&] {
     config::parse_scene(head + "[[instrument]]\nname = \"a\"\nx_start_m = 0\n" + bar +
                             "[[instrument]]\nname = \"b\"\nx_start_m = 0.05\n" + bar,
                         "s.toml", lib);
@@ -152,7 +142,7 @@ TEST(SceneConfig, LengthsMustMatchNotesAndBarsMustNotOverlap) {
 TEST(SceneConfig, MissingMaterialsFileIsReportedAtTheSceneLine) {
   const auto dir = test::scratch_dir();
   std::ofstream(dir / "s.toml") << "name = \"x\"\nmaterials_file = \"nowhere.toml\"\nmallet_radius_m = 0.015\n";
-  const FileError e = error_of([&] { config::load_scene(dir / "s.toml"); });
+  const FileError e = file_error_of([&] { config::load_scene(dir / "s.toml"); });
   EXPECT_EQ(e.line(), 2u);
   EXPECT_NE(std::string(e.what()).find("nowhere.toml: file not found"), std::string::npos) << e.what();
 }
@@ -181,17 +171,17 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
 }
 
 TEST(AppConfig, BadValuesAreRefusedWithTheirLine) {
-  const FileError bounce = error_of([] { config::parse_app_config("[visual]\nbounce = \"wobbly\"\n", "c.toml"); });
+  const FileError bounce = file_error_of([] { config::parse_app_config("[visual]\nbounce = \"wobbly\"\n", "c.toml"); });
   EXPECT_EQ(bounce.line(), 2u);
   EXPECT_NE(std::string(bounce.what()).find("visual.bounce"), std::string::npos);
 
-  const FileError routing = error_of(
+  const FileError routing = file_error_of(
       [] { config::parse_app_config("[audio.routing]\nchannels = 2\nactuator = 2\n", "c.toml"); });
   EXPECT_EQ(routing.line(), 3u);
   EXPECT_NE(std::string(routing.what()).find("audio.routing.actuator: must be in [0, 1]"), std::string::npos)
       << routing.what();
 
-  const FileError typo = error_of([] { config::parse_app_config("[actuator]\ngian = 0.3\n", "c.toml"); });
+  const FileError typo = file_error_of([] { config::parse_app_config("[actuator]\ngian = 0.3\n", "c.toml"); });
   EXPECT_NE(std::string(typo.what()).find("actuator.gian: unknown key"), std::string::npos) << typo.what();
 
   EXPECT_EQ(config::parse_app_config("[visual]\nbounce = \"rectified\"\n", "c.toml").bounce, BounceMode::rectified);

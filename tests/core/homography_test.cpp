@@ -311,16 +311,7 @@ std::string read_text(const std::filesystem::path& p) {
   return s.str();
 }
 
-template <typename F>
-FileError error_of(F&& load) {
-  try {
-    load();
-  } catch (const FileError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no FileError thrown";
-  return FileError("", 0, 0, "");
-}
+using test::file_error_of;
 
 TEST(CalibrationFile, WriteThenLoadGivesTheSameCalibration) {
   const auto dir = test::scratch_dir();
@@ -448,16 +439,16 @@ TEST(CalibrationFile, MalformedFilesNameFileLineAndKey) {
       {replaced(kGood, "format_version = 1", "format_version = 2"), 1, "format_version = 1, got 2"},
   };
   for (const Case& c : cases) {
-    const FileError e = error_of([&] { parse_calibration(c.text, "c.toml"); });
+    const FileError e = file_error_of([&] { parse_calibration(c.text, "c.toml"); });
     EXPECT_EQ(e.file(), "c.toml");
     EXPECT_EQ(e.line(), c.line) << e.what();
     EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
   }
   const auto dir = test::scratch_dir();
-  const FileError missing = error_of([&] { load_calibration(dir / "none.toml"); });
+  const FileError missing = file_error_of([&] { load_calibration(dir / "none.toml"); });
   EXPECT_NE(std::string(missing.what()).find("none.toml: file not found"), std::string::npos) << missing.what();
   std::ofstream(dir / "bad.toml") << replaced(kGood, "points = 4", "points = 2");
-  const FileError bad = error_of([&] { load_calibration(dir / "bad.toml"); });
+  const FileError bad = file_error_of([&] { load_calibration(dir / "bad.toml"); });
   EXPECT_EQ(std::string(bad.what()).rfind((dir / "bad.toml").string() + ":13:", 0), 0u) << bad.what();
 }
 

@@ -12,16 +12,7 @@
 namespace mallet {
 namespace {
 
-template <typename F>
-FileError error_of(F&& load) {
-  try {
-    load();
-  } catch (const FileError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no FileError thrown";
-  return FileError("", 0, 0, "");
-}
+using test::file_error_of;
 
 bool mentions(const FileError& e, const std::string& text) {
   return std::string(e.what()).find(text) != std::string::npos;
@@ -92,19 +83,19 @@ TEST(InstrumentsConfig, GoodTextParses) {
 }
 
 TEST(InstrumentsConfig, BadRatioNamesFileLineAndKey) {
-  const FileError e = error_of([] { config::parse_instruments(with("ratio = 3.0", "ratio = -3.0"), "i.toml"); });
+  const FileError e = file_error_of([] { config::parse_instruments(with("ratio = 3.0", "ratio = -3.0"), "i.toml"); });
   EXPECT_EQ(e.file(), "i.toml");
   EXPECT_EQ(e.line(), 7u);
   EXPECT_EQ(std::string(e.what()).rfind("i.toml:7:", 0), 0u) << e.what();
   EXPECT_TRUE(mentions(e, "instrument.bar.modes[1].ratio: must be > 0")) << e.what();
   EXPECT_TRUE(mentions(e, "-3")) << e.what();
 
-  const FileError first = error_of([] { config::parse_instruments(with("ratio = 1.0", "ratio = 1.5"), "i.toml"); });
+  const FileError first = file_error_of([] { config::parse_instruments(with("ratio = 1.0", "ratio = 1.5"), "i.toml"); });
   EXPECT_EQ(first.line(), 6u);
   EXPECT_TRUE(mentions(first, "instrument.bar.modes[0].ratio")) << first.what();
   EXPECT_TRUE(mentions(first, "must be 1")) << first.what();
 
-  const FileError text = error_of([] { config::parse_instruments(with("ratio = 3.0", "ratio = \"3\""), "i.toml"); });
+  const FileError text = file_error_of([] { config::parse_instruments(with("ratio = 3.0", "ratio = \"3\""), "i.toml"); });
   EXPECT_EQ(text.line(), 7u);
   EXPECT_TRUE(mentions(text, "expected a number")) << text.what();
 }
@@ -116,11 +107,11 @@ TEST(InstrumentsConfig, TooManyOrNoModesAreRefused) {
   const std::string text = with(
       "modes = [ { ratio = 1.0, gain = 1.0, decay_per_s = 8.0 },\n          { ratio = 3.0, gain = 0.4, decay_per_s = 30.0 } ]",
       nine);
-  const FileError many = error_of([&] { config::parse_instruments(text, "i.toml"); });
+  const FileError many = file_error_of([&] { config::parse_instruments(text, "i.toml"); });
   EXPECT_EQ(many.line(), 6u);
   EXPECT_TRUE(mentions(many, "instrument.bar.modes: at most 8 modes, got 9")) << many.what();
 
-  const FileError none = error_of([] {
+  const FileError none = file_error_of([] {
     config::parse_instruments(with("modes = [ { ratio = 1.0, gain = 1.0, decay_per_s = 8.0 },\n          { ratio = 3.0, gain = 0.4, decay_per_s = 30.0 } ]",
                                    "modes = []"),
                               "i.toml");
@@ -130,17 +121,17 @@ TEST(InstrumentsConfig, TooManyOrNoModesAreRefused) {
 }
 
 TEST(InstrumentsConfig, UnknownKeysAreRefusedWithTheirLine) {
-  const FileError in_mode = error_of([] { config::parse_instruments(with("decay_per_s = 30.0", "decay_per_sec = 30.0"), "i.toml"); });
+  const FileError in_mode = file_error_of([] { config::parse_instruments(with("decay_per_s = 30.0", "decay_per_sec = 30.0"), "i.toml"); });
   EXPECT_EQ(in_mode.line(), 7u);
   EXPECT_TRUE(mentions(in_mode, "instrument.bar.modes[1].decay_per_s: missing")) << in_mode.what();
 
-  const FileError extra = error_of([] {
+  const FileError extra = file_error_of([] {
     config::parse_instruments(with("decay_per_s = 30.0", "decay_per_s = 30.0, q = 2"), "i.toml");
   });
   EXPECT_EQ(extra.line(), 7u);
   EXPECT_TRUE(mentions(extra, "instrument.bar.modes[1].q: unknown key")) << extra.what();
 
-  const FileError top = error_of([] { config::parse_instruments(with("brightness = 1.0", "brightness = 1.0\nloudnes = 0.2"), "i.toml"); });
+  const FileError top = file_error_of([] { config::parse_instruments(with("brightness = 1.0", "brightness = 1.0\nloudnes = 0.2"), "i.toml"); });
   EXPECT_EQ(top.line(), 6u);
   EXPECT_TRUE(mentions(top, "instrument.bar.loudnes: unknown key")) << top.what();
 }
@@ -158,21 +149,21 @@ TEST(InstrumentsConfig, OutOfRangeValuesNameTheKey) {
       {"decay_per_s = 8.0", "decay_per_s = -8.0", "instrument.bar.modes[0].decay_per_s: must be >= 0", 6},
   };
   for (const Case& c : cases) {
-    const FileError e = error_of([&] { config::parse_instruments(with(c.from, c.to), "i.toml"); });
+    const FileError e = file_error_of([&] { config::parse_instruments(with(c.from, c.to), "i.toml"); });
     EXPECT_EQ(e.line(), c.line) << e.what();
     EXPECT_TRUE(mentions(e, c.key)) << e.what();
   }
 }
 
 TEST(InstrumentsConfig, SyntaxErrorsAndMissingFilesAreLocated) {
-  const FileError syntax = error_of([] { config::parse_instruments(with("gain = 0.4", "gain = "), "i.toml"); });
+  const FileError syntax = file_error_of([] { config::parse_instruments(with("gain = 0.4", "gain = "), "i.toml"); });
   EXPECT_EQ(syntax.line(), 7u);
   EXPECT_GT(syntax.column(), 0u);
 
-  const FileError empty = error_of([] { config::parse_instruments("[instrument]\n", "i.toml"); });
+  const FileError empty = file_error_of([] { config::parse_instruments("[instrument]\n", "i.toml"); });
   EXPECT_TRUE(mentions(empty, "defines no instrument")) << empty.what();
 
-  const FileError missing = error_of([] { config::load_instruments(test::scratch_dir() / "nope.toml"); });
+  const FileError missing = file_error_of([] { config::load_instruments(test::scratch_dir() / "nope.toml"); });
   EXPECT_EQ(missing.line(), 0u);
   EXPECT_TRUE(mentions(missing, "file not found")) << missing.what();
 }

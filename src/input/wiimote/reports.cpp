@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/file_error.hpp"
+#include "core/text_lines.hpp"
 
 namespace mallet::input::wiimote {
 
@@ -442,14 +443,10 @@ std::string to_hex(std::span<const std::uint8_t> bytes) {
 
 Recording parse_replay(std::string_view text, const std::string& name) {
   Recording out;
-  std::uint32_t line_no = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-    pos = nl == std::string_view::npos ? text.size() : nl + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  text::Lines lines(text);
+  while (auto next = lines.next()) {
+    const std::uint32_t line_no = lines.number();
+    std::string_view line = *next;
     std::size_t lead = 0;
     while (lead < line.size() && is_blank(line[lead])) ++lead;
     const std::string_view body = line.substr(lead);

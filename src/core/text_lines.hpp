@@ -1,0 +1,61 @@
+#pragma once
+// Small helpers shared by the strict text readers (trajectories, calibration points,
+// hex reports, replay files): lines with their numbers, trimmed comma fields, numbers
+// parsed whole or not at all.
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace mallet::text {
+
+inline std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+//! The comma-separated fields of a line, each trimmed.
+inline std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    out.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    if (comma == std::string_view::npos) return out;
+    start = comma + 1;
+  }
+}
+
+//! The whole of `text` as a double (a leading '+' allowed; "nan"/"inf" accepted).
+inline bool parse_double(std::string_view text, double& out) {
+  if (text.empty()) return false;
+  if (text.front() == '+') text.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return ec == std::errc() && end == text.data() + text.size();
+}
+
+//! Walks a text line by line (a trailing '\r' removed), counting from 1.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  std::optional<std::string_view> next() {
+    if (pos_ >= text_.size()) return std::nullopt;
+    const std::size_t nl = text_.find('\n', pos_);
+    std::string_view line = text_.substr(pos_, nl == std::string_view::npos ? std::string_view::npos : nl - pos_);
+    pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+    ++number_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return line;
+  }
+  std::uint32_t number() const { return number_; }  //!< of the line last returned
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::uint32_t number_ = 0;
+};
+
+}  // namespace mallet::text
