@@ -1,0 +1,52 @@
+#pragma once
+// Glyphs of one TrueType font (DejaVu Sans from Debian's fonts-dejavu-core by default)
+// baked with stb_truetype into a single-channel coverage atlas at one pixel size.
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace mallet::render {
+
+struct GlyphQuad {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;  //!< pixels relative to the pen on the baseline, y down
+  float u0 = 0, v0 = 0, u1 = 0, v1 = 0;  //!< atlas coordinates
+  float advance = 0;                     //!< pen advance in pixels
+};
+
+class FontAtlas {
+ public:
+  //! Bakes code points U+0020..U+00FF (ASCII and Latin-1: the museum's languages) at
+  //! `pixel_height`. Throws FileError naming the font file if it is missing or unusable.
+  FontAtlas(const std::filesystem::path& ttf, float pixel_height);
+
+  static std::filesystem::path default_font();  //!< /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const std::vector<std::uint8_t>& coverage() const { return coverage_; }  //!< width·height bytes
+  float pixel_height() const { return pixel_height_; }
+  float ascent() const { return ascent_; }    //!< pixels above the baseline
+  float descent() const { return descent_; }  //!< pixels below the baseline (positive)
+  float line_gap() const { return line_gap_; }
+  //! Atlas coordinates of a fully-covered texel (shapes sample it).
+  float solid_u() const { return solid_u_; }
+  float solid_v() const { return solid_v_; }
+  //! The quad of a code point; code points outside the baked range draw as '?'.
+  GlyphQuad glyph(char32_t code_point) const;
+  //! Width in pixels of a UTF-8 string at this size (kerning included).
+  float measure(std::string_view utf8) const;
+  float kerning(char32_t left, char32_t right) const;  //!< pixels
+
+ private:
+  int width_ = 0, height_ = 0;
+  float pixel_height_ = 0, ascent_ = 0, descent_ = 0, line_gap_ = 0;
+  float solid_u_ = 0, solid_v_ = 0;
+  std::vector<std::uint8_t> coverage_;
+  std::vector<std::uint8_t> ttf_;   //!< the font file, kept for kerning
+  std::vector<GlyphQuad> glyphs_;   //!< U+0020..U+00FF
+  float scale_ = 0;                 //!< stb_truetype's scale for pixel_height
+  std::vector<std::uint8_t> font_info_;  //!< opaque stbtt_fontinfo storage
+};
+
+}  // namespace mallet::render

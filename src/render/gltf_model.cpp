@@ -1,0 +1,1 @@
+#include "render/gltf_model.hpp"

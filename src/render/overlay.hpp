@@ -1,0 +1,49 @@
+#pragma once
+// The 2D overlay drawn over the scene (calibration targets, progress rings, hints,
+// the operator page): a list of coloured triangles in pixel coordinates that all
+// sample one single-channel atlas. Glyphs sample their coverage there; shapes sample a
+// fully-covered texel, so one pipeline with straight alpha blending draws everything.
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "render/font_atlas.hpp"
+
+namespace mallet::render {
+
+struct OverlayVertex {
+  float x = 0, y = 0;             //!< pixels, origin top-left, y down
+  float u = 0, v = 0;             //!< atlas coordinates (0..1)
+  std::array<float, 4> color{};   //!< sRGB RGB, straight alpha
+};
+
+enum class TextAlign { left, center, right };
+
+class Overlay {
+ public:
+  explicit Overlay(const FontAtlas& atlas) : atlas_(&atlas) {}
+
+  void clear();
+  void fill_rect(float x, float y, float w, float h, std::array<float, 4> color);
+  void stroke_rect(float x, float y, float w, float h, float line_width, std::array<float, 4> color);
+  void fill_circle(float cx, float cy, float radius, std::array<float, 4> color);
+  void stroke_circle(float cx, float cy, float radius, float line_width, std::array<float, 4> color);
+  //! A ring from 12 o'clock clockwise over `fraction` (0..1) of the turn: a progress ring.
+  void progress_ring(float cx, float cy, float radius, float line_width, float fraction,
+                     std::array<float, 4> color);
+  //! UTF-8 text with its baseline at y; returns the advance width in pixels.
+  float text(float x, float y, std::string_view utf8, std::array<float, 4> color,
+             TextAlign align = TextAlign::left);
+
+  const std::vector<OverlayVertex>& vertices() const { return vertices_; }
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  const FontAtlas& atlas() const { return *atlas_; }
+
+ private:
+  const FontAtlas* atlas_;
+  std::vector<OverlayVertex> vertices_;
+  std::vector<std::uint32_t> indices_;
+};
+
+}  // namespace mallet::render
