@@ -7,6 +7,7 @@ void register_bench(CLI::App& app) {
   bench->require_subcommand(1);
   add_bench_audio(*bench);
   add_bench_input(*bench);
+  add_bench_render(*bench);
 }
 
 }  // namespace mallet::app

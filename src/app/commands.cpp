@@ -18,6 +18,7 @@ void register_commands(CLI::App& app) {
   register_bench(app);
   register_wiimote(app);
   register_calibrate(app);
+  register_render(app);
 }
 
 }  // namespace mallet::app

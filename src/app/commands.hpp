@@ -18,9 +18,11 @@ void register_audio(CLI::App& app);
 void register_bench(CLI::App& app);
 void register_wiimote(CLI::App& app);
 void register_calibrate(CLI::App& app);
+void register_render(CLI::App& app);
 
 //! `mallet bench` subcommands, each in its own file.
 void add_bench_audio(CLI::App& bench);
 void add_bench_input(CLI::App& bench);
+void add_bench_render(CLI::App& bench);
 
 }  // namespace mallet::app

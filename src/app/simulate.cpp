@@ -37,23 +37,6 @@ std::string g9(double v) {
   return buf;
 }
 
-struct HandSample {
-  Nanos t;
-  Vec2 hand;
-};
-
-//! The hand's straight-line path between accepted samples (the solver's model).
-Vec2 hand_at(const std::vector<HandSample>& path, Nanos t) {
-  if (t <= path.front().t) return path.front().hand;
-  if (t >= path.back().t) return path.back().hand;
-  const auto it = std::upper_bound(path.begin(), path.end(), t,
-                                   [](Nanos v, const HandSample& s) { return v < s.t; });
-  const HandSample& b = *it;
-  const HandSample& a = *(it - 1);
-  const double s = static_cast<double>(t - a.t) / static_cast<double>(b.t - a.t);
-  return lerp(a.hand, b.hand, s);
-}
-
 //! Files are written under temporary names and renamed only when all are complete.
 class StagedOutput {
  public:
@@ -126,18 +109,10 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   AudioRig rig = make_audio_rig(scene, config, rate);
 
   // --- the contact solver, fed exactly as the kiosk feeds it
-  Mallet mallet(scene, config.contact);
-  std::vector<HandSample> path;
-  for (const PointerSample& s : trajectory.samples) {
-    const Vec2 hand = options.input_space == InputSpace::screen ? scene.screen_to_world.map(s.x, s.y)
-                                                                : Vec2{s.x, s.y};
-    const auto accepted_before = mallet.counters().accepted;
-    if (auto impact = mallet.update(s.t_ns, hand)) result.impacts.push_back(*impact);
-    if (mallet.counters().accepted != accepted_before) path.push_back({s.t_ns, hand});
-  }
-  result.counters = mallet.counters();
-  if (path.empty())
-    throw FileError(options.input.string(), 0, 0, "no usable sample (every position is nan or inf)");
+  const Replay replay(scene, config.contact, config.bounce, trajectory, options.input_space, options.input.string());
+  result.impacts = replay.impacts();
+  result.counters = replay.counters();
+  const std::vector<HandSample>& path = replay.path();
 
   const Nanos t_end = path.back().t + static_cast<Nanos>(std::llround(options.tail_s * 1e9));
 
@@ -162,21 +137,13 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     const fs::path path_cursor = out.stage("cursor.csv");
     std::ofstream f(path_cursor);
     f << "t,hand_x,hand_y,cursor_x,cursor_y,offset\n";
-    VisualVibration vibration(config.bounce);
-    std::size_t next_impact = 0;
     const Nanos t0 = path.front().t;
     for (std::uint64_t k = 0;; ++k) {
       const Nanos t = t0 + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / options.trace_rate_hz));
       if (t > t_end) break;
-      while (next_impact < result.impacts.size() && result.impacts[next_impact].t_ns <= t) {
-        const Impact& i = result.impacts[next_impact++];
-        vibration.start(i, scene.materials[i.material].visual);
-      }
-      const Vec2 hand = hand_at(path, t);
-      const Vec2 shown = mallet.displayed_centre(hand);
-      const double offset = vibration.offset_m(t);
-      f << format_seconds(t) << ',' << g9(hand.x) << ',' << g9(hand.y) << ',' << g9(shown.x) << ','
-        << g9(shown.y + offset) << ',' << g9(offset) << '\n';
+      const CursorState c = replay.cursor_at(t);
+      f << format_seconds(t) << ',' << g9(c.hand.x) << ',' << g9(c.hand.y) << ',' << g9(c.shown.x) << ','
+        << g9(c.shown.y) << ',' << g9(c.offset) << '\n';
       ++result.cursor_rows;
     }
     check_stream(f, path_cursor);

@@ -14,10 +14,10 @@
 #include "core/impact.hpp"
 #include "core/mallet.hpp"
 #include "core/scene.hpp"
+#include "app/replay.hpp"
 
 namespace mallet::app {
 
-enum class InputSpace { screen, world };
 
 struct SimulateOptions {
   std::filesystem::path scene;

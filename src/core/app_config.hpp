@@ -3,7 +3,10 @@
 // values; a test keeps the two equal.
 #include <string>
 
+#include "core/ir_camera_settings.hpp"
+#include "core/ir_tracker.hpp"
 #include "core/mallet.hpp"
+#include "core/one_euro_filter.hpp"
 #include "core/visual_vibration.hpp"
 
 namespace mallet {
@@ -39,11 +42,27 @@ struct AudioConfig {
   AudioRouting routing;
 };
 
+//! [wiimote]: the remote whose IR camera watches the stick's LED, and how the link to it
+//! is kept alive.
+struct WiimoteConfig {
+  std::string device;  //!< a part of the hidraw path or of the serial (Bluetooth address); empty = the first remote
+  IrMode ir_mode = IrMode::extended;                          //!< extended carries each dot's size
+  std::string sensitivity = std::string(kDefaultSensitivity);  //!< a name from kSensitivityPresets
+  bool rumble_on_impact = false;  //!< a short rumble pulse per strike (when the visitor holds the remote)
+  double rumble_ms = 40;
+  double silence_timeout_ms = 3000;  //!< no report for this long = the remote is gone: reconnect
+  double reconnect_min_ms = 500;     //!< first wait between connection attempts, doubling ...
+  double reconnect_max_ms = 5000;    //!< ... up to this
+};
+
 struct AppConfig {
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
   ActuatorConfig actuator;
   AudioConfig audio;
+  OneEuroConfig pointer;     //!< [pointer]: the 1€ filter of the displayed cursor
+  IrTrackerConfig tracking;  //!< [tracking]: which IR dot is the stick's LED
+  WiimoteConfig wiimote;
 };
 
 }  // namespace mallet

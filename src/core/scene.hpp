@@ -30,6 +30,18 @@ struct Instrument {
   int midi_program = 0;      //!< General MIDI program for the midi route (0-based)
   int material = 0;
   std::vector<int> targets;  //!< ids, left to right
+  std::string bar_model;     //!< glTF file in models/ drawn for each bar (unit bar, scaled)
+  std::string rail_model;    //!< glTF file in models/ for the two rails under the bars
+};
+
+//! Where the visitor's eye is for the perspective view. The screen shows exactly the
+//! screen_to_world rectangle of the plane z = 0 (the mallet's plane), seen from this
+//! eye through an off-axis frustum: the pointer maps onto the plane linearly, and the
+//! bars, which extend in depth (z), are seen from above in perspective.
+struct Camera {
+  double eye_x_m = 0.0;     //!< usually the middle of the instruments
+  double eye_y_m = 0.9;     //!< above the bars' tops: the bars are seen from above
+  double eye_z_m = 1.6;     //!< in front of the mallet's plane (> 0)
 };
 
 struct Scene {
@@ -39,6 +51,7 @@ struct Scene {
   double mallet_radius_m = 0.015;
   double tuning_a4_hz = 440.0;
   ScreenToWorld screen_to_world;
+  Camera camera;
   std::vector<Material> materials;   //!< only those the scene uses
   std::vector<Instrument> instruments;
   std::vector<Target> targets;

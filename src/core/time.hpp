@@ -2,6 +2,7 @@
 // One clock for the whole program: int64 nanoseconds on a monotonic time base.
 // Time is never accumulated in floating point (a kiosk runs for weeks); a double
 // appears only for a *difference* of two such values, e.g. time since an impact.
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -25,6 +26,12 @@ constexpr double to_seconds(Nanos dt) {
 inline std::optional<Nanos> from_seconds(double seconds) {
   if (!std::isfinite(seconds) || std::fabs(seconds) > 9.2e9) return std::nullopt;
   return static_cast<Nanos>(std::llround(seconds * 1e9));
+}
+
+//! Now on the program's clock (std::chrono::steady_clock, i.e. CLOCK_MONOTONIC).
+inline Nanos monotonic_now() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace mallet

@@ -3,6 +3,8 @@
 // baked with stb_truetype into a single-channel coverage atlas at one pixel size.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -14,10 +16,17 @@ struct GlyphQuad {
   float advance = 0;                     //!< pen advance in pixels
 };
 
+//! Decodes UTF-8; every malformed sequence (stray or missing continuation bytes, overlong
+//! forms, surrogates, beyond U+10FFFF) becomes one U+FFFD and decoding goes on after it.
+std::u32string decode_utf8(std::string_view utf8);
+
+//! Copyable and cheap to copy: copies share the (immutable) font file and its parsed tables.
 class FontAtlas {
  public:
   //! Bakes code points U+0020..U+00FF (ASCII and Latin-1: the museum's languages) at
-  //! `pixel_height`. Throws FileError naming the font file if it is missing or unusable.
+  //! `pixel_height`. Throws FileError naming the font file if it is missing or unusable,
+  //! std::invalid_argument for a pixel_height outside (0, 256]. Code points the font lacks
+  //! (DejaVu: the C1 controls U+007F..U+009F) draw as '?'.
   FontAtlas(const std::filesystem::path& ttf, float pixel_height);
 
   static std::filesystem::path default_font();  //!< /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
@@ -43,10 +52,12 @@ class FontAtlas {
   float pixel_height_ = 0, ascent_ = 0, descent_ = 0, line_gap_ = 0;
   float solid_u_ = 0, solid_v_ = 0;
   std::vector<std::uint8_t> coverage_;
-  std::vector<std::uint8_t> ttf_;   //!< the font file, kept for kerning
   std::vector<GlyphQuad> glyphs_;   //!< U+0020..U+00FF
   float scale_ = 0;                 //!< stb_truetype's scale for pixel_height
-  std::vector<std::uint8_t> font_info_;  //!< opaque stbtt_fontinfo storage
+  //! The font file and its stbtt_fontinfo, kept for kerning. stbtt_fontinfo points into the
+  //! file's bytes, so the two live together behind one pointer that copies share.
+  struct Face;
+  std::shared_ptr<const Face> face_;
 };
 
 }  // namespace mallet::render

@@ -20,6 +20,9 @@ struct OverlayVertex {
 
 enum class TextAlign { left, center, right };
 
+//! Triangles wind clockwise on screen; no shape overlaps itself (a translucent shape blends
+//! once); circles stray < 0.25 px from the true circle and keep its area; degenerate or
+//! non-finite sizes draw nothing.
 class Overlay {
  public:
   explicit Overlay(const FontAtlas& atlas) : atlas_(&atlas) {}
@@ -41,6 +44,13 @@ class Overlay {
   const FontAtlas& atlas() const { return *atlas_; }
 
  private:
+  std::uint32_t solid_vertex(float x, float y, const std::array<float, 4>& color);
+  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d);
+  //! From 12 o'clock clockwise over `fraction` (0..1] of a turn, between two radii (a fan
+  //! from the centre when `inner` ≤ 0).
+  void arc(float cx, float cy, float inner, float outer, float fraction, std::array<float, 4> color);
+
   const FontAtlas* atlas_;
   std::vector<OverlayVertex> vertices_;
   std::vector<std::uint32_t> indices_;

@@ -168,6 +168,104 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.audio.routing.channels, defaults.audio.routing.channels);
   EXPECT_EQ(shipped.audio.routing.acoustic, defaults.audio.routing.acoustic);
   EXPECT_EQ(shipped.audio.routing.actuator, defaults.audio.routing.actuator);
+  EXPECT_EQ(shipped.pointer.min_cutoff_hz, defaults.pointer.min_cutoff_hz);
+  EXPECT_EQ(shipped.pointer.beta_per_m, defaults.pointer.beta_per_m);
+  EXPECT_EQ(shipped.pointer.d_cutoff_hz, defaults.pointer.d_cutoff_hz);
+  EXPECT_EQ(shipped.pointer.derivative_from_raw, defaults.pointer.derivative_from_raw);
+  EXPECT_EQ(shipped.tracking.max_speed_px_per_s, defaults.tracking.max_speed_px_per_s);
+  EXPECT_EQ(shipped.tracking.jump_slack_px, defaults.tracking.jump_slack_px);
+  EXPECT_EQ(shipped.tracking.reacquire_after_frames, defaults.tracking.reacquire_after_frames);
+  EXPECT_EQ(shipped.tracking.lost_after_ms, defaults.tracking.lost_after_ms);
+  EXPECT_EQ(shipped.wiimote.device, defaults.wiimote.device);
+  EXPECT_EQ(shipped.wiimote.ir_mode, defaults.wiimote.ir_mode);
+  EXPECT_EQ(shipped.wiimote.sensitivity, defaults.wiimote.sensitivity);
+  EXPECT_EQ(shipped.wiimote.rumble_on_impact, defaults.wiimote.rumble_on_impact);
+  EXPECT_EQ(shipped.wiimote.rumble_ms, defaults.wiimote.rumble_ms);
+  EXPECT_EQ(shipped.wiimote.silence_timeout_ms, defaults.wiimote.silence_timeout_ms);
+  EXPECT_EQ(shipped.wiimote.reconnect_min_ms, defaults.wiimote.reconnect_min_ms);
+  EXPECT_EQ(shipped.wiimote.reconnect_max_ms, defaults.wiimote.reconnect_max_ms);
+}
+
+TEST(AppConfig, InputDefaultsAreTheIssuesChoices) {
+  // The numbers `mallet bench input` and the tracker's design settled on; the shipped file
+  // must carry exactly these (the test above), so a change here is deliberate.
+  const AppConfig c;
+  EXPECT_EQ(c.pointer.min_cutoff_hz, 1.0);
+  EXPECT_EQ(c.pointer.beta_per_m, 500.0);
+  EXPECT_EQ(c.pointer.d_cutoff_hz, 1.0);
+  EXPECT_FALSE(c.pointer.derivative_from_raw);
+  EXPECT_EQ(c.tracking.max_speed_px_per_s, 10000.0);
+  EXPECT_EQ(c.tracking.jump_slack_px, 8.0);
+  EXPECT_EQ(c.tracking.reacquire_after_frames, 3);
+  EXPECT_EQ(c.tracking.lost_after_ms, 150.0);
+  EXPECT_EQ(c.wiimote.ir_mode, IrMode::extended);
+  EXPECT_EQ(c.wiimote.sensitivity, "wii3");
+  EXPECT_FALSE(c.wiimote.rumble_on_impact);
+  EXPECT_EQ(c.wiimote.rumble_ms, 40.0);
+  EXPECT_EQ(c.wiimote.silence_timeout_ms, 3000.0);
+  EXPECT_EQ(c.wiimote.reconnect_min_ms, 500.0);
+  EXPECT_EQ(c.wiimote.reconnect_max_ms, 5000.0);
+}
+
+TEST(AppConfig, InputSectionsAreRead) {
+  const AppConfig c = config::parse_app_config(
+      "[pointer]\nmin_cutoff_hz = 2.5\nbeta_per_m = 100\nd_cutoff_hz = 0.5\nderivative_from_raw = true\n"
+      "[tracking]\nmax_speed_px_per_s = 5000\njump_slack_px = 0\nreacquire_after_frames = 5\nlost_after_ms = 80\n"
+      "[wiimote]\ndevice = \"00:1f:32\"\nir_mode = \"basic\"\nsensitivity = \"max\"\nrumble_on_impact = true\n"
+      "rumble_ms = 25\nsilence_timeout_ms = 1500\nreconnect_min_ms = 250\nreconnect_max_ms = 2000\n",
+      "c.toml");
+  EXPECT_EQ(c.pointer.min_cutoff_hz, 2.5);
+  EXPECT_EQ(c.pointer.beta_per_m, 100.0);
+  EXPECT_EQ(c.pointer.d_cutoff_hz, 0.5);
+  EXPECT_TRUE(c.pointer.derivative_from_raw);
+  EXPECT_EQ(c.tracking.max_speed_px_per_s, 5000.0);
+  EXPECT_EQ(c.tracking.jump_slack_px, 0.0);
+  EXPECT_EQ(c.tracking.reacquire_after_frames, 5);
+  EXPECT_EQ(c.tracking.lost_after_ms, 80.0);
+  EXPECT_EQ(c.wiimote.device, "00:1f:32");
+  EXPECT_EQ(c.wiimote.ir_mode, IrMode::basic);
+  EXPECT_EQ(c.wiimote.sensitivity, "max");
+  EXPECT_TRUE(c.wiimote.rumble_on_impact);
+  EXPECT_EQ(c.wiimote.rumble_ms, 25.0);
+  EXPECT_EQ(c.wiimote.silence_timeout_ms, 1500.0);
+  EXPECT_EQ(c.wiimote.reconnect_min_ms, 250.0);
+  EXPECT_EQ(c.wiimote.reconnect_max_ms, 2000.0);
+  // What the loader accepts, the filter and the tracker accept too.
+  EXPECT_EQ(validate(c.pointer), "");
+  EXPECT_EQ(validate(c.tracking), "");
+}
+
+TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
+  struct Case {
+    const char* text;
+    std::uint32_t line;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"[pointer]\nmin_cutoff_hz = 0\n", 2, "pointer.min_cutoff_hz: must be in [0.01, 100], got 0"},
+      {"[pointer]\nbeta_per_m = -1\n", 2, "pointer.beta_per_m: must be in [0, 1e+06], got -1"},
+      {"[pointer]\n\nd_cutoff_hz = nan\n", 3, "pointer.d_cutoff_hz: must be finite, got nan"},
+      {"[pointer]\nderivative_from_raw = 1\n", 2, "pointer.derivative_from_raw: expected true or false"},
+      {"[tracking]\nmax_speed_px_per_s = 0\n", 2, "tracking.max_speed_px_per_s: must be in [1, 1e+06], got 0"},
+      {"[tracking]\njump_slack_px = -2\n", 2, "tracking.jump_slack_px: must be in [0, 1024], got -2"},
+      {"[tracking]\nreacquire_after_frames = 0\n", 2, "tracking.reacquire_after_frames: must be in [1, 1000], got 0"},
+      {"[tracking]\nlost_after_ms = 0.5\n", 2, "tracking.lost_after_ms: must be in [1, 60000], got 0.5"},
+      {"[tracking]\nlost_after_s = 1\n", 2, "tracking.lost_after_s: unknown key"},
+      {"[wiimote]\nir_mode = \"full\"\n", 2, "wiimote.ir_mode: expected \"extended\" or \"basic\", got \"full\""},
+      {"[wiimote]\nsensitivity = \"wii6\"\n", 2,
+       "wiimote.sensitivity: unknown preset \"wii6\" (known: wii1, wii2, wii3, wii4, wii5, marcan, max)"},
+      {"[wiimote]\nrumble_ms = 0\n", 2, "wiimote.rumble_ms: must be in [1, 1000], got 0"},
+      {"[wiimote]\nsilence_timeout_ms = 50\n", 2, "wiimote.silence_timeout_ms: must be in [100, 60000], got 50"},
+      {"[wiimote]\nreconnect_min_ms = 1000\nreconnect_max_ms = 900\n", 3,
+       "wiimote.reconnect_max_ms: must be in [1000, 600000], got 900"},
+      {"[wiimote]\nrumble_on_impact = \"yes\"\n", 2, "wiimote.rumble_on_impact: expected true or false"},
+  };
+  for (const Case& k : cases) {
+    const FileError e = file_error_of([&] { config::parse_app_config(k.text, "c.toml"); });
+    EXPECT_EQ(e.file(), "c.toml") << k.text;
+    EXPECT_EQ(e.line(), k.line) << k.text << " → " << e.what();
+    EXPECT_NE(std::string(e.what()).find(k.message), std::string::npos) << k.text << " → " << e.what();
+  }
 }
 
 TEST(AppConfig, BadValuesAreRefusedWithTheirLine) {

@@ -68,6 +68,50 @@ AppConfig read(const toml::table& root, const std::string& file) {
     }
     t->finish();
   }
+  if (auto t = top.optional_table("pointer")) {
+    OneEuroConfig& p = c.pointer;
+    p.min_cutoff_hz = t->number_or("min_cutoff_hz", p.min_cutoff_hz);
+    t->require_range("min_cutoff_hz", p.min_cutoff_hz, 0.01, 100);
+    p.beta_per_m = t->number_or("beta_per_m", p.beta_per_m);
+    t->require_range("beta_per_m", p.beta_per_m, 0, 1e6);
+    p.d_cutoff_hz = t->number_or("d_cutoff_hz", p.d_cutoff_hz);
+    t->require_range("d_cutoff_hz", p.d_cutoff_hz, 0.01, 100);
+    p.derivative_from_raw = t->boolean_or("derivative_from_raw", p.derivative_from_raw);
+    t->finish();
+  }
+  if (auto t = top.optional_table("tracking")) {
+    IrTrackerConfig& k = c.tracking;
+    k.max_speed_px_per_s = t->number_or("max_speed_px_per_s", k.max_speed_px_per_s);
+    t->require_range("max_speed_px_per_s", k.max_speed_px_per_s, 1, 1e6);
+    k.jump_slack_px = t->number_or("jump_slack_px", k.jump_slack_px);
+    t->require_range("jump_slack_px", k.jump_slack_px, 0, 1024);
+    k.reacquire_after_frames = static_cast<int>(t->integer_or("reacquire_after_frames", k.reacquire_after_frames));
+    t->require_range("reacquire_after_frames", k.reacquire_after_frames, 1, 1000);
+    k.lost_after_ms = t->number_or("lost_after_ms", k.lost_after_ms);
+    t->require_range("lost_after_ms", k.lost_after_ms, 1, 60000);
+    t->finish();
+  }
+  if (auto t = top.optional_table("wiimote")) {
+    WiimoteConfig& w = c.wiimote;
+    w.device = t->string_or("device", w.device);
+    const std::string mode = t->string_or("ir_mode", "extended");
+    if (mode == "extended") w.ir_mode = IrMode::extended;
+    else if (mode == "basic") w.ir_mode = IrMode::basic;
+    else t->fail("ir_mode", "expected \"extended\" or \"basic\", got \"" + mode + "\"");
+    w.sensitivity = t->string_or("sensitivity", w.sensitivity);
+    if (!find_sensitivity(w.sensitivity))
+      t->fail("sensitivity", "unknown preset \"" + w.sensitivity + "\" (known: " + sensitivity_names() + ")");
+    w.rumble_on_impact = t->boolean_or("rumble_on_impact", w.rumble_on_impact);
+    w.rumble_ms = t->number_or("rumble_ms", w.rumble_ms);
+    t->require_range("rumble_ms", w.rumble_ms, 1, 1000);
+    w.silence_timeout_ms = t->number_or("silence_timeout_ms", w.silence_timeout_ms);
+    t->require_range("silence_timeout_ms", w.silence_timeout_ms, 100, 60000);
+    w.reconnect_min_ms = t->number_or("reconnect_min_ms", w.reconnect_min_ms);
+    t->require_range("reconnect_min_ms", w.reconnect_min_ms, 10, 60000);
+    w.reconnect_max_ms = t->number_or("reconnect_max_ms", w.reconnect_max_ms);
+    t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
+    t->finish();
+  }
   top.finish();
   return c;
 }

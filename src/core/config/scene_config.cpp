@@ -29,6 +29,11 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
   if (!material)
     t.fail("material", "unknown material \"" + material_name + "\" (known: " + library.names() + ")");
   inst.material = add_material(scene, *material);
+  // Drawn models (files in models/): a metal-looking bar for metals, wood otherwise.
+  const bool metallic = material_name.find("metal") != std::string::npos ||
+                        material_name.find("alumin") != std::string::npos;
+  inst.bar_model = t.string_or("bar_model", metallic ? "metal_bar.glb" : "wood_bar.glb");
+  inst.rail_model = t.string_or("rail_model", inst.name + "_rail.glb");
 
   const double x_start = t.number("x_start_m");
   const double top_y = t.number("top_y_m");
@@ -88,6 +93,14 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
   if (!(scene.screen_to_world.top_m > scene.screen_to_world.bottom_m))
     s2w.fail("top_m", "must be greater than bottom_m (world y points up)");
   s2w.finish();
+
+  if (std::optional<TableReader> cam = top.optional_table("camera")) {
+    scene.camera.eye_x_m = cam->number_or("eye_x_m", scene.camera.eye_x_m);
+    scene.camera.eye_y_m = cam->number_or("eye_y_m", scene.camera.eye_y_m);
+    scene.camera.eye_z_m = cam->number_or("eye_z_m", scene.camera.eye_z_m);
+    cam->require_range("eye_z_m", scene.camera.eye_z_m, 0.05, 20.0);
+    cam->finish();
+  }
 
   for (TableReader& t : top.tables("instrument")) read_instrument(std::move(t), library, scene);
   top.finish();

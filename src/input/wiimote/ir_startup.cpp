@@ -31,21 +31,6 @@ IrStartupStep next(IrStartupStep step) {
 
 }  // namespace
 
-std::optional<SensitivityPreset> find_sensitivity(std::string_view name) {
-  for (const auto& p : kSensitivityPresets)
-    if (p.name == name) return p;
-  return std::nullopt;
-}
-
-std::string sensitivity_names() {
-  std::string out;
-  for (const auto& p : kSensitivityPresets) {
-    if (!out.empty()) out += ", ";
-    out += p.name;
-  }
-  return out;
-}
-
 std::string_view to_string(IrStartupStep step) {
   switch (step) {
     case IrStartupStep::idle: return "idle";

@@ -29,41 +29,20 @@
 #include <string_view>
 #include <vector>
 
+#include "core/ir_camera_settings.hpp"
 #include "core/time.hpp"
 #include "input/wiimote/reports.hpp"
 
 namespace mallet::input::wiimote {
 
-//! The camera's two sensitivity blocks (registers 0xB00000.. and 0xB0001A..).
-struct SensitivityPreset {
-  std::string_view name;
-  std::array<std::uint8_t, 9> block1;
-  std::array<std::uint8_t, 2> block2;
-  std::string_view note;
-};
-
-//! The commonly published blocks (wiibrew "IR Camera"): the Wii's levels 1..5 (what the
-//! console's sensor-bar sensitivity setting writes), the "marcan" and "max" sets. "wii3"
-//! is what the Linux driver writes.
-inline constexpr std::array<SensitivityPreset, 7> kSensitivityPresets{{
-    {"wii1", {0x02, 0x00, 0x00, 0x71, 0x01, 0x00, 0x64, 0x00, 0xfe}, {0xfd, 0x05}, "Wii level 1 (least sensitive)"},
-    {"wii2", {0x02, 0x00, 0x00, 0x71, 0x01, 0x00, 0x96, 0x00, 0xb4}, {0xb3, 0x04}, "Wii level 2"},
-    {"wii3", {0x02, 0x00, 0x00, 0x71, 0x01, 0x00, 0xaa, 0x00, 0x64}, {0x63, 0x03}, "Wii level 3 (Linux default)"},
-    {"wii4", {0x02, 0x00, 0x00, 0x71, 0x01, 0x00, 0xc8, 0x00, 0x36}, {0x35, 0x03}, "Wii level 4"},
-    {"wii5", {0x07, 0x00, 0x00, 0x71, 0x01, 0x00, 0x72, 0x00, 0x20}, {0x1f, 0x03}, "Wii level 5"},
-    {"marcan", {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x90, 0x00, 0xc0}, {0x40, 0x00}, "suggested by marcan"},
-    {"max", {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x90, 0x00, 0x41}, {0x40, 0x00}, "maximum sensitivity"},
-}};
-
-inline constexpr std::string_view kDefaultSensitivity = "wii3";
-
-//! The preset named `name` (exact, lower case), or nothing.
-std::optional<SensitivityPreset> find_sensitivity(std::string_view name);
-//! "wii1, wii2, ..., max" for error messages and --help.
-std::string sensitivity_names();
-
-//! Register 0xB00033: the camera's report format.
-enum class IrMode : std::uint8_t { basic = 1, extended = 3 };
+// The sensitivity presets and the camera's modes are data the settings file names, so
+// they live in the core (core/ir_camera_settings.hpp); the names stay usable here.
+using mallet::find_sensitivity;
+using mallet::IrMode;
+using mallet::kDefaultSensitivity;
+using mallet::kSensitivityPresets;
+using mallet::SensitivityPreset;
+using mallet::sensitivity_names;
 
 //! The data report that carries the camera's format: 0x36 (buttons + 10 IR bytes) for
 //! basic, 0x33 (buttons + accelerometer + 12 IR bytes) for extended.

@@ -438,6 +438,24 @@ std::string to_hex(std::span<const std::uint8_t> bytes) {
   return out;
 }
 
+std::string format_ir_slots(const IrSlots& slots) {
+  std::string out;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (i) out += ' ';
+    if (!slots[i]) {
+      out += '-';
+      continue;
+    }
+    const IrDot& d = *slots[i];
+    out += std::to_string(d.x);
+    out += ',';
+    out += std::to_string(d.y);
+    out += ',';
+    out += d.size < 0 ? std::string("?") : std::to_string(d.size);
+  }
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------
 // Replay files
 

@@ -253,6 +253,10 @@ std::optional<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text, 
 //! Lower-case hex, one space between bytes: "33 00 00 ff".
 std::string to_hex(std::span<const std::uint8_t> bytes);
 
+//! The four camera slots as `mallet wiimote decode` prints them: separated by single
+//! spaces, each `x,y,size` (`x,y,?` without a size, basic mode) or `-` when empty.
+std::string format_ir_slots(const IrSlots& slots);
+
 // ---------------------------------------------------------------------------------------
 // Recorded reports (`--record FILE`, the replay source)
 //

@@ -1,0 +1,46 @@
+#include "app/replay.hpp"
+
+#include <algorithm>
+
+#include "core/file_error.hpp"
+
+namespace mallet::app {
+
+Replay::Replay(const Scene& scene, const ContactConfig& contact, BounceMode bounce,
+               const input::Trajectory& trajectory, InputSpace space, const std::string& trajectory_name)
+    : scene_(&scene), mallet_(scene, contact), bounce_(bounce) {
+  for (const PointerSample& s : trajectory.samples) {
+    const Vec2 hand = space == InputSpace::screen ? scene.screen_to_world.map(s.x, s.y) : Vec2{s.x, s.y};
+    const auto accepted_before = mallet_.counters().accepted;
+    if (auto impact = mallet_.update(s.t_ns, hand)) impacts_.push_back(*impact);
+    if (mallet_.counters().accepted != accepted_before) path_.push_back({s.t_ns, hand});
+  }
+  if (path_.empty()) throw FileError(trajectory_name, 0, 0, "no usable sample (every position is nan or inf)");
+}
+
+Vec2 Replay::hand_at(Nanos t) const {
+  if (t <= path_.front().t) return path_.front().hand;
+  if (t >= path_.back().t) return path_.back().hand;
+  const auto it = std::upper_bound(path_.begin(), path_.end(), t,
+                                   [](Nanos v, const HandSample& s) { return v < s.t; });
+  const HandSample& b = *it;
+  const HandSample& a = *(it - 1);
+  const double s = static_cast<double>(t - a.t) / static_cast<double>(b.t - a.t);
+  return lerp(a.hand, b.hand, s);
+}
+
+CursorState Replay::cursor_at(Nanos t) const {
+  VisualVibration vibration(bounce_);
+  const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), t,
+                                      [](Nanos v, const Impact& i) { return v < i.t_ns; });
+  if (after != impacts_.begin()) {
+    const Impact& latest = *(after - 1);
+    vibration.start(latest, scene_->materials[latest.material].visual);
+  }
+  const Vec2 hand = hand_at(t);
+  const Vec2 shown = mallet_.displayed_centre(hand);
+  const double offset = vibration.offset_m(t);
+  return {hand, {shown.x, shown.y + offset}, offset};
+}
+
+}  // namespace mallet::app

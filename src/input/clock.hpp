@@ -1,0 +1,34 @@
+#pragma once
+// The time a pointer source reads and the way it waits, behind a small interface so that
+// reconnection, back-off and time-outs are tested with a scripted clock instead of sleeps.
+#include <chrono>
+#include <thread>
+
+#include "core/time.hpp"
+
+namespace mallet::input {
+
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  //! Now on the program's one monotonic clock, int64 nanoseconds.
+  virtual Nanos now() = 0;
+  //! Waits about `duration_ns` (≥ 0). A fake advances its time instead.
+  virtual void sleep_for(Nanos duration_ns) = 0;
+};
+
+//! std::chrono::steady_clock (CLOCK_MONOTONIC on Linux): the clock every timestamp uses.
+inline Nanos steady_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+class SteadyClock final : public Clock {
+ public:
+  Nanos now() override { return steady_now_ns(); }
+  void sleep_for(Nanos duration_ns) override {
+    if (duration_ns > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(duration_ns));
+  }
+};
+
+}  // namespace mallet::input

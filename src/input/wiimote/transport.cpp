@@ -1,0 +1,35 @@
+#include "input/wiimote/transport.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
+namespace mallet::input::wiimote {
+
+std::string udev_hint() {
+  return "the remote's /dev/hidraw* node must be readable and writable by this user (permission denied?): "
+         "install the udev rule " +
+         std::string(kUdevRulePath) + " containing\n    " + std::string(kUdevRule) +
+         "\nthen run `sudo udevadm control --reload && sudo udevadm trigger` and reconnect the remote";
+}
+
+std::string product_name(std::uint16_t product_id) {
+  if (product_id == kWiiRemoteProductId) return "RVL-CNT-01";
+  if (product_id == kWiiRemoteTrProductId) return "RVL-CNT-01-TR";
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "0x%04x", static_cast<unsigned>(product_id));
+  return buf;
+}
+
+bool matches_device(const HidDeviceInfo& device, std::string_view filter) {
+  if (filter.empty()) return true;
+  auto contains = [filter](const std::string& text) {
+    const auto it = std::search(text.begin(), text.end(), filter.begin(), filter.end(), [](char a, char b) {
+      return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    });
+    return it != text.end();
+  };
+  return contains(device.path) || contains(device.serial);
+}
+
+}  // namespace mallet::input::wiimote

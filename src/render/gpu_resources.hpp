@@ -1,0 +1,48 @@
+#pragma once
+// Buffers and images with their memory, owned together, and the one image-layout
+// barrier helper (synchronization2) the renderer uses everywhere.
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+
+#include "render/vk_context.hpp"
+
+namespace mallet::render {
+
+struct GpuBuffer {
+  vk::Buffer buffer;
+  vk::Memory memory;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  //!< host-visible buffers stay mapped for their lifetime
+};
+
+//! A host-visible, coherent, persistently mapped buffer. Vertex and index data live in
+//! such buffers too: the scene is a few thousand vertices, uploaded once.
+GpuBuffer make_host_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
+GpuBuffer make_host_buffer(const Context& ctx, std::span<const std::byte> data, VkBufferUsageFlags usage);
+
+struct GpuImage {
+  vk::Image image;
+  vk::Memory memory;
+  vk::ImageView view;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+};
+
+GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                    VkSampleCountFlagBits samples, VkImageAspectFlags aspect);
+
+//! A sampled texture filled with `pixels` (tightly packed, `bytes_per_pixel` each) and
+//! left in SHADER_READ_ONLY_OPTIMAL.
+GpuImage make_texture(const Context& ctx, VkExtent2D extent, VkFormat format,
+                      std::span<const std::uint8_t> pixels, std::uint32_t bytes_per_pixel);
+
+//! Records a layout transition with a full synchronization2 barrier between the given
+//! stages/accesses.
+void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+
+}  // namespace mallet::render

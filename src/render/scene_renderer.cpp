@@ -1,0 +1,449 @@
+#include "render/scene_renderer.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "render/gltf_model.hpp"
+#include "render/vk_error.hpp"
+#include "shaders/overlay_frag.h"
+#include "shaders/overlay_vert.h"
+#include "shaders/scene_frag.h"
+#include "shaders/scene_vert.h"
+
+namespace mallet::render {
+namespace {
+
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr std::uint32_t kMaxModelSets = 256;
+
+//! The key light: nearly overhead and a little in front, so the sphere's shadow falls
+//! just behind the point under it, where the eye (above and in front) sees it.
+const glm::vec3 kToLight = glm::normalize(glm::vec3(0.0f, 1.0f, 0.22f));
+constexpr float kLightTanRadius = 0.035f;  // a 2° disc: a soft but readable penumbra
+constexpr float kLightIntensity = 2.6f;
+constexpr float kAmbient = 0.55f;
+
+struct FrameUniform {
+  glm::mat4 view_proj;
+  glm::vec4 eye, light_dir, sphere, light_color;
+};
+struct DrawConstants {
+  glm::mat4 model;
+  glm::vec4 base_color;
+  glm::vec4 params;
+};
+static_assert(sizeof(DrawConstants) == 96, "push constants: 128 bytes guaranteed, 96 used");
+
+template <std::size_t N>
+vk::ShaderModule make_shader(VkDevice dev, const std::uint32_t (&code)[N]) {
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = sizeof(code);
+  ci.pCode = code;
+  VkShaderModule m;
+  check(vkCreateShaderModule(dev, &ci, nullptr, &m), "creating a shader module");
+  return vk::ShaderModule(dev, m);
+}
+
+std::span<const std::byte> bytes_of(const auto& vec) { return std::as_bytes(std::span(vec)); }
+
+}  // namespace
+
+SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::filesystem::path& models_dir,
+                             VkFormat color_format, RenderSettings settings, VkPipelineCache cache)
+    : ctx_(ctx), scene_(scene), color_format_(color_format), settings_(settings) {
+  VkDevice dev = ctx.device();
+  view_proj_ = render::view_projection(scene);
+  instruments_ = instrument_instances(scene);
+
+  // Layouts, pool, sampler, the white texture untextured materials sample.
+  VkDescriptorSetLayoutBinding ubo{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                   VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &ubo;
+  VkDescriptorSetLayout raw_layout;
+  check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &raw_layout), "creating a descriptor set layout");
+  frame_layout_ = vk::DescriptorSetLayout(dev, raw_layout);
+  VkDescriptorSetLayoutBinding tex{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                   nullptr};
+  lci.pBindings = &tex;
+  check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &raw_layout), "creating a descriptor set layout");
+  image_layout_ = vk::DescriptorSetLayout(dev, raw_layout);
+
+  const std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
+                                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxModelSets}}};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = kSlots + kMaxModelSets;
+  pci.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  pci.pPoolSizes = sizes.data();
+  VkDescriptorPool raw_pool;
+  check(vkCreateDescriptorPool(dev, &pci, nullptr, &raw_pool), "creating a descriptor pool");
+  pool_ = vk::DescriptorPool(dev, raw_pool);
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sci.maxLod = 0.0f;
+  VkSampler raw_sampler;
+  check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
+  sampler_ = vk::Sampler(dev, raw_sampler);
+  const std::array<std::uint8_t, 4> white{255, 255, 255, 255};
+  white_ = make_texture(ctx, {1, 1}, VK_FORMAT_R8G8B8A8_SRGB, white, 4);
+
+  for (Slot& slot : slots_) {
+    slot.frame_uniform = make_host_buffer(ctx, sizeof(FrameUniform), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    slot.frame_set = allocate_set(frame_layout_.get());
+    VkDescriptorBufferInfo bi{slot.frame_uniform.buffer.get(), 0, sizeof(FrameUniform)};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = slot.frame_set;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.pBufferInfo = &bi;
+    vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  }
+
+  // Every model the scene draws, each loaded once.
+  std::vector<std::string> names;
+  for (const Instance& i : instruments_) names.push_back(i.model);
+  names.push_back(mallet_instance(scene, {}).model);
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  for (const std::string& name : names) load_model(models_dir / name, name);
+
+  build_pipelines(cache);
+}
+
+SceneRenderer::~SceneRenderer() { vkDeviceWaitIdle(ctx_.device()); }
+
+VkDescriptorSet SceneRenderer::allocate_set(VkDescriptorSetLayout layout) {
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool_.get();
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &layout;
+  VkDescriptorSet set;
+  check(vkAllocateDescriptorSets(ctx_.device(), &ai, &set), "allocating a descriptor set (too many materials?)");
+  return set;
+}
+
+void SceneRenderer::write_image_set(VkDescriptorSet set, VkImageView view) {
+  VkDescriptorImageInfo ii{sampler_.get(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = &ii;
+  vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+}
+
+void SceneRenderer::load_model(const std::filesystem::path& file, const std::string& name) {
+  const Model model = load_gltf(file);
+  GpuModel gpu;
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  for (const Primitive& p : model.primitives) {
+    GpuPrimitive gp;
+    gp.first_index = static_cast<std::uint32_t>(indices.size());
+    gp.index_count = static_cast<std::uint32_t>(p.indices.size());
+    gp.vertex_offset = static_cast<std::int32_t>(vertices.size());
+    gp.material = p.material;
+    vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+    indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+    gpu.primitives.push_back(gp);
+  }
+  gpu.vertices = make_host_buffer(ctx_, bytes_of(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  gpu.indices = make_host_buffer(ctx_, bytes_of(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  for (const TextureImage& t : model.textures)
+    gpu.textures.push_back(make_texture(ctx_, {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)},
+                                        VK_FORMAT_R8G8B8A8_SRGB, t.rgba, 4));
+  std::vector<PbrMaterial> materials = model.materials;
+  materials.push_back(PbrMaterial{});  // glTF's default material, for primitives without one
+  for (GpuPrimitive& gp : gpu.primitives)
+    if (gp.material < 0) gp.material = static_cast<int>(materials.size()) - 1;
+  for (const PbrMaterial& m : materials) {
+    GpuMaterial g;
+    g.base_color = m.base_color;
+    g.metallic = m.metallic;
+    g.roughness = m.roughness;
+    g.textured = m.base_color_texture >= 0;
+    g.set = allocate_set(image_layout_.get());
+    write_image_set(g.set, g.textured ? gpu.textures.at(m.base_color_texture).view.get() : white_.view.get());
+    gpu.materials.push_back(g);
+  }
+  models_.emplace(name, std::move(gpu));
+}
+
+void SceneRenderer::build_pipelines(VkPipelineCache cache) {
+  VkDevice dev = ctx_.device();
+  // Scene pipeline: set 0 the frame, set 1 the material's texture; push constants per draw.
+  {
+    std::array<VkDescriptorSetLayout, 2> sets{frame_layout_.get(), image_layout_.get()};
+    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)};
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = 2;
+    ci.pSetLayouts = sets.data();
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &push;
+    VkPipelineLayout raw;
+    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the scene pipeline layout");
+    scene_pipeline_layout_ = vk::PipelineLayout(dev, raw);
+  }
+  {
+    VkDescriptorSetLayout set = image_layout_.get();
+    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(float) * 2};
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = 1;
+    ci.pSetLayouts = &set;
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &push;
+    VkPipelineLayout raw;
+    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the overlay pipeline layout");
+    overlay_pipeline_layout_ = vk::PipelineLayout(dev, raw);
+  }
+
+  auto build = [&](VkShaderModule vs, VkShaderModule fs, const VkPipelineVertexInputStateCreateInfo& input,
+                   bool depth, bool blend, VkPipelineLayout layout, const char* what) {
+    std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs,
+                 "main", nullptr};
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs,
+                 "main", nullptr};
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vp.viewportCount = vp.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = VK_CULL_MODE_NONE;  // closed meshes seen from outside; depth sorts them out
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = settings_.samples;
+    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    ds.depthTestEnable = ds.depthWriteEnable = depth ? VK_TRUE : VK_FALSE;
+    ds.depthCompareOp = VK_COMPARE_OP_LESS;
+    VkPipelineColorBlendAttachmentState att{};
+    att.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                         VK_COLOR_COMPONENT_A_BIT;
+    if (blend) {
+      att.blendEnable = VK_TRUE;
+      att.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      att.colorBlendOp = VK_BLEND_OP_ADD;
+      att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+      att.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = 1;
+    cb.pAttachments = &att;
+    const std::array<VkDynamicState, 2> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dy.dynamicStateCount = static_cast<std::uint32_t>(dyn.size());
+    dy.pDynamicStates = dyn.data();
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachmentFormats = &color_format_;
+    rendering.depthAttachmentFormat = kDepthFormat;
+    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    ci.pNext = &rendering;
+    ci.stageCount = 2;
+    ci.pStages = stages.data();
+    ci.pVertexInputState = &input;
+    ci.pInputAssemblyState = &ia;
+    ci.pViewportState = &vp;
+    ci.pRasterizationState = &rs;
+    ci.pMultisampleState = &ms;
+    ci.pDepthStencilState = &ds;
+    ci.pColorBlendState = &cb;
+    ci.pDynamicState = &dy;
+    ci.layout = layout;
+    VkPipeline raw;
+    check(vkCreateGraphicsPipelines(dev, cache, 1, &ci, nullptr, &raw), what);
+    return vk::Pipeline(dev, raw);
+  };
+
+  {
+    vk::ShaderModule vs = make_shader(dev, scene_vert_spv), fs = make_shader(dev, scene_frag_spv);
+    VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const std::array<VkVertexInputAttributeDescription, 3> attrs{{
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+    }};
+    VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    input.vertexBindingDescriptionCount = 1;
+    input.pVertexBindingDescriptions = &binding;
+    input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attrs.size());
+    input.pVertexAttributeDescriptions = attrs.data();
+    scene_pipeline_ = build(vs.get(), fs.get(), input, true, false, scene_pipeline_layout_.get(),
+                            "creating the scene pipeline");
+  }
+  {
+    vk::ShaderModule vs = make_shader(dev, overlay_vert_spv), fs = make_shader(dev, overlay_frag_spv);
+    VkVertexInputBindingDescription binding{0, sizeof(OverlayVertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    const std::array<VkVertexInputAttributeDescription, 3> attrs{{
+        {0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
+        {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
+        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)},
+    }};
+    VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    input.vertexBindingDescriptionCount = 1;
+    input.pVertexBindingDescriptions = &binding;
+    input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attrs.size());
+    input.pVertexAttributeDescriptions = attrs.data();
+    overlay_pipeline_ = build(vs.get(), fs.get(), input, false, true, overlay_pipeline_layout_.get(),
+                              "creating the overlay pipeline");
+  }
+}
+
+void SceneRenderer::ensure_attachments(VkExtent2D extent) {
+  if (extent.width == attachment_extent_.width && extent.height == attachment_extent_.height) return;
+  vkDeviceWaitIdle(ctx_.device());  // resizes are rare; the old attachments may be in use
+  depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, settings_.samples,
+                      VK_IMAGE_ASPECT_DEPTH_BIT);
+  msaa_color_ = {};
+  if (settings_.samples != VK_SAMPLE_COUNT_1_BIT)
+    msaa_color_ = make_image(ctx_, extent, color_format_, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, settings_.samples,
+                             VK_IMAGE_ASPECT_COLOR_BIT);
+  attachment_extent_ = extent;
+}
+
+void SceneRenderer::ensure_atlas(const FontAtlas& atlas) {
+  if (atlas_source_ == &atlas) return;
+  vkDeviceWaitIdle(ctx_.device());
+  atlas_ = make_texture(ctx_, {static_cast<std::uint32_t>(atlas.width()), static_cast<std::uint32_t>(atlas.height())},
+                        VK_FORMAT_R8_UNORM, atlas.coverage(), 1);
+  if (atlas_set_ == VK_NULL_HANDLE) atlas_set_ = allocate_set(image_layout_.get());
+  write_image_set(atlas_set_, atlas_.view.get());
+  atlas_source_ = &atlas;
+}
+
+std::size_t SceneRenderer::triangle_count() const {
+  std::size_t n = 0;
+  auto count = [&](const std::string& name) {
+    for (const GpuPrimitive& p : models_.at(name).primitives) n += p.index_count / 3;
+  };
+  for (const Instance& i : instruments_) count(i.model);
+  count(mallet_instance(scene_, {}).model);
+  return n;
+}
+
+void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, bool receives_shadow) {
+  const GpuModel& model = models_.at(instance.model);
+  const VkDeviceSize offset = 0;
+  VkBuffer vb = model.vertices.buffer.get();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, model.indices.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
+  for (const GpuPrimitive& p : model.primitives) {
+    const GpuMaterial& m = model.materials.at(p.material);
+    DrawConstants dc{instance.transform,
+                     {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]},
+                     {m.metallic, m.roughness, receives_shadow ? 1.0f : 0.0f, m.textured ? 1.0f : 0.0f}};
+    vkCmdPushConstants(cmd, scene_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                       0, sizeof(dc), &dc);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 1, 1, &m.set, 0,
+                            nullptr);
+    vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, p.vertex_offset, 0);
+  }
+}
+
+void SceneRenderer::draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Slot& slot, VkExtent2D extent) {
+  if (overlay.indices().empty()) return;
+  ensure_atlas(overlay.atlas());
+  const auto vbytes = bytes_of(overlay.vertices());
+  const auto ibytes = bytes_of(overlay.indices());
+  if (slot.overlay_vertices.size < vbytes.size())
+    slot.overlay_vertices = make_host_buffer(ctx_, std::max<VkDeviceSize>(vbytes.size() * 2, 64 * 1024),
+                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  if (slot.overlay_indices.size < ibytes.size())
+    slot.overlay_indices = make_host_buffer(ctx_, std::max<VkDeviceSize>(ibytes.size() * 2, 32 * 1024),
+                                            VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  std::memcpy(slot.overlay_vertices.mapped, vbytes.data(), vbytes.size());
+  std::memcpy(slot.overlay_indices.mapped, ibytes.data(), ibytes.size());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, overlay_pipeline_.get());
+  const float size[2] = {static_cast<float>(extent.width), static_cast<float>(extent.height)};
+  vkCmdPushConstants(cmd, overlay_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(size), size);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, overlay_pipeline_layout_.get(), 0, 1, &atlas_set_, 0,
+                          nullptr);
+  const VkDeviceSize offset = 0;
+  VkBuffer vb = slot.overlay_vertices.buffer.get();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, slot.overlay_indices.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, static_cast<std::uint32_t>(overlay.indices().size()), 1, 0, 0, 0);
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, VkImage target, VkImageView target_view, VkExtent2D extent,
+                           VkImageLayout final_layout, VkPipelineStageFlags2 final_stage, VkAccessFlags2 final_access,
+                           const FrameState& state, std::uint32_t slot_index) {
+  ensure_attachments(extent);
+  if (state.overlay && !state.overlay->indices().empty()) ensure_atlas(state.overlay->atlas());
+  Slot& slot = slots_.at(slot_index);
+
+  FrameUniform u;
+  u.view_proj = view_proj_;
+  u.eye = glm::vec4(eye_position(scene_), 1.0f);
+  u.light_dir = glm::vec4(kToLight, kLightTanRadius);
+  const bool caster = settings_.shadow && state.draw_mallet;
+  u.sphere = glm::vec4(static_cast<float>(state.mallet_centre.x), static_cast<float>(state.mallet_centre.y), 0.0f,
+                       caster ? static_cast<float>(scene_.mallet_radius_m) : 0.0f);
+  u.light_color = glm::vec4(glm::vec3(kLightIntensity), kAmbient);
+  std::memcpy(slot.frame_uniform.mapped, &u, sizeof(u));
+
+  const bool msaa = settings_.samples != VK_SAMPLE_COUNT_1_BIT;
+  const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkAccessFlags2 color_write = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+  transition(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+             color_stage, VK_ACCESS_2_NONE, color_stage, color_write);
+  if (msaa)
+    transition(cmd, msaa_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage, color_write);
+  transition(cmd, depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+             VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+             VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = msaa ? msaa_color_.view.get() : target_view;
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+  color.clearValue.color = {{settings_.clear_color[0], settings_.clear_color[1], settings_.clear_color[2], 1.0f}};
+  if (msaa) {
+    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    color.resolveImageView = target_view;
+    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_.view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+
+  VkViewport viewport{0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1};
+  VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
+                          nullptr);
+  if (state.draw_instruments)
+    for (const Instance& i : instruments_) draw_instance(cmd, i, true);
+  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), false);
+  if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);
+  vkCmdEndRendering(cmd);
+
+  transition(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, final_layout,
+             color_stage, color_write, final_stage, final_access);
+}
+
+}  // namespace mallet::render

@@ -1,0 +1,76 @@
+#include "render/scene_view.hpp"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace mallet::render {
+
+glm::vec3 eye_position(const Scene& scene) {
+  return {static_cast<float>(scene.camera.eye_x_m), static_cast<float>(scene.camera.eye_y_m),
+          static_cast<float>(scene.camera.eye_z_m)};
+}
+
+glm::mat4 view_projection(const Scene& scene, double near_m, double far_m) {
+  // The window is the screen_to_world rectangle on the plane z = 0, at distance eye_z in
+  // front of the eye, which looks straight down −z: an asymmetric frustum through it.
+  const ScreenToWorld& w = scene.screen_to_world;
+  const Camera& c = scene.camera;
+  const double k = near_m / c.eye_z_m;
+  const double l = (w.left_m - c.eye_x_m) * k, r = (w.right_m - c.eye_x_m) * k;
+  const double b = (w.bottom_m - c.eye_y_m) * k, t = (w.top_m - c.eye_y_m) * k;
+  glm::dmat4 p(0.0);
+  p[0][0] = 2 * near_m / (r - l);
+  p[1][1] = -2 * near_m / (t - b);  // Vulkan's y points down
+  p[2][0] = (r + l) / (r - l);
+  p[2][1] = -(t + b) / (t - b);
+  p[2][2] = far_m / (near_m - far_m);
+  p[2][3] = -1;
+  p[3][2] = near_m * far_m / (near_m - far_m);
+  const glm::dmat4 view = glm::translate(glm::dmat4(1.0), -glm::dvec3(c.eye_x_m, c.eye_y_m, c.eye_z_m));
+  return glm::mat4(p * view);
+}
+
+glm::dvec2 project_to_screen(const glm::mat4& view_proj, glm::dvec3 world) {
+  const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(world, 1.0);
+  return {(clip.x / clip.w + 1) / 2, (clip.y / clip.w + 1) / 2};
+}
+
+std::vector<Instance> instrument_instances(const Scene& scene) {
+  std::vector<Instance> out;
+  for (const Instrument& inst : scene.instruments) {
+    if (inst.targets.empty()) continue;
+    for (int id : inst.targets) {
+      const Target& bar = scene.targets.at(id);
+      glm::dmat4 m = glm::translate(glm::dmat4(1.0), {(bar.x_min + bar.x_max) / 2, bar.top_y, 0.0});
+      m = glm::scale(m, {bar.x_max - bar.x_min, bar.thickness_m, bar.length_m});
+      out.push_back({inst.bar_model, glm::mat4(m), bar.id});
+    }
+    // Two rails under the bars' nodal points, from the first bar to the last: graded
+    // lengths make them converge, as on a real frame.
+    const Target& first = scene.targets.at(inst.targets.front());
+    const Target& last = scene.targets.at(inst.targets.back());
+    const double rail_height = 0.03, rail_width = 0.016, overhang = 0.02;
+    for (double side : {-1.0, 1.0}) {
+      const double z0 = side * (0.5 - kNodalPoint) * first.length_m;
+      const double z1 = side * (0.5 - kNodalPoint) * last.length_m;
+      const glm::dvec3 a{first.x_min - overhang, first.top_y - first.thickness_m, z0};
+      const glm::dvec3 b{last.x_max + overhang, last.top_y - last.thickness_m, z1};
+      const double length = std::hypot(b.x - a.x, b.z - a.z);
+      const double yaw = std::atan2(-(b.z - a.z), b.x - a.x);  // rotation about +y maps +x to (cos, 0, −sin)
+      glm::dmat4 m = glm::translate(glm::dmat4(1.0), a);
+      m = glm::rotate(m, yaw, {0.0, 1.0, 0.0});
+      m = glm::scale(m, {length, rail_height, rail_width});
+      out.push_back({inst.rail_model, glm::mat4(m), -1});
+    }
+  }
+  return out;
+}
+
+Instance mallet_instance(const Scene& scene, Vec2 centre) {
+  glm::dmat4 m = glm::translate(glm::dmat4(1.0), {centre.x, centre.y, 0.0});
+  m = glm::scale(m, glm::dvec3(scene.mallet_radius_m));
+  return {"mallet_head.glb", glm::mat4(m), -1};
+}
+
+}  // namespace mallet::render

@@ -1,0 +1,40 @@
+#pragma once
+// What is drawn where, as pure maths (no GPU): the off-axis perspective that shows the
+// scene's screen_to_world rectangle of the mallet's plane exactly, and the placement of
+// every model instance (bars scaled from their unit model, rails under the nodal points,
+// the mallet head).
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/geometry.hpp"
+#include "core/scene.hpp"
+
+namespace mallet::render {
+
+//! Vulkan clip space (y down, depth 0..1). A world point on the plane z = 0 projects to
+//! the same normalised screen position as ScreenToWorld::unmap gives for it.
+glm::mat4 view_projection(const Scene& scene, double near_m = 0.05, double far_m = 20.0);
+glm::vec3 eye_position(const Scene& scene);
+
+//! Where the sphere's centre appears on screen (0..1, origin top-left), for checks.
+glm::dvec2 project_to_screen(const glm::mat4& view_proj, glm::dvec3 world);
+
+struct Instance {
+  std::string model;   //!< file name in models/
+  glm::mat4 transform; //!< model → world
+  int target = -1;     //!< the bar's id, or -1
+};
+
+//! The nodal points of a free bar's first mode, as a fraction of its length from each end:
+//! where real instruments support their bars (rails, cords).
+inline constexpr double kNodalPoint = 0.224;
+
+//! Bars and rails of every instrument (static for a scene).
+std::vector<Instance> instrument_instances(const Scene& scene);
+
+//! The mallet head: a unit sphere scaled to the scene's radius at `centre` (plane z = 0).
+Instance mallet_instance(const Scene& scene, Vec2 centre);
+
+}  // namespace mallet::render

@@ -1,0 +1,295 @@
+#include "render/window_target.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include "render/vk_error.hpp"
+
+namespace mallet::render {
+
+WindowSystem::WindowSystem() {
+  if (!glfwInit()) {
+    const char* why = nullptr;
+    glfwGetError(&why);
+    throw RenderError(std::string("cannot open the display (GLFW: ") + (why ? why : "unknown") + ")");
+  }
+  if (!glfwVulkanSupported()) {
+    glfwTerminate();
+    throw RenderError("GLFW found no Vulkan loader (Debian: libvulkan1)");
+  }
+}
+
+WindowSystem::~WindowSystem() { glfwTerminate(); }
+
+std::vector<std::string> WindowSystem::instance_extensions() {
+  std::uint32_t count = 0;
+  const char** names = glfwGetRequiredInstanceExtensions(&count);
+  return std::vector<std::string>(names, names + count);
+}
+
+bool WindowSystem::display_available() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (w && *w);
+}
+
+WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : ctx_(ctx), options_(options) {
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  GLFWmonitor* monitor = nullptr;
+  int width = options.width, height = options.height;
+  int monitor_count = 0;
+  GLFWmonitor** monitors = glfwGetMonitors(&monitor_count);
+  if (monitor_count > 0) {
+    GLFWmonitor* m = monitors[std::clamp(options.monitor, 0, monitor_count - 1)];
+    if (const GLFWvidmode* mode = glfwGetVideoMode(m)) {
+      if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
+      if (options.fullscreen) {  // borderless: the monitor's own mode, no mode switch
+        glfwWindowHint(GLFW_RED_BITS, mode->redBits);
+        glfwWindowHint(GLFW_GREEN_BITS, mode->greenBits);
+        glfwWindowHint(GLFW_BLUE_BITS, mode->blueBits);
+        glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+        width = mode->width;
+        height = mode->height;
+        monitor = m;
+      }
+    }
+  }
+  window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
+  if (!window_) {
+    const char* why = nullptr;
+    glfwGetError(&why);
+    throw RenderError(std::string("cannot create the window (GLFW: ") + (why ? why : "unknown") + ")");
+  }
+  if (options.hide_cursor) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+  check(glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface_), "creating the window surface");
+  VkBool32 supported = VK_FALSE;
+  vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
+  if (!supported) throw RenderError("the Vulkan device cannot present to this window");
+
+  frames_.resize(SceneRenderer::kSlots);
+  for (FrameSync& f : frames_) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = ctx.command_pool();
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    check(vkAllocateCommandBuffers(ctx.device(), &ai, &f.cmd), "allocating a command buffer");
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore s;
+    check(vkCreateSemaphore(ctx.device(), &sci, nullptr, &s), "creating a semaphore");
+    f.acquired = vk::Semaphore(ctx.device(), s);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    VkFence fence;
+    check(vkCreateFence(ctx.device(), &fci, nullptr, &fence), "creating a fence");
+    f.done = vk::Fence(ctx.device(), fence);
+  }
+  create_swapchain();
+}
+
+WindowTarget::~WindowTarget() {
+  vkDeviceWaitIdle(ctx_.device());
+  for (FrameSync& f : frames_) vkFreeCommandBuffers(ctx_.device(), ctx_.command_pool(), 1, &f.cmd);
+  frames_.clear();
+  views_.clear();
+  rendered_.clear();
+  swapchain_.reset();
+  if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+  if (window_) glfwDestroyWindow(window_);
+}
+
+bool WindowTarget::close_requested() const { return glfwWindowShouldClose(window_); }
+
+bool WindowTarget::framebuffer_visible() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return w > 0 && h > 0;
+}
+
+Nanos WindowTarget::predicted_present(Nanos now) const {
+  const double period_ns = 1e9 / refresh_hz_;
+  // FIFO: this frame waits behind the one already queued, then for the next vblank.
+  const double queued = present_mode_ == VK_PRESENT_MODE_FIFO_KHR ? 2.0 : 1.0;
+  return now + static_cast<Nanos>(queued * period_ns);
+}
+
+void WindowTarget::create_swapchain() {
+  VkPhysicalDevice pd = ctx_.physical_device();
+  VkSurfaceCapabilitiesKHR caps;
+  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, surface_, &caps), "querying the window surface");
+  std::uint32_t n = 0;
+  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface_, &n, nullptr);
+  std::vector<VkSurfaceFormatKHR> formats(n);
+  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface_, &n, formats.data());
+  if (formats.empty()) throw RenderError("the window surface offers no format");
+  VkSurfaceFormatKHR chosen = formats[0];
+  for (const VkSurfaceFormatKHR& f : formats)
+    if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+        f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) {
+      chosen = f;
+      break;
+    }
+  if (format_ != VK_FORMAT_UNDEFINED && chosen.format != format_)
+    throw RenderError("the window surface changed its pixel format");
+  format_ = chosen.format;
+
+  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, surface_, &n, nullptr);
+  std::vector<VkPresentModeKHR> modes(n);
+  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, surface_, &n, modes.data());
+  const VkPresentModeKHR wanted = options_.present_mode == PresentMode::mailbox     ? VK_PRESENT_MODE_MAILBOX_KHR
+                                  : options_.present_mode == PresentMode::immediate ? VK_PRESENT_MODE_IMMEDIATE_KHR
+                                                                                     : VK_PRESENT_MODE_FIFO_KHR;
+  present_mode_ = std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
+
+  if (caps.currentExtent.width != UINT32_MAX) {
+    extent_ = caps.currentExtent;
+  } else {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    extent_ = {std::clamp(static_cast<std::uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width),
+               std::clamp(static_cast<std::uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height)};
+  }
+  std::uint32_t count = caps.minImageCount + 1;
+  if (caps.maxImageCount > 0) count = std::min(count, caps.maxImageCount);
+
+  VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
+  ci.surface = surface_;
+  ci.minImageCount = count;
+  ci.imageFormat = chosen.format;
+  ci.imageColorSpace = chosen.colorSpace;
+  ci.imageExtent = extent_;
+  ci.imageArrayLayers = 1;
+  ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                  (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);  // screenshots
+  ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  ci.preTransform = caps.currentTransform;
+  ci.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+                          ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+                          : static_cast<VkCompositeAlphaFlagBitsKHR>(caps.supportedCompositeAlpha &
+                                                                     (~caps.supportedCompositeAlpha + 1));
+  ci.presentMode = present_mode_;
+  ci.clipped = VK_TRUE;
+  ci.oldSwapchain = swapchain_.get();
+  VkSwapchainKHR raw;
+  check(vkCreateSwapchainKHR(ctx_.device(), &ci, nullptr, &raw), "creating the swapchain");
+  views_.clear();
+  rendered_.clear();
+  swapchain_ = vk::Swapchain(ctx_.device(), raw);  // destroys the old one (the device is idle)
+
+  vkGetSwapchainImagesKHR(ctx_.device(), raw, &n, nullptr);
+  images_.resize(n);
+  vkGetSwapchainImagesKHR(ctx_.device(), raw, &n, images_.data());
+  for (VkImage image : images_) {
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = format_;
+    vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view;
+    check(vkCreateImageView(ctx_.device(), &vci, nullptr, &view), "creating a swapchain image view");
+    views_.emplace_back(ctx_.device(), view);
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore s;
+    check(vkCreateSemaphore(ctx_.device(), &sci, nullptr, &s), "creating a semaphore");
+    rendered_.emplace_back(ctx_.device(), s);
+  }
+}
+
+bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image* capture) {
+  if (!framebuffer_visible()) return false;  // minimised: nothing to draw into
+  VkDevice dev = ctx_.device();
+  FrameSync& f = frames_[frame_];
+  VkFence fence = f.done.get();
+  check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
+
+  std::uint32_t index = 0;
+  for (int attempt = 0;; ++attempt) {
+    const VkResult r = vkAcquireNextImageKHR(dev, swapchain_.get(), UINT64_MAX, f.acquired.get(), VK_NULL_HANDLE,
+                                             &index);
+    if (r == VK_SUCCESS || r == VK_SUBOPTIMAL_KHR) break;
+    if (r == VK_ERROR_OUT_OF_DATE_KHR && attempt < 3) {
+      vkDeviceWaitIdle(dev);
+      if (!framebuffer_visible()) return false;
+      create_swapchain();
+      ++recreations_;
+      continue;
+    }
+    check(r, "acquiring a swapchain image");
+  }
+  check(vkResetFences(dev, 1, &fence), "resetting a fence");
+
+  check(vkResetCommandBuffer(f.cmd, 0), "resetting a command buffer");
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(f.cmd, &bi), "beginning a command buffer");
+  const VkDeviceSize capture_bytes = VkDeviceSize{extent_.width} * extent_.height * 4;
+  if (capture) {
+    if (capture_buffer_.size < capture_bytes)
+      capture_buffer_ = make_host_buffer(ctx_, capture_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    renderer.record(f.cmd, images_[index], views_[index].get(), extent_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, state, frame_);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent_.width, extent_.height, 1};
+    vkCmdCopyImageToBuffer(f.cmd, images_[index], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, capture_buffer_.buffer.get(),
+                           1, &region);
+    transition(f.cmd, images_[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+               VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE);
+  } else {
+    renderer.record(f.cmd, images_[index], views_[index].get(), extent_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, state, frame_);
+  }
+  check(vkEndCommandBuffer(f.cmd), "ending a command buffer");
+
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = f.acquired.get();
+  wait.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = rendered_[index].get();
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = f.cmd;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.waitSemaphoreInfoCount = 1;
+  si.pWaitSemaphoreInfos = &wait;
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  si.signalSemaphoreInfoCount = 1;
+  si.pSignalSemaphoreInfos = &signal;
+  check(vkQueueSubmit2(ctx_.queue(), 1, &si, fence), "submitting a frame");
+
+  VkSemaphore rendered = rendered_[index].get();
+  VkSwapchainKHR sc = swapchain_.get();
+  VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  pi.waitSemaphoreCount = 1;
+  pi.pWaitSemaphores = &rendered;
+  pi.swapchainCount = 1;
+  pi.pSwapchains = &sc;
+  pi.pImageIndices = &index;
+  const VkResult pr = vkQueuePresentKHR(ctx_.queue(), &pi);
+  if (capture) {
+    check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
+    *capture = Image(static_cast<int>(extent_.width), static_cast<int>(extent_.height));
+    std::memcpy(capture->rgba.data(), capture_buffer_.mapped, capture_bytes);
+    if (format_ == VK_FORMAT_B8G8R8A8_SRGB || format_ == VK_FORMAT_B8G8R8A8_UNORM)
+      for (std::size_t i = 0; i < capture->rgba.size(); i += 4) std::swap(capture->rgba[i], capture->rgba[i + 2]);
+  }
+  frame_ = (frame_ + 1) % SceneRenderer::kSlots;
+  if (pr == VK_ERROR_OUT_OF_DATE_KHR || pr == VK_SUBOPTIMAL_KHR) {
+    vkDeviceWaitIdle(dev);
+    if (framebuffer_visible()) {
+      create_swapchain();
+      ++recreations_;
+    }
+  } else {
+    check(pr, "presenting a frame");
+  }
+  return true;
+}
+
+}  // namespace mallet::render

@@ -1,0 +1,96 @@
+#pragma once
+// Rendering into a GLFW window through a Vulkan swapchain: the kiosk's screen.
+// Resizes, minimising (a 0×0 framebuffer: frames are skipped, nothing is recreated until
+// it comes back) and VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR (the swapchain is
+// recreated and the frame retried) are handled here; the caller only calls draw().
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/time.hpp"
+#include "render/gpu_resources.hpp"
+#include "render/image.hpp"
+#include "render/scene_renderer.hpp"
+
+struct GLFWwindow;
+
+namespace mallet::render {
+
+enum class PresentMode { fifo, mailbox, immediate };
+
+struct WindowOptions {
+  int width = 1280, height = 720;
+  bool fullscreen = false;  //!< borderless on `monitor`, at its mode
+  int monitor = 0;          //!< index in glfwGetMonitors
+  PresentMode present_mode = PresentMode::fifo;  //!< falls back to FIFO when not offered
+  std::string title = "Mallet";
+  bool hide_cursor = false;
+};
+
+//! GLFW itself: initialised once per process, before the Vulkan instance (which needs its
+//! surface extensions). Throws RenderError when there is no display.
+class WindowSystem {
+ public:
+  WindowSystem();
+  ~WindowSystem();
+  WindowSystem(const WindowSystem&) = delete;
+  WindowSystem& operator=(const WindowSystem&) = delete;
+  static std::vector<std::string> instance_extensions();
+  static bool display_available();  //!< DISPLAY or WAYLAND_DISPLAY is set
+};
+
+class WindowTarget {
+ public:
+  WindowTarget(const Context& ctx, const WindowOptions& options);
+  ~WindowTarget();
+  WindowTarget(const WindowTarget&) = delete;
+  WindowTarget& operator=(const WindowTarget&) = delete;
+
+  GLFWwindow* window() const { return window_; }
+  VkFormat format() const { return format_; }
+  VkPresentModeKHR present_mode() const { return present_mode_; }
+  VkExtent2D extent() const { return extent_; }
+  bool close_requested() const;
+  std::uint64_t swapchain_recreations() const { return recreations_; }
+
+  //! When the frame about to be drawn should reach the screen: now + the frames queued
+  //! ahead of it times the display's refresh period. The visual vibration is evaluated
+  //! there, not at the time the frame is recorded.
+  Nanos predicted_present(Nanos now) const;
+
+  //! Draws and presents one frame; false when nothing was drawn (minimised). With
+  //! `capture`, the presented pixels are also copied out (RGBA) for a screenshot.
+  bool draw(SceneRenderer& renderer, const FrameState& state, Image* capture = nullptr);
+
+ private:
+  struct FrameSync {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vk::Semaphore acquired;
+    vk::Fence done;
+  };
+  void create_swapchain();
+  bool framebuffer_visible() const;
+
+  const Context& ctx_;
+  WindowOptions options_;
+  GLFWwindow* window_ = nullptr;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+  vk::Swapchain swapchain_;
+  VkFormat format_ = VK_FORMAT_UNDEFINED;
+  VkPresentModeKHR present_mode_ = VK_PRESENT_MODE_FIFO_KHR;
+  VkExtent2D extent_{};
+  std::vector<VkImage> images_;
+  std::vector<vk::ImageView> views_;
+  std::vector<vk::Semaphore> rendered_;  //!< one per swapchain image
+  std::vector<FrameSync> frames_;
+  std::uint32_t frame_ = 0;
+  std::uint64_t recreations_ = 0;
+  double refresh_hz_ = 60.0;
+  GpuBuffer capture_buffer_;
+};
+
+}  // namespace mallet::render

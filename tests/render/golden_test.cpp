@@ -1,0 +1,104 @@
+// Golden images: a handful of states of the percussion scene rendered offscreen (lavapipe
+// in CI) and compared with tests/golden/*.png: ≤ 3/255 per channel, and fewer than 0.1%
+// of the pixels beyond that. A failing test writes the actual and a difference image to
+// golden-output/ in the build's test directory.
+//
+// Updating the goldens after an intended change of the picture (look at them first):
+//   MALLET_UPDATE_GOLDENS=1 build/debug/render_tests --gtest_filter='Golden*'
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "app/render_setup.hpp"
+#include "app/replay.hpp"
+#include "render/image.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+using test::percussion;
+
+constexpr int kTolerance = 3;                 // per channel, of 255
+constexpr double kMaxDifferingFraction = 0.001;
+
+HeadlessRenderer& renderer() {
+  static HeadlessRenderer r = [] {
+    HeadlessOptions o;
+    o.size = {640, 360};
+    o.validation = render::Validation::required;
+    o.cache_dir = "";  // never depend on an earlier run's cache
+    o.device = "llvmpipe";  // the goldens are lavapipe's pictures (a GPU may differ within its rounding)
+    if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+    return HeadlessRenderer(percussion(), o);
+  }();
+  return r;
+}
+
+//! A replay of world-space samples (t in seconds, sphere centre in metres).
+Replay replay_of(std::initializer_list<std::array<double, 3>> samples) {
+  input::Trajectory t;
+  for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
+  return Replay(percussion(), ContactConfig{}, BounceMode::signed_eq1, t, InputSpace::world, "test");
+}
+
+void expect_matches_golden(const render::Image& actual, const std::string& name) {
+  const std::filesystem::path golden = test::source_dir() / "tests" / "golden" / (name + ".png");
+  if (const char* update = std::getenv("MALLET_UPDATE_GOLDENS"); update && std::string(update) == "1") {
+    render::write_png(actual, golden);
+    GTEST_SKIP() << "updated " << golden;
+  }
+  ASSERT_TRUE(std::filesystem::exists(golden)) << golden << " is missing (see the comment at the top of this file)";
+  const render::ImageDiff diff = render::compare_images(actual, render::read_png(golden), kTolerance);
+  if (!diff.same_size || diff.differing_fraction > kMaxDifferingFraction) {
+    const std::filesystem::path dir = std::filesystem::current_path() / "golden-output";
+    std::filesystem::create_directories(dir);
+    render::write_png(actual, dir / (name + ".actual.png"));
+    render::write_png(diff.difference, dir / (name + ".diff.png"));
+    ADD_FAILURE() << name << ": " << diff.differing_pixels << " pixels (" << diff.differing_fraction * 100
+                  << "%) differ by more than " << kTolerance << "/255, max " << diff.max_channel_delta
+                  << "; wrote " << (dir / (name + ".actual.png")) << " and .diff.png";
+  }
+  EXPECT_EQ(renderer().context().validation_messages(), 0u) << renderer().context().first_validation_message();
+}
+
+render::Image render_at(const Replay& replay, Nanos t) {
+  render::FrameState state;
+  state.mallet_centre = replay.cursor_at(t).shown;
+  return renderer().render(state);
+}
+
+TEST(Golden, MalletHighAboveTheXylophone) {
+  const Replay r = replay_of({{0.0, -0.21, 0.22}});
+  expect_matches_golden(render_at(r, 0), "mallet_high_above_xylophone");
+}
+
+TEST(Golden, MalletRestingOnAWoodenBar) {
+  // The hand is below the bar's top: the sphere is held on the surface, no strike.
+  const Target& bar = percussion().targets.at(2);
+  const Replay r = replay_of({{0.0, (bar.x_min + bar.x_max) / 2, -0.01}});
+  ASSERT_TRUE(r.impacts().empty());
+  expect_matches_golden(render_at(r, 0), "mallet_resting_on_wood");
+}
+
+TEST(Golden, MetalBarThirtyMillisecondsAfterAStrike) {
+  const Target& bar = percussion().targets.at(11);
+  const double x = (bar.x_min + bar.x_max) / 2;
+  const Replay r = replay_of({{0.0, x, 0.10}, {0.1, x, -0.02}});
+  ASSERT_EQ(r.impacts().size(), 1u);
+  const Nanos t = r.impacts()[0].t_ns + 30'000'000;
+  // 30 ms into Eq. 1 with the metal's visual triple the head is visibly off the surface.
+  ASSERT_GT(std::abs(r.cursor_at(t).offset), 1e-3);
+  expect_matches_golden(render_at(r, t), "metal_bar_30ms_after_strike");
+}
+
+TEST(Golden, ShadowStraddlingTwoBars) {
+  const Target& a = percussion().targets.at(4);
+  const Target& b = percussion().targets.at(5);
+  const Replay r = replay_of({{0.0, (a.x_max + b.x_min) / 2, 0.04}});
+  expect_matches_golden(render_at(r, 0), "shadow_straddling_two_bars");
+}
+
+}  // namespace
+}  // namespace mallet::app

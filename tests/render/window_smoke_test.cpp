@@ -1,0 +1,60 @@
+// The windowed path, for real: `mallet render --window` opens its GLFW window and
+// swapchain on lavapipe under a virtual X server (xvfb-run, from Debian's xvfb), draws
+// frames, and writes the last presented frame; it must match the offscreen render of
+// the same state.
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "app/render_setup.hpp"
+#include "app/replay.hpp"
+#include "render/image.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(WindowSmoke, SwapchainUnderXvfbPresentsTheOffscreenPicture) {
+  ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";
+  const auto dir = test::scratch_dir();
+  const Target& bar = test::percussion().targets.at(6);
+  const double x = (bar.x_min + bar.x_max) / 2, y = 0.03;
+  {
+    std::ofstream csv(dir / "still.csv");
+    csv << "t,x,y\n0," << x << ',' << y << '\n';
+  }
+  const std::string cmd = "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
+                          std::string(MALLET_TEST_BINARY) + " render --window --input-space world --input " +
+                          (dir / "still.csv").string() + " --at 0 --size 640x360 --msaa 4 --frames 4 --device llvmpipe" +
+                          " --screenshot " + (dir / "window.png").string() + " > " + (dir / "log.txt").string() +
+                          " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "log.txt");
+  const render::Image window = render::read_png(dir / "window.png");
+  ASSERT_EQ(window.width, 640);
+  ASSERT_EQ(window.height, 360);
+
+  HeadlessOptions o;
+  o.size = {640, 360};
+  o.device = "llvmpipe";
+  o.validation = render::Validation::required;
+  o.cache_dir = "";
+  o.settings.samples = VK_SAMPLE_COUNT_4_BIT;
+  HeadlessRenderer offscreen(test::percussion(), o);
+  render::FrameState state;
+  state.mallet_centre = {x, y};
+  const render::ImageDiff d = render::compare_images(window, offscreen.render(state), 3);
+  EXPECT_LT(d.differing_fraction, 0.001) << d.differing_pixels << " pixels differ, max " << d.max_channel_delta;
+  EXPECT_EQ(offscreen.context().validation_messages(), 0u);
+}
+
+}  // namespace
+}  // namespace mallet::app
