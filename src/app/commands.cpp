@@ -19,6 +19,7 @@ void register_commands(CLI::App& app) {
   register_wiimote(app);
   register_calibrate(app);
   register_render(app);
+  register_run(app);
 }
 
 }  // namespace mallet::app

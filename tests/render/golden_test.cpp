@@ -12,7 +12,9 @@
 
 #include "app/render_setup.hpp"
 #include "app/replay.hpp"
+#include "render/font_atlas.hpp"
 #include "render/image.hpp"
+#include "render/overlay.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -98,6 +100,24 @@ TEST(Golden, ShadowStraddlingTwoBars) {
   const Target& b = percussion().targets.at(5);
   const Replay r = replay_of({{0.0, (a.x_max + b.x_min) / 2, 0.04}});
   expect_matches_golden(render_at(r, 0), "shadow_straddling_two_bars");
+}
+
+TEST(Golden, OverlayTextTargetAndProgressRingOverTheScene) {
+  // The 2D overlay of the later screens: a calibration target with its progress ring,
+  // a translucent panel and text with Latin-1 letters, alpha-blended over the scene.
+  const render::FontAtlas font(render::FontAtlas::default_font(), 24.0f);
+  render::Overlay overlay(font);
+  overlay.fill_rect(20, 20, 330, 44, {0.0f, 0.0f, 0.0f, 0.55f});
+  overlay.text(32, 50, "Frappez une lame · Schlägel", {1.0f, 1.0f, 1.0f, 1.0f});
+  overlay.stroke_circle(480, 120, 18, 2, {1.0f, 0.85f, 0.2f, 1.0f});
+  overlay.fill_circle(480, 120, 4, {1.0f, 0.85f, 0.2f, 1.0f});
+  overlay.progress_ring(480, 120, 28, 5, 0.6f, {0.3f, 0.8f, 1.0f, 0.9f});
+  overlay.text(320, 200, "centred", {0.9f, 0.9f, 0.9f, 0.8f}, render::TextAlign::center);
+  const Replay r = replay_of({{0.0, -0.21, 0.22}});
+  render::FrameState state;
+  state.mallet_centre = r.cursor_at(0).shown;
+  state.overlay = &overlay;
+  expect_matches_golden(renderer().render(state), "overlay_over_scene");
 }
 
 }  // namespace

@@ -1,0 +1,36 @@
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/data_paths.hpp"
+#include "app/kiosk.hpp"
+
+namespace mallet::app {
+
+void register_run(CLI::App& app) {
+  auto o = std::make_shared<KioskOptions>();
+  o->scene = default_scene();
+  CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
+  cmd->footer(
+      "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
+      "sound and the actuator signal play on the configured audio device, and the attract mode's\n"
+      "ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close\n"
+      "it; the operator quits with Ctrl+Alt+O.\n"
+      "Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs\n"
+      "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
+      "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
+      "and DIR/log.txt (one line per strike), then exits 0.");
+  cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
+  cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (closing it quits)");
+  cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")->capture_default_str();
+  cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
+  cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
+      ->capture_default_str();
+  cmd->add_option("--idle-after", o->idle_after_s, "Seconds without input before the attract mode plays")
+      ->capture_default_str();
+  cmd->add_option("--device", o->device, "Vulkan device (substring of its name)");
+  cmd->callback([o] { set_exit_status(run_kiosk(*o)); });
+}
+
+}  // namespace mallet::app

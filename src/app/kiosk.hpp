@@ -1,0 +1,28 @@
+#pragma once
+// `mallet run`: the kiosk. With a display: a window (fullscreen and borderless unless
+// windowed) showing the scene, the mouse as the mallet, sound and actuator signal on the
+// PortAudio device, and the attract mode's ghost player whenever nobody has played for a
+// while. Without a display (or --headless): the same loop offscreen on a simulated clock,
+// the attract loop playing into a WAV file; writes screenshot.png, audio.wav, log.txt.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace mallet::app {
+
+struct KioskOptions {
+  std::filesystem::path scene;
+  std::optional<std::filesystem::path> config;
+  bool headless = false;
+  bool windowed = false;
+  double seconds = 10.0;                        //!< headless: how long the loop runs
+  std::filesystem::path out_dir;                //!< headless: empty = a new folder, named on stdout
+  std::string size = "1280x720";                //!< headless image / windowed window size
+  double idle_after_s = 45.0;                   //!< attract mode after this long without input
+  std::string device;                           //!< Vulkan device (substring of its name)
+};
+
+//! Returns the process exit status.
+int run_kiosk(const KioskOptions& options);
+
+}  // namespace mallet::app
