@@ -23,6 +23,18 @@ std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+//! The sanitizer build preloads the Vulkan driver and the validation layer (see
+//! tests/CMakeLists.txt). GLFW looks vkGetInstanceProcAddr up by name, and a preloaded
+//! layer would answer instead of the loader: the child keeps only the driver.
+std::string child_preload() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  std::string kept, entry;
+  std::stringstream in(preload ? preload : "");
+  while (std::getline(in, entry, ':'))
+    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
+  return "LD_PRELOAD='" + kept + "' ";
+}
+
 TEST(WindowSmoke, SwapchainUnderXvfbPresentsTheOffscreenPicture) {
   ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";
   const auto dir = test::scratch_dir();
@@ -32,7 +44,7 @@ TEST(WindowSmoke, SwapchainUnderXvfbPresentsTheOffscreenPicture) {
     std::ofstream csv(dir / "still.csv");
     csv << "t,x,y\n0," << x << ',' << y << '\n';
   }
-  const std::string cmd = "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
+  const std::string cmd = child_preload() + "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
                           std::string(MALLET_TEST_BINARY) + " render --window --input-space world --input " +
                           (dir / "still.csv").string() + " --at 0 --size 640x360 --msaa 4 --frames 4 --device llvmpipe" +
                           " --screenshot " + (dir / "window.png").string() + " > " + (dir / "log.txt").string() +
