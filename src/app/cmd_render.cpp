@@ -29,7 +29,7 @@ struct RenderCliOptions {
   std::optional<double> fps;
   double from_s = 0, to_s = 0;
   std::filesystem::path out_dir;
-  int msaa = 4;
+  std::string msaa = "4";
   bool no_shadow = false;
   std::string device;
   bool window = false;
@@ -44,14 +44,12 @@ Nanos to_nanos(double seconds, const char* option) {
   return static_cast<Nanos>(std::llround(seconds * 1e9));
 }
 
-VkSampleCountFlagBits sample_count(int msaa) {
-  switch (msaa) {
-    case 1: return VK_SAMPLE_COUNT_1_BIT;
-    case 2: return VK_SAMPLE_COUNT_2_BIT;
-    case 4: return VK_SAMPLE_COUNT_4_BIT;
-    case 8: return VK_SAMPLE_COUNT_8_BIT;
-    default: throw FileError("--msaa", 0, 0, "must be 1, 2, 4 or 8, got " + std::to_string(msaa));
-  }
+VkSampleCountFlagBits sample_count(const std::string& msaa) {
+  if (msaa == "1") return VK_SAMPLE_COUNT_1_BIT;
+  if (msaa == "2") return VK_SAMPLE_COUNT_2_BIT;
+  if (msaa == "4") return VK_SAMPLE_COUNT_4_BIT;
+  if (msaa == "8") return VK_SAMPLE_COUNT_8_BIT;
+  throw FileError("--msaa", 0, 0, "must be auto, 1, 2, 4 or 8, got " + msaa);
 }
 
 //! The same frames in a GLFW window (real time for a sequence; held for --at).
@@ -72,7 +70,9 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
                                                     : render::PresentMode::fifo;
   wo.title = "Mallet — " + o.input.filename().string();
   render::WindowTarget window(ctx, wo);
-  render::SceneRenderer renderer(ctx, scene, models_dir(), window.format(), ho.settings, cache.get());
+  render::RenderSettings rs = ho.settings;
+  if (ho.auto_samples) rs.samples = render::recommended_samples(ctx);
+  render::SceneRenderer renderer(ctx, scene, models_dir(), window.format(), rs, cache.get());
   std::printf("device: %s; window %ux%u\n", ctx.device_name().c_str(), window.extent().width, window.extent().height);
 
   const Nanos from = o.at_s ? to_nanos(*o.at_s, "--at") : to_nanos(o.from_s, "--from");
@@ -111,7 +111,10 @@ void run_render(const RenderCliOptions& o) {
                       o.input_space == "world" ? InputSpace::world : InputSpace::screen, o.input.string());
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
-  ho.settings.samples = sample_count(o.msaa);
+  if (o.msaa == "auto")
+    ho.auto_samples = true;
+  else
+    ho.settings.samples = sample_count(o.msaa);
   ho.settings.shadow = !o.no_shadow;
   ho.device = o.device;
 
@@ -190,7 +193,10 @@ void register_render(CLI::App& app) {
   fps->needs(from)->needs(to);
   (void)out;
   (void)out_dir;
-  cmd->add_option("--msaa", o->msaa, "Antialiasing: MSAA samples 1, 2, 4 or 8")->capture_default_str();
+  cmd->add_option("--msaa", o->msaa,
+                  "Antialiasing: MSAA samples 1, 2, 4 or 8 (as the device offers; lavapipe: 1, 4), or auto "
+                  "(what the kiosk uses: none on a CPU rasteriser, 4 on a GPU)")
+      ->capture_default_str();
   cmd->add_flag("--no-shadow", o->no_shadow, "Leave out the mallet's cast shadow");
   cmd->add_option("--device", o->device, "Vulkan device to use (substring of its name)");
   cmd->add_flag("--window", o->window,

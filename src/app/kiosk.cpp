@@ -72,7 +72,7 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
 
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
-  ho.settings.samples = VK_SAMPLE_COUNT_4_BIT;
+  ho.auto_samples = true;
   ho.device = o.device;
   HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
@@ -143,7 +143,7 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
   wo.hide_cursor = !o.windowed;
   render::WindowTarget window(ctx, wo);
   render::RenderSettings rs;
-  rs.samples = VK_SAMPLE_COUNT_4_BIT;
+  rs.samples = render::recommended_samples(ctx);
   render::SceneRenderer renderer(ctx, scene, models_dir(), window.format(), rs, cache.get());
   std::fprintf(stderr, "<6>mallet run: %s, %ux%u\n", ctx.device_name().c_str(), window.extent().width,
                window.extent().height);

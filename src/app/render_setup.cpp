@@ -40,8 +40,10 @@ HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& op
   co.device_name = options.device;
   ctx_ = std::make_unique<render::Context>(co);
   cache_ = std::make_unique<render::PipelineCache>(*ctx_, options.cache_dir);
+  render::RenderSettings settings = options.settings;
+  if (options.auto_samples) settings.samples = render::recommended_samples(*ctx_);
   renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene, models_dir(), render::OffscreenTarget::kFormat,
-                                                      options.settings, cache_->get());
+                                                      settings, cache_->get());
   target_ = std::make_unique<render::OffscreenTarget>(*ctx_, options.size);
 }
 

@@ -48,10 +48,28 @@ std::span<const std::byte> bytes_of(const auto& vec) { return std::as_bytes(std:
 
 }  // namespace
 
+bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples) {
+  const VkPhysicalDeviceLimits& l = ctx.properties().limits;
+  return (l.framebufferColorSampleCounts & l.framebufferDepthSampleCounts & samples) == samples;
+}
+
+VkSampleCountFlagBits recommended_samples(const Context& ctx) {
+  if (ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) return VK_SAMPLE_COUNT_1_BIT;
+  return supports_samples(ctx, VK_SAMPLE_COUNT_4_BIT) ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+}
+
 SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::filesystem::path& models_dir,
                              VkFormat color_format, RenderSettings settings, VkPipelineCache cache)
     : ctx_(ctx), scene_(scene), color_format_(color_format), settings_(settings) {
   VkDevice dev = ctx.device();
+  if (!supports_samples(ctx, settings.samples)) {
+    std::string offered;
+    for (int n = 1; n <= 64; n *= 2)
+      if (supports_samples(ctx, static_cast<VkSampleCountFlagBits>(n)))
+        offered += (offered.empty() ? "" : ", ") + std::to_string(n);
+    throw RenderError("antialiasing: " + std::to_string(static_cast<int>(settings.samples)) +
+                      "x MSAA is not offered by " + ctx.device_name() + " (it offers: " + offered + ")");
+  }
   view_proj_ = render::view_projection(scene);
   instruments_ = instrument_instances(scene);
 
@@ -214,7 +232,13 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     vp.viewportCount = vp.scissorCount = 1;
     VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;  // closed meshes seen from outside; depth sorts them out
+    // The models are closed and wind their front faces counter-clockwise (glTF). Vulkan's
+    // framebuffer y points down and so does our projection's, so the two flips cancel and
+    // they stay counter-clockwise (the goldens are unchanged with culling on; with the
+    // opposite winding they break). Culling back faces halves what lavapipe rasterises.
+    // The overlay is drawn as given.
+    rs.cullMode = depth ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+    rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = settings_.samples;

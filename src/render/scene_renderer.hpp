@@ -38,6 +38,15 @@ struct FrameState {
   const Overlay* overlay = nullptr;  //!< drawn last, over everything; may be null
 };
 
+//! Whether the device can render colour and depth with this many samples per pixel.
+bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples);
+
+//! Antialiasing chosen by measurement (`mallet bench render`, README): on a CPU rasteriser
+//! (lavapipe) 4x MSAA costs ≈3–4x the frame for an RMS error against a supersampled
+//! reference of ≈1.1 instead of ≈2.2 (1/255 units), too dear for 60 fps: none there;
+//! on a GPU, 4x MSAA.
+VkSampleCountFlagBits recommended_samples(const Context& ctx);
+
 class SceneRenderer {
  public:
   static constexpr std::uint32_t kSlots = 2;  //!< frames in flight
