@@ -1,0 +1,66 @@
+// `mallet run` without a display: the attract loop runs offscreen on a simulated clock
+// and leaves the three files the README promises.
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "audio/wav_file.hpp"
+#include "core/attract_tune.hpp"
+#include "render/image.hpp"
+#include "run_cli.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+int count_lines_starting(const std::filesystem::path& file, const std::string& prefix) {
+  std::ifstream in(file);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) n += line.rfind(prefix, 0) == 0;
+  return n;
+}
+
+TEST(KioskHeadless, WithoutADisplayTheAttractLoopWritesScreenshotAudioAndLog) {
+  const auto dir = test::scratch_dir() / "out";
+  unsetenv("DISPLAY");  // as in CI; the child inherits it
+  unsetenv("WAYLAND_DISPLAY");
+  const test::CliResult r = test::run_mallet("run --seconds 3 --size 320x180 --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("headless"), std::string::npos) << r.output;
+  for (const char* f : {"screenshot.png", "audio.wav", "log.txt"})
+    EXPECT_NE(r.output.find((dir / f).string()), std::string::npos) << "says it wrote " << f << ":\n" << r.output;
+
+  const render::Image shot = render::read_png(dir / "screenshot.png");
+  EXPECT_EQ(shot.width, 320);
+  EXPECT_EQ(shot.height, 180);
+
+  // The ghost's strikes in 3 s: one per beat of the phrase after its first beat.
+  const AttractTune tune;
+  int expected = 0;
+  for (const ScriptedStrike& s : attract_phrase(test::percussion(), static_cast<Nanos>(tune.beat_s * 1e9), tune))
+    expected += s.t_ns <= 3 * kNanosPerSecond;
+  EXPECT_GT(expected, 3);
+  EXPECT_EQ(count_lines_starting(dir / "log.txt", "strike "), expected);
+
+  const audio::WavData wav = audio::read_wav(dir / "audio.wav");
+  EXPECT_EQ(wav.channels, 2);
+  EXPECT_EQ(wav.frames(), 3u * static_cast<std::size_t>(wav.sample_rate_hz));
+  double peak = 0;
+  for (float v : wav.samples) peak = std::max(peak, static_cast<double>(std::abs(v)));
+  EXPECT_GT(peak, 0.01) << "the strikes are heard";
+}
+
+TEST(KioskHeadless, ABadSceneIsOneLineAndExitTwo) {
+  const auto dir = test::scratch_dir();
+  { std::ofstream(dir / "bad.toml") << "name = 3\n"; }
+  const test::CliResult r = test::run_mallet("run --headless --scene " + (dir / "bad.toml").string() + " --out " +
+                                             (dir / "out").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.toml"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace mallet::app
