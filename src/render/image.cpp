@@ -1,10 +1,7 @@
 #include "render/image.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +18,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include "core/atomic_file.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::render {
@@ -59,49 +57,8 @@ void write_png(const Image& image, const std::filesystem::path& file) {
   if (stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4) == 0)
     throw std::runtime_error(file.string() + ": PNG encoding failed");
 
-  // Same scheme as the calibration file: a temporary name unique per process and call, in the
-  // target's folder (so rename() is atomic), then rename over the target. A reader (a golden
-  // test, an operator's viewer) never sees half a PNG; the parent folder is not created.
-  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  static std::atomic<unsigned> counter{0};
-  std::string tmp_name = ".";
-  tmp_name.append(file.filename().string());
-  tmp_name.append(".tmp-");
-  tmp_name.append(std::to_string(::getpid()));
-  tmp_name.push_back('-');
-  tmp_name.append(std::to_string(counter++));
-  const std::filesystem::path tmp = dir / tmp_name;
-
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    const int e = errno;
-    throw std::runtime_error(file.string() + ": cannot create the temporary file " + tmp.string() + ": " +
-                             errno_text(e));
-  }
-  const auto fail = [&](const std::string& what, int e) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error(file.string() + ": " + what + ": " + errno_text(e) +
-                             " (the old file, if any, is unchanged)");
-  };
-  std::size_t done = 0;
-  while (done < png.size()) {
-    const ssize_t n = ::write(fd, png.data() + done, png.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      ::close(fd);
-      fail("write failed", e);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const int e = errno;
-    ::close(fd);
-    fail("fsync failed", e);
-  }
-  if (::close(fd) != 0) fail("close failed", errno);
-  if (std::rename(tmp.c_str(), file.c_str()) != 0) fail("cannot replace the file", errno);
+  // A reader (a golden test, an operator's viewer) never sees half a PNG.
+  write_file_atomically(file, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 Image read_png(const std::filesystem::path& file) {

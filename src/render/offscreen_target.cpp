@@ -18,20 +18,13 @@ OffscreenTarget::OffscreenTarget(const Context& ctx, VkExtent2D extent) : ctx_(c
   row_pitch_ = (VkDeviceSize{extent.width} * 4 + align - 1) / align * align;
   readback_ = make_host_buffer(ctx, row_pitch_ * extent.height, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = ctx.command_pool();
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
-  check(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_), "allocating a command buffer");
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence f;
-  check(vkCreateFence(ctx.device(), &fci, nullptr, &f), "creating a fence");
-  fence_ = vk::Fence(ctx.device(), f);
+  cmd_ = ctx.allocate_command_buffer();
+  fence_ = ctx.make_fence();
 }
 
 OffscreenTarget::~OffscreenTarget() {
   vkDeviceWaitIdle(ctx_.device());
-  vkFreeCommandBuffers(ctx_.device(), ctx_.command_pool(), 1, &cmd_);
+  ctx_.free_command_buffer(cmd_);
 }
 
 void OffscreenTarget::draw(SceneRenderer& renderer, const FrameState& state) {

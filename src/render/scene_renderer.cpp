@@ -46,6 +46,22 @@ vk::ShaderModule make_shader(VkDevice dev, const std::uint32_t (&code)[N]) {
 
 std::span<const std::byte> bytes_of(const auto& vec) { return std::as_bytes(std::span(vec)); }
 
+//! One interleaved vertex buffer at binding 0 with these attributes.
+struct VertexInput {
+  VkVertexInputBindingDescription binding;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  VkPipelineVertexInputStateCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+
+  VertexInput(std::uint32_t stride, std::vector<VkVertexInputAttributeDescription> attrs)
+      : binding{0, stride, VK_VERTEX_INPUT_RATE_VERTEX}, attributes(std::move(attrs)) {
+    info.vertexBindingDescriptionCount = 1;
+    info.pVertexBindingDescriptions = &binding;
+    info.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attributes.size());
+    info.pVertexAttributeDescriptions = attributes.data();
+  }
+  VertexInput(const VertexInput&) = delete;
+};
+
 }  // namespace
 
 bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples) {
@@ -288,34 +304,19 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
 
   {
     vk::ShaderModule vs = make_shader(dev, scene_vert_spv), fs = make_shader(dev, scene_frag_spv);
-    VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    const std::array<VkVertexInputAttributeDescription, 3> attrs{{
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-    }};
-    VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    input.vertexBindingDescriptionCount = 1;
-    input.pVertexBindingDescriptions = &binding;
-    input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attrs.size());
-    input.pVertexAttributeDescriptions = attrs.data();
-    scene_pipeline_ = build(vs.get(), fs.get(), input, true, false, scene_pipeline_layout_.get(),
+    const VertexInput input(sizeof(Vertex), {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                                             {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                                             {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}});
+    scene_pipeline_ = build(vs.get(), fs.get(), input.info, true, false, scene_pipeline_layout_.get(),
                             "creating the scene pipeline");
   }
   {
     vk::ShaderModule vs = make_shader(dev, overlay_vert_spv), fs = make_shader(dev, overlay_frag_spv);
-    VkVertexInputBindingDescription binding{0, sizeof(OverlayVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    const std::array<VkVertexInputAttributeDescription, 3> attrs{{
-        {0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
-        {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
-        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)},
-    }};
-    VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    input.vertexBindingDescriptionCount = 1;
-    input.pVertexBindingDescriptions = &binding;
-    input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attrs.size());
-    input.pVertexAttributeDescriptions = attrs.data();
-    overlay_pipeline_ = build(vs.get(), fs.get(), input, false, true, overlay_pipeline_layout_.get(),
+    const VertexInput input(sizeof(OverlayVertex),
+                            {{0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
+                             {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
+                             {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)}});
+    overlay_pipeline_ = build(vs.get(), fs.get(), input.info, false, true, overlay_pipeline_layout_.get(),
                               "creating the overlay pipeline");
   }
 }

@@ -178,28 +178,47 @@ std::uint32_t Context::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlag
   throw RenderError("no Vulkan memory type with the needed properties");
 }
 
-void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
+VkCommandBuffer Context::allocate_command_buffer() const {
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_.get();
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
   check(vkAllocateCommandBuffers(device_, &ai, &cmd), "allocating a command buffer");
+  return cmd;
+}
+
+void Context::free_command_buffer(VkCommandBuffer cmd) const { vkFreeCommandBuffers(device_, pool_.get(), 1, &cmd); }
+
+vk::Fence Context::make_fence(bool signaled) const {
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  if (signaled) fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  VkFence fence;
+  check(vkCreateFence(device_, &fci, nullptr, &fence), "creating a fence");
+  return vk::Fence(device_, fence);
+}
+
+vk::Semaphore Context::make_semaphore() const {
+  VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VkSemaphore s;
+  check(vkCreateSemaphore(device_, &sci, nullptr, &s), "creating a semaphore");
+  return vk::Semaphore(device_, s);
+}
+
+void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
+  const VkCommandBuffer cmd = allocate_command_buffer();
   struct Free {
-    VkDevice d;
-    VkCommandPool p;
+    const Context& ctx;
     VkCommandBuffer c;
-    ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
-  } free_later{device_, pool_.get(), cmd};
+    ~Free() { ctx.free_command_buffer(c); }
+  } free_later{*this, cmd};
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cmd, &bi), "beginning a command buffer");
   record(cmd);
   check(vkEndCommandBuffer(cmd), "ending a command buffer");
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence raw_fence;
-  check(vkCreateFence(device_, &fci, nullptr, &raw_fence), "creating a fence");
-  vk::Fence fence(device_, raw_fence);
+  const vk::Fence fence = make_fence();
+  VkFence raw_fence = fence.get();
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd;
   VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};

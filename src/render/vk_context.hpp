@@ -53,6 +53,13 @@ class Context {
   //! A memory type index with `required` bits among `type_bits`; throws if none.
   std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
 
+  //! A primary command buffer from the context's pool (the caller frees it with
+  //! free_command_buffer), a fence (optionally signalled) and a binary semaphore.
+  VkCommandBuffer allocate_command_buffer() const;
+  void free_command_buffer(VkCommandBuffer cmd) const;
+  vk::Fence make_fence(bool signaled = false) const;
+  vk::Semaphore make_semaphore() const;
+
   //! Records `record` into a fresh command buffer, submits it and waits for it.
   void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
 

@@ -73,27 +73,16 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : c
 
   frames_.resize(SceneRenderer::kSlots);
   for (FrameSync& f : frames_) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = ctx.command_pool();
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    check(vkAllocateCommandBuffers(ctx.device(), &ai, &f.cmd), "allocating a command buffer");
-    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore s;
-    check(vkCreateSemaphore(ctx.device(), &sci, nullptr, &s), "creating a semaphore");
-    f.acquired = vk::Semaphore(ctx.device(), s);
-    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-    VkFence fence;
-    check(vkCreateFence(ctx.device(), &fci, nullptr, &fence), "creating a fence");
-    f.done = vk::Fence(ctx.device(), fence);
+    f.cmd = ctx.allocate_command_buffer();
+    f.acquired = ctx.make_semaphore();
+    f.done = ctx.make_fence(/*signaled=*/true);
   }
   create_swapchain();
 }
 
 WindowTarget::~WindowTarget() {
   vkDeviceWaitIdle(ctx_.device());
-  for (FrameSync& f : frames_) vkFreeCommandBuffers(ctx_.device(), ctx_.command_pool(), 1, &f.cmd);
+  for (FrameSync& f : frames_) ctx_.free_command_buffer(f.cmd);
   frames_.clear();
   views_.clear();
   rendered_.clear();
@@ -192,10 +181,7 @@ void WindowTarget::create_swapchain() {
     VkImageView view;
     check(vkCreateImageView(ctx_.device(), &vci, nullptr, &view), "creating a swapchain image view");
     views_.emplace_back(ctx_.device(), view);
-    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore s;
-    check(vkCreateSemaphore(ctx_.device(), &sci, nullptr, &s), "creating a semaphore");
-    rendered_.emplace_back(ctx_.device(), s);
+    rendered_.push_back(ctx_.make_semaphore());
   }
 }
 
