@@ -72,8 +72,9 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
 
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
-  ho.auto_samples = true;
-  ho.device = o.device;
+  ho.auto_samples = config.render.msaa == "auto";
+  if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
+  ho.device = o.device.empty() ? config.render.device : o.device;
   HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
   const render::FontAtlas font(render::FontAtlas::default_font(), static_cast<float>(ho.size.height) / 24.0f);
@@ -130,7 +131,7 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
   render::WindowSystem glfw;
   render::ContextOptions co;
   co.validation = validation_from_env();
-  co.device_name = o.device;
+  co.device_name = o.device.empty() ? config.render.device : o.device;
   co.instance_extensions = render::WindowSystem::instance_extensions();
   co.swapchain = true;
   render::Context ctx(co);
@@ -141,9 +142,14 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
   wo.height = static_cast<int>(size.height);
   wo.fullscreen = !o.windowed;
   wo.hide_cursor = !o.windowed;
+  wo.monitor = config.render.monitor;
+  wo.present_mode = config.render.present_mode == "mailbox"     ? render::PresentMode::mailbox
+                    : config.render.present_mode == "immediate" ? render::PresentMode::immediate
+                                                                : render::PresentMode::fifo;
   render::WindowTarget window(ctx, wo);
   render::RenderSettings rs;
-  rs.samples = render::recommended_samples(ctx);
+  rs.samples = config.render.msaa == "auto" ? render::recommended_samples(ctx)
+                                             : static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
   render::SceneRenderer renderer(ctx, scene, models_dir(), window.format(), rs, cache.get());
   std::fprintf(stderr, "<6>mallet run: %s, %ux%u\n", ctx.device_name().c_str(), window.extent().width,
                window.extent().height);

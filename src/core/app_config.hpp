@@ -55,6 +55,14 @@ struct WiimoteConfig {
   double reconnect_max_ms = 5000;    //!< ... up to this
 };
 
+//! [render]: the screen. Values are names so the core stays free of Vulkan.
+struct RenderConfig {
+  std::string present_mode = "fifo";  //!< fifo (vsync), mailbox or immediate; fifo where not offered
+  std::string msaa = "auto";          //!< auto (none on a CPU rasteriser, 4 on a GPU), 1, 2, 4 or 8
+  std::string device;                 //!< a part of the Vulkan device's name; empty = the best one
+  int monitor = 0;                    //!< which monitor the fullscreen kiosk uses (GLFW's order)
+};
+
 struct AppConfig {
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
@@ -63,6 +71,7 @@ struct AppConfig {
   OneEuroConfig pointer;     //!< [pointer]: the 1€ filter of the displayed cursor
   IrTrackerConfig tracking;  //!< [tracking]: which IR dot is the stick's LED
   WiimoteConfig wiimote;
+  RenderConfig render;
 };
 
 }  // namespace mallet

@@ -176,6 +176,10 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.tracking.jump_slack_px, defaults.tracking.jump_slack_px);
   EXPECT_EQ(shipped.tracking.reacquire_after_frames, defaults.tracking.reacquire_after_frames);
   EXPECT_EQ(shipped.tracking.lost_after_ms, defaults.tracking.lost_after_ms);
+  EXPECT_EQ(shipped.render.present_mode, defaults.render.present_mode);
+  EXPECT_EQ(shipped.render.msaa, defaults.render.msaa);
+  EXPECT_EQ(shipped.render.device, defaults.render.device);
+  EXPECT_EQ(shipped.render.monitor, defaults.render.monitor);
   EXPECT_EQ(shipped.wiimote.device, defaults.wiimote.device);
   EXPECT_EQ(shipped.wiimote.ir_mode, defaults.wiimote.ir_mode);
   EXPECT_EQ(shipped.wiimote.sensitivity, defaults.wiimote.sensitivity);
@@ -259,6 +263,10 @@ TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
       {"[wiimote]\nreconnect_min_ms = 1000\nreconnect_max_ms = 900\n", 3,
        "wiimote.reconnect_max_ms: must be in [1000, 600000], got 900"},
       {"[wiimote]\nrumble_on_impact = \"yes\"\n", 2, "wiimote.rumble_on_impact: expected true or false"},
+      {"[render]\npresent_mode = \"vsync\"\n", 2,
+       "render.present_mode: expected \"fifo\", \"mailbox\" or \"immediate\", got \"vsync\""},
+      {"[render]\nmsaa = \"3\"\n", 2, "render.msaa: expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"3\""},
+      {"[render]\n\nmonitor = 99\n", 3, "render.monitor: must be in [0, 15], got 99"},
   };
   for (const Case& k : cases) {
     const FileError e = file_error_of([&] { config::parse_app_config(k.text, "c.toml"); });

@@ -112,6 +112,19 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
+  if (auto t = top.optional_table("render")) {
+    RenderConfig& r = c.render;
+    r.present_mode = t->string_or("present_mode", r.present_mode);
+    if (r.present_mode != "fifo" && r.present_mode != "mailbox" && r.present_mode != "immediate")
+      t->fail("present_mode", "expected \"fifo\", \"mailbox\" or \"immediate\", got \"" + r.present_mode + "\"");
+    r.msaa = t->string_or("msaa", r.msaa);
+    if (r.msaa != "auto" && r.msaa != "1" && r.msaa != "2" && r.msaa != "4" && r.msaa != "8")
+      t->fail("msaa", "expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"" + r.msaa + "\"");
+    r.device = t->string_or("device", r.device);
+    r.monitor = static_cast<int>(t->integer_or("monitor", r.monitor));
+    t->require_range("monitor", r.monitor, 0, 15);
+    t->finish();
+  }
   top.finish();
   return c;
 }
