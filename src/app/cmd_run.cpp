@@ -14,7 +14,7 @@ void register_run(CLI::App& app) {
       "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
       "sound and the actuator signal play on the configured audio device, and the attract mode's\n"
       "ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close\n"
-      "it; the operator quits with Ctrl+Alt+O.\n"
+      "it; the operator quits with Ctrl+Alt+O. Each strike is logged on stderr.\n"
       "Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs\n"
       "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
       "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
@@ -29,7 +29,9 @@ void register_run(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--idle-after", o->idle_after_s, "Seconds without input before the attract mode plays")
       ->capture_default_str();
-  cmd->add_option("--device", o->device, "Vulkan device (substring of its name)");
+  cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render].device)");
+  cmd->add_option("--quit-after", o->quit_after_s, "With a display: quit after this many seconds (0 = never)")
+      ->capture_default_str();
   cmd->callback([o] { set_exit_status(run_kiosk(*o)); });
 }
 

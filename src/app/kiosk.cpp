@@ -172,6 +172,12 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
   Nanos last_input = monotonic_now() - idle_after;  // nobody there yet: attract at once
   std::optional<AttractLoop> ghost;
   double last_x = -1, last_y = -1;
+  const Nanos started = monotonic_now();
+  const Nanos quit_after = static_cast<Nanos>(std::llround(o.quit_after_s * 1e9));
+  auto strike = [&](const Impact& impact) {
+    rig.engine->post(impact);
+    std::fprintf(stderr, "<6>%s\n", describe(scene, impact).c_str());
+  };
   for (;;) {
     glfwPollEvents();
     if (window.close_requested()) {
@@ -185,6 +191,7 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
                         glfwGetKey(window.window(), GLFW_KEY_RIGHT_ALT) == GLFW_PRESS);
     if (chord) break;  // the operator's way out
     const Nanos now = monotonic_now();
+    if (quit_after > 0 && now - started >= quit_after) break;
     double x = 0, y = 0;
     int w = 1, h = 1;
     glfwGetCursorPos(window.window(), &x, &y);
@@ -199,14 +206,14 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
       }
       last_input = now;
       const Vec2 hand = scene.screen_to_world.map(x / std::max(w, 1), y / std::max(h, 1));
-      if (auto impact = loop.feed(now, hand)) rig.engine->post(*impact);
+      if (auto impact = loop.feed(now, hand)) strike(*impact);
     } else if (now - last_input >= idle_after) {
       if (!ghost) {
         ghost.emplace(scene, now);
         loop.reset();
       }
       for (const PointerSample& s : ghost->samples_until(now))
-        if (auto impact = loop.feed(s.t_ns, {s.x, s.y})) rig.engine->post(*impact);
+        if (auto impact = loop.feed(s.t_ns, {s.x, s.y})) strike(*impact);
     }
     overlay.clear();
     if (ghost)
@@ -218,6 +225,11 @@ int run_window(const KioskOptions& o, const Scene& scene, const AppConfig& confi
   }
   vkDeviceWaitIdle(ctx.device());
   if (output) output->stop();
+  if (ctx.validation_messages() > 0) {
+    std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",
+                 static_cast<unsigned long long>(ctx.validation_messages()), ctx.first_validation_message().c_str());
+    return 1;
+  }
   return 0;
 }
 

@@ -19,6 +19,7 @@ struct KioskOptions {
   std::filesystem::path out_dir;                //!< headless: empty = a new folder, named on stdout
   std::string size = "1280x720";                //!< headless image / windowed window size
   double idle_after_s = 45.0;                   //!< attract mode after this long without input
+  double quit_after_s = 0;                      //!< window: quit after this long (0 = never)
   std::string device;                           //!< Vulkan device (substring of its name)
 };
 

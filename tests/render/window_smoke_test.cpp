@@ -68,5 +68,19 @@ TEST(WindowSmoke, SwapchainUnderXvfbPresentsTheOffscreenPicture) {
   EXPECT_EQ(offscreen.context().validation_messages(), 0u);
 }
 
+TEST(WindowSmoke, TheKioskRunsItsAttractModeInAWindow) {
+  const auto dir = test::scratch_dir();
+  const std::string cmd = child_preload() + "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
+                          std::string(MALLET_TEST_BINARY) +
+                          " run --windowed --size 480x270 --idle-after 0 --quit-after 2.5 --device llvmpipe > " +
+                          (dir / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "log.txt");
+  const std::string log = slurp(dir / "log.txt");
+  // The ghost player's first strike comes one beat after the phrase starts, then one per beat.
+  EXPECT_NE(log.find("strike t="), std::string::npos) << log;
+  EXPECT_NE(log.find("480x270"), std::string::npos) << log;
+  EXPECT_EQ(log.find("validation"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace mallet::app
