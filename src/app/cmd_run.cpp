@@ -1,4 +1,5 @@
 #include <memory>
+#include <string>
 
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
@@ -9,6 +10,7 @@ namespace mallet::app {
 void register_run(CLI::App& app) {
   auto o = std::make_shared<KioskOptions>();
   o->scene = default_scene();
+  o->config = default_settings();  // the operator's mallet.toml (/etc/mallet when installed)
   CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
   cmd->footer(
       "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
@@ -20,15 +22,17 @@ void register_run(CLI::App& app) {
       "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
       "and DIR/log.txt (one line per strike), then exits 0.");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
-  cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  cmd->add_option("--config", o->config,
+                  "Settings file (default: " +
+                      (o->config ? o->config->string() : std::string("built-in, same as config/mallet.toml")) + ")");
   cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
   cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (closing it quits)");
   cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
   cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
       ->capture_default_str();
-  cmd->add_option("--idle-after", o->idle_after_s, "Seconds without input before the attract mode plays")
-      ->capture_default_str();
+  cmd->add_option("--idle-after", o->idle_after_s,
+                  "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)");
   cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render].device)");
   cmd->add_option("--quit-after", o->quit_after_s, "With a display: quit after this many seconds (0 = never)")
       ->capture_default_str();

@@ -1,8 +1,20 @@
 #pragma once
-// Where the shipped data (config/, models/, shaders/) is found: $MALLET_DATA_DIR, else
-// the source tree this binary was built from, else /usr/share/mallet (the package).
+// Where the shipped data and the operator's settings are found.
+//
+// data_dir() (models/, shaders/, config/ as shipped): $MALLET_DATA_DIR; else
+// <dir of /proc/self/exe>/../share/mallet when it holds config/materials.toml (the
+// installed package, or one unpacked with `dpkg -x` into any root); else the source tree
+// this binary was built from; else /usr/share/mallet.
+//
+// config_dir() (the operator's editable settings: mallet.toml, materials.toml,
+// instruments.toml, scenes/, trajectories/): for an installed binary, <exe>/../../etc/mallet
+// (/etc/mallet for /usr/bin/mallet, ROOT/etc/mallet in an unpacked root) when that folder
+// exists; in every other case <data>/config — so the source tree and $MALLET_DATA_DIR
+// (the tests) behave as before.
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <system_error>
 
 #ifndef MALLET_SOURCE_DATA_DIR
 #define MALLET_SOURCE_DATA_DIR ""
@@ -10,14 +22,48 @@
 
 namespace mallet::app {
 
-inline std::filesystem::path data_dir() {
-  if (const char* env = std::getenv("MALLET_DATA_DIR"); env && *env) return env;
+struct DataPaths {
+  std::filesystem::path data;    //!< models/, shaders/, config/ (the shipped defaults)
+  std::filesystem::path config;  //!< the operator's settings
+};
+
+//! <prefix> of the running <prefix>/bin/mallet (its real path: links resolved); empty if unknown.
+inline std::filesystem::path executable_prefix() {
   std::error_code ec;
-  const std::filesystem::path source = MALLET_SOURCE_DATA_DIR;
-  if (!source.empty() && std::filesystem::exists(source / "config" / "materials.toml", ec)) return source;
-  return "/usr/share/mallet";
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec || !exe.is_absolute()) return {};
+  return exe.parent_path().parent_path();
 }
 
-inline std::filesystem::path default_scene() { return data_dir() / "config" / "scenes" / "percussion.toml"; }
+inline DataPaths data_paths() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  auto holds_data = [&ec](const fs::path& dir) { return fs::exists(dir / "config" / "materials.toml", ec); };
+  // Installed: the settings in <root>/etc/mallet if the package put them there.
+  auto installed = [&ec](const fs::path& data, const fs::path& etc) -> DataPaths {
+    return {data, fs::is_directory(etc, ec) ? etc : data / "config"};
+  };
+
+  if (const char* env = std::getenv("MALLET_DATA_DIR"); env && *env) return {env, fs::path(env) / "config"};
+  if (const fs::path prefix = executable_prefix(); !prefix.empty() && holds_data(prefix / "share" / "mallet"))
+    return installed(prefix / "share" / "mallet", prefix.parent_path() / "etc" / "mallet");
+  if (const fs::path source = MALLET_SOURCE_DATA_DIR; !source.empty() && holds_data(source))
+    return {source, source / "config"};
+  return installed("/usr/share/mallet", "/etc/mallet");
+}
+
+inline std::filesystem::path data_dir() { return data_paths().data; }
+inline std::filesystem::path config_dir() { return data_paths().config; }
+
+inline std::filesystem::path default_scene() { return config_dir() / "scenes" / "percussion.toml"; }
+
+//! The kiosk's settings file when there is one (<config>/mallet.toml); else the built-in
+//! defaults apply (they equal the shipped file).
+inline std::optional<std::filesystem::path> default_settings() {
+  std::error_code ec;
+  const std::filesystem::path file = config_dir() / "mallet.toml";
+  if (std::filesystem::exists(file, ec)) return file;
+  return std::nullopt;
+}
 
 }  // namespace mallet::app

@@ -18,7 +18,7 @@ struct KioskOptions {
   double seconds = 10.0;                        //!< headless: how long the loop runs
   std::filesystem::path out_dir;                //!< headless: empty = a new folder, named on stdout
   std::string size = "1280x720";                //!< headless image / windowed window size
-  double idle_after_s = 45.0;                   //!< attract mode after this long without input
+  std::optional<double> idle_after_s;           //!< overrides [attract].idle_after_s
   double quit_after_s = 0;                      //!< window: quit after this long (0 = never)
   std::string device;                           //!< Vulkan device (substring of its name)
 };

@@ -55,6 +55,12 @@ struct WiimoteConfig {
   double reconnect_max_ms = 5000;    //!< ... up to this
 };
 
+//! [attract]: the attract mode that plays when nobody is there.
+struct AttractConfig {
+  double idle_after_s = 45.0;  //!< no real movement for this long → the ghost player plays
+  double volume = 0.5;         //!< the speaker's volume while it plays (a fraction of audio.volume)
+};
+
 //! [render]: the screen. Values are names so the core stays free of Vulkan.
 struct RenderConfig {
   std::string present_mode = "fifo";  //!< fifo (vsync), mailbox or immediate; fifo where not offered
@@ -72,6 +78,7 @@ struct AppConfig {
   IrTrackerConfig tracking;  //!< [tracking]: which IR dot is the stick's LED
   WiimoteConfig wiimote;
   RenderConfig render;
+  AttractConfig attract;
 };
 
 }  // namespace mallet

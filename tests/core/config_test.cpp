@@ -176,6 +176,8 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.tracking.jump_slack_px, defaults.tracking.jump_slack_px);
   EXPECT_EQ(shipped.tracking.reacquire_after_frames, defaults.tracking.reacquire_after_frames);
   EXPECT_EQ(shipped.tracking.lost_after_ms, defaults.tracking.lost_after_ms);
+  EXPECT_EQ(shipped.attract.idle_after_s, defaults.attract.idle_after_s);
+  EXPECT_EQ(shipped.attract.volume, defaults.attract.volume);
   EXPECT_EQ(shipped.render.present_mode, defaults.render.present_mode);
   EXPECT_EQ(shipped.render.msaa, defaults.render.msaa);
   EXPECT_EQ(shipped.render.device, defaults.render.device);
@@ -267,6 +269,8 @@ TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
        "render.present_mode: expected \"fifo\", \"mailbox\" or \"immediate\", got \"vsync\""},
       {"[render]\nmsaa = \"3\"\n", 2, "render.msaa: expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"3\""},
       {"[render]\n\nmonitor = 99\n", 3, "render.monitor: must be in [0, 15], got 99"},
+      {"[attract]\nidle_after_s = 0\n", 2, "attract.idle_after_s: must be in [1, 86400], got 0"},
+      {"[attract]\nvolume = 1.5\n", 2, "attract.volume: must be in [0, 1], got 1.5"},
   };
   for (const Case& k : cases) {
     const FileError e = file_error_of([&] { config::parse_app_config(k.text, "c.toml"); });

@@ -72,7 +72,7 @@ TEST(WindowSmoke, TheKioskRunsItsAttractModeInAWindow) {
   const auto dir = test::scratch_dir();
   const std::string cmd = child_preload() + "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
                           std::string(MALLET_TEST_BINARY) +
-                          " run --windowed --size 480x270 --idle-after 0 --quit-after 2.5 --device llvmpipe > " +
+                          " run --windowed --size 480x270 --idle-after 1 --quit-after 2.5 --device llvmpipe > " +
                           (dir / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "log.txt");
   const std::string log = slurp(dir / "log.txt");
@@ -80,6 +80,40 @@ TEST(WindowSmoke, TheKioskRunsItsAttractModeInAWindow) {
   EXPECT_NE(log.find("strike t="), std::string::npos) << log;
   EXPECT_NE(log.find("480x270"), std::string::npos) << log;
   EXPECT_EQ(log.find("validation"), std::string::npos) << log;
+}
+
+//! Waits (polling, up to a minute) until `file` contains `text`.
+bool wait_for(const std::filesystem::path& file, const std::string& text) {
+  for (int i = 0; i < 600; ++i) {
+    if (slurp(file).find(text) != std::string::npos) return true;
+    std::system("sleep 0.1");
+  }
+  return false;
+}
+
+TEST(WindowSmoke, SighupReloadsTheSettingsAndRefusesABrokenFile) {
+  const auto dir = test::scratch_dir();
+  const auto cfg = dir / "mallet.toml";
+  std::filesystem::copy_file(test::config_dir() / "mallet.toml", cfg);
+  const std::string launch = child_preload() + "xvfb-run -a -s '-screen 0 1024x768x24' " +
+                             std::string(MALLET_TEST_BINARY) + " run --windowed --size 320x180 --quit-after 8" +
+                             " --device llvmpipe --config " + cfg.string() + " > " + (dir / "log.txt").string() +
+                             " 2>&1 &";
+  ASSERT_EQ(std::system(launch.c_str()), 0);
+  ASSERT_TRUE(wait_for(dir / "log.txt", "mallet run:")) << slurp(dir / "log.txt");
+
+  // Only the kiosk itself (its command line starts with the binary), not xvfb-run's shell.
+  const std::string hup = "pkill -HUP -f '^" + std::string(MALLET_TEST_BINARY) + " run .*" + cfg.string() + "'";
+  std::ofstream(cfg) << "[audio]\nvolume = 7\n";
+  std::system(hup.c_str());
+  ASSERT_TRUE(wait_for(dir / "log.txt", "reload refused")) << slurp(dir / "log.txt");
+  EXPECT_NE(slurp(dir / "log.txt").find(cfg.string() + ":2"), std::string::npos) << "names the file and line";
+
+  std::ofstream(cfg) << "[audio]\nvolume = 0.3\n";
+  std::system(hup.c_str());
+  ASSERT_TRUE(wait_for(dir / "log.txt", "reloaded the settings")) << slurp(dir / "log.txt");
+  // The kiosk kept running through both and quits by itself.
+  EXPECT_TRUE(wait_for(dir / "log.txt", "strike t=")) << slurp(dir / "log.txt");
 }
 
 }  // namespace

@@ -112,6 +112,14 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
+  if (auto t = top.optional_table("attract")) {
+    AttractConfig& a = c.attract;
+    a.idle_after_s = t->number_or("idle_after_s", a.idle_after_s);
+    t->require_range("idle_after_s", a.idle_after_s, 1, 86400);
+    a.volume = t->number_or("volume", a.volume);
+    t->require_range("volume", a.volume, 0, 1);
+    t->finish();
+  }
   if (auto t = top.optional_table("render")) {
     RenderConfig& r = c.render;
     r.present_mode = t->string_or("present_mode", r.present_mode);

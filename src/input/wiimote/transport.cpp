@@ -8,8 +8,9 @@ namespace mallet::input::wiimote {
 
 std::string udev_hint() {
   return "the remote's /dev/hidraw* node must be readable and writable by this user (permission denied?): "
-         "install the udev rule " +
-         std::string(kUdevRulePath) + " containing\n    " + std::string(kUdevRule) +
+         "the mallet package installs the udev rule " +
+         std::string(kUdevRulePath) + "; without the package, create " + std::string(kLocalUdevRulePath) +
+         " containing\n    " + std::string(kUdevRule) +
          "\nthen run `sudo udevadm control --reload && sudo udevadm trigger` and reconnect the remote";
 }
 

@@ -22,11 +22,16 @@ constexpr bool is_wii_remote(std::uint16_t vendor_id, std::uint16_t product_id) 
          (product_id == kWiiRemoteProductId || product_id == kWiiRemoteTrProductId);
 }
 
-//! Where the operator installs the udev rule that gives the logged-in (kiosk) user the
-//! hidraw node; the kiosk package ships it.
-inline constexpr std::string_view kUdevRulePath = "/etc/udev/rules.d/70-mallet-wiimote.rules";
+//! The udev rule that gives the user of the active seat session (the kiosk's) the remote's
+//! hidraw node. The package ships it (kUdevRulePath); without the package the operator
+//! creates kLocalUdevRulePath by hand. A Bluetooth remote's hidraw node hangs under a HID
+//! device named BUS:VENDOR:PRODUCT.N (hex, upper case, e.g. 0005:057E:0306.0003) and has no
+//! USB idVendor/idProduct attributes, so the rule matches that name (which also covers a
+//! USB HID device with the same ids).
+inline constexpr std::string_view kUdevRulePath = "/usr/lib/udev/rules.d/70-mallet-wiimote.rules";
+inline constexpr std::string_view kLocalUdevRulePath = "/etc/udev/rules.d/70-mallet-wiimote.rules";
 inline constexpr std::string_view kUdevRule =
-    R"(KERNEL=="hidraw*", ATTRS{idVendor}=="057e", ATTRS{idProduct}=="0306|0330", TAG+="uaccess")";
+    R"(KERNEL=="hidraw*", KERNELS=="*:057E:0306.*|*:057E:0330.*", TAG+="uaccess")";
 
 //! The hint printed when a remote cannot be opened or none is seen: "the remote's
 //! /dev/hidraw* node must be readable ...", naming the rule's file and content and how to

@@ -76,10 +76,15 @@ TEST_F(HidTransportTest, AFailedOpenNamesThePathTheReasonAndTheUdevRule) {
   const OpenResult r = HidTransport::open(kPath);
   EXPECT_FALSE(r.transport);
   EXPECT_NE(r.error.find("cannot open the Wii Remote at /dev/hidraw5 (Permission denied)"), std::string::npos) << r.error;
-  EXPECT_NE(r.error.find("/etc/udev/rules.d/70-mallet-wiimote.rules"), std::string::npos) << r.error;
-  EXPECT_NE(r.error.find(R"(KERNEL=="hidraw*", ATTRS{idVendor}=="057e", ATTRS{idProduct}=="0306|0330", TAG+="uaccess")"),
+  // The packaged rule's file, and how to install the same rule by hand without the package.
+  EXPECT_NE(r.error.find("the mallet package installs the udev rule /usr/lib/udev/rules.d/70-mallet-wiimote.rules"),
             std::string::npos)
       << r.error;
+  EXPECT_NE(r.error.find("create /etc/udev/rules.d/70-mallet-wiimote.rules"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find(R"(KERNEL=="hidraw*", KERNELS=="*:057E:0306.*|*:057E:0330.*", TAG+="uaccess")"),
+            std::string::npos)
+      << r.error;
+  EXPECT_NE(r.error.find("udevadm control --reload && sudo udevadm trigger"), std::string::npos) << r.error;
   EXPECT_EQ(fake_hidapi::open_count(), 0);
 
   const OpenResult missing = HidTransport::open("/dev/hidraw99");

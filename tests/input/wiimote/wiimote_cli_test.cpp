@@ -125,8 +125,9 @@ TEST(WiimoteCli, HelpNamesTheSubcommandsAndTheContract) {
 TEST(WiimoteList, FormatsDevicesOrTheHints) {
   const std::string none = format_device_list({});
   EXPECT_EQ(none.rfind("No Wii Remote found", 0), 0u) << none;
+  EXPECT_NE(none.find("/usr/lib/udev/rules.d/70-mallet-wiimote.rules"), std::string::npos) << none;
   EXPECT_NE(none.find("/etc/udev/rules.d/70-mallet-wiimote.rules"), std::string::npos) << none;
-  EXPECT_NE(none.find(R"(ATTRS{idProduct}=="0306|0330", TAG+="uaccess")"), std::string::npos) << none;
+  EXPECT_NE(none.find(R"(KERNELS=="*:057E:0306.*|*:057E:0330.*", TAG+="uaccess")"), std::string::npos) << none;
 
   const std::string two = format_device_list({
       {"/dev/hidraw3", wm::kNintendoVendorId, wm::kWiiRemoteProductId, "00:1f:32:aa:bb:cc", "Nintendo RVL-CNT-01"},

@@ -1,0 +1,176 @@
+#!/usr/bin/env bash
+# The built .deb, looked at as dpkg sees it: its files and their modes, its control fields
+# (Depends: every package of packaging/deps-run.txt, and cage), its conffiles (every file
+# under /etc), its maintainer scripts (run against stubs: they must survive a machine with
+# no running systemd or udev) and its systemd unit.
+#   check_package.sh DEB_DIR SOURCE_DIR VERSION
+set -euo pipefail
+dir=$1 src=$2 version=$3
+arch=$(dpkg --print-architecture)
+deb=$dir/mallet_${version}_${arch}.deb
+if [[ ! -f $deb ]]; then
+  echo "package: no $deb (the name must be mallet_VERSION_ARCH.deb); $dir holds: $(ls "$dir")" >&2
+  exit 1
+fi
+failures=0
+fail() {
+  echo "package: $*" >&2
+  failures=$((failures + 1))
+}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# --- Files -------------------------------------------------------------------------------
+declare -A mode owner
+while read -r perms who path; do
+  path=${path#.}
+  [[ $perms == d* ]] && continue
+  mode[$path]=$perms
+  owner[$path]=$who
+done < <(dpkg-deb -c "$deb" | awk '{print $1, $2, $6}')
+
+expect_file() {  # PATH [MODE]
+  if [[ -z ${mode[$1]+x} ]]; then
+    fail "missing $1"
+  elif [[ -n ${2:-} && ${mode[$1]} != "$2" ]]; then
+    fail "$1 has mode ${mode[$1]}, expected $2"
+  fi
+}
+expect_file /usr/bin/mallet -rwxr-xr-x
+expect_file /usr/libexec/mallet/mallet-kiosk -rwxr-xr-x
+expect_file /usr/lib/udev/rules.d/70-mallet-wiimote.rules -rw-r--r--
+expect_file /usr/lib/systemd/system/mallet.service -rw-r--r--
+expect_file /etc/pam.d/mallet -rw-r--r--
+mapfile -t models < <(cd "$src/models" && find . -name '*.glb' -printf '%P\n' | sort)
+mapfile -t shaders < <(cd "$src/shaders" && find . -type f -printf '%P\n' | sort)
+mapfile -t configs < <(cd "$src/config" && find . -type f -printf '%P\n' | sort)
+((${#models[@]} > 0 && ${#shaders[@]} > 0 && ${#configs[@]} > 0)) || fail "the source tree's models/shaders/config look empty"
+for f in "${models[@]}"; do expect_file "/usr/share/mallet/models/$f" -rw-r--r--; done
+for f in "${shaders[@]}"; do expect_file "/usr/share/mallet/shaders/$f" -rw-r--r--; done
+for f in "${configs[@]}"; do
+  expect_file "/usr/share/mallet/config/$f" -rw-r--r--
+  expect_file "/etc/mallet/$f" -rw-r--r--
+done
+for f in /etc/mallet/mallet.toml /etc/mallet/materials.toml /etc/mallet/instruments.toml \
+  /etc/mallet/scenes/percussion.toml /etc/mallet/trajectories/demo.csv; do
+  expect_file "$f"
+done
+for path in "${!mode[@]}"; do
+  [[ ${owner[$path]} == root/root ]] || fail "$path is owned by ${owner[$path]}, not root/root"
+  case $path in
+  /usr/bin/mallet | /usr/libexec/mallet/* | /usr/share/mallet/* | /etc/mallet/* | /etc/pam.d/mallet | \
+    /usr/lib/udev/rules.d/70-mallet-wiimote.rules | /usr/lib/systemd/system/mallet.service) ;;
+  *) fail "unexpected file $path" ;;
+  esac
+done
+
+# The data are the source tree's, byte for byte.
+dpkg-deb -x "$deb" "$work/root"
+diff -r "$src/config" "$work/root/etc/mallet" >&2 || fail "/etc/mallet differs from config/"
+diff -r "$src/config" "$work/root/usr/share/mallet/config" >&2 || fail "/usr/share/mallet/config differs from config/"
+for f in "${models[@]}"; do
+  cmp -s "$src/models/$f" "$work/root/usr/share/mallet/models/$f" || fail "models/$f differs"
+done
+
+# --- Control fields ----------------------------------------------------------------------
+field() { dpkg-deb -f "$deb" "$1"; }
+[[ $(field Package) == mallet ]] || fail "Package: $(field Package)"
+[[ $(field Version) == "$version" ]] || fail "Version: $(field Version), expected $version"
+[[ $(field Architecture) == "$arch" ]] || fail "Architecture: $(field Architecture), expected $arch"
+[[ $(field Maintainer) =~ ^[^\<\>]+\ \<[^\<\>@\ ]+@[^\<\>\ ]+\>$ ]] || fail "Maintainer is not 'Name <address>': $(field Maintainer)"
+description=$(field Description)
+synopsis=$(head -n 1 <<<"$description")
+[[ -n ${synopsis// /} ]] || fail "Description has no synopsis"
+(($(wc -l <<<"$description") >= 3)) || fail "Description has no extended description: $description"
+declare -A depends
+IFS=',' read -ra items <<<"$(field Depends)"
+for item in "${items[@]}"; do
+  name=${item%%(*}
+  name=${name// /}
+  depends[$name]=1
+done
+mapfile -t wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/deps-run.txt" | grep -v '^$')
+((${#wanted[@]} > 5)) || fail "deps-run.txt read as ${#wanted[@]} packages"
+for p in "${wanted[@]}" cage; do
+  [[ -n ${depends[$p]+x} ]] || fail "Depends lacks $p (from deps-run.txt): $(field Depends)"
+done
+
+# --- Conffiles: exactly the files under /etc ---------------------------------------------
+dpkg-deb -e "$deb" "$work/control"
+diff <(sort "$work/control/conffiles") <(printf '%s\n' "${!mode[@]}" | grep '^/etc/' | sort) >&2 ||
+  fail "conffiles is not the list of files under /etc"
+grep -qx /etc/mallet/mallet.toml "$work/control/conffiles" || fail "/etc/mallet/mallet.toml is not a conffile"
+
+# --- Maintainer scripts, against stubs ---------------------------------------------------
+# Every command they may run is a stub logging its arguments; systemctl and udevadm fail,
+# as where systemd or udev is not running: the scripts must still succeed. Nothing on this
+# machine is touched (no purge: it removes /var/lib/mallet).
+mkdir -p "$work/stubs"
+stub() {  # NAME SHELL-CODE
+  printf '#!/bin/sh\necho "%s $*" >> "%s"\n%s\n' "$1" "$work/calls" "$2" >"$work/stubs/$1"
+  chmod +x "$work/stubs/$1"
+}
+stub adduser 'exit 0'
+stub deb-systemd-helper 'exit 0'
+stub systemctl 'exit 1'
+stub udevadm 'exit 1'
+stub getent '[ "$1" = passwd ] && exit 2; exit 0'  # no user mallet yet; every group exists
+for script in postinst prerm postrm; do
+  [[ -x $work/control/$script ]] || fail "no executable $script"
+  [[ $(head -n 1 "$work/control/$script") == '#!/bin/sh' ]] || fail "$script is not a /bin/sh script"
+  sh -n "$work/control/$script" || fail "$script: syntax error"
+done
+run_script() {  # SCRIPT ARGS...
+  PATH="$work/stubs:$PATH" "$work/control/$1" "${@:2}" >>"$work/script-output" 2>&1 ||
+    fail "$* exits $? where systemd and udev are not running: $(cat "$work/script-output")"
+}
+: >"$work/calls"
+run_script postinst configure ""
+grep -q '^adduser --system --group --home /var/lib/mallet mallet$' "$work/calls" || fail "postinst made no system user"
+grep -q '^adduser --quiet mallet audio$' "$work/calls" || fail "postinst did not add mallet to audio"
+grep -q '^deb-systemd-helper enable mallet.service$' "$work/calls" || fail "postinst did not enable mallet.service"
+if [[ -d /run/systemd/system ]]; then
+  grep -q '^systemctl daemon-reload$' "$work/calls" || fail "postinst did not reload systemd"
+elif grep -q '^systemctl' "$work/calls"; then
+  fail "postinst called systemctl with no systemd running"
+fi
+if [[ -d /run/udev ]]; then
+  grep -q '^udevadm control --reload-rules$' "$work/calls" || fail "postinst did not reload the udev rules"
+  grep -q '^udevadm trigger' "$work/calls" || fail "postinst did not trigger udev"
+fi
+run_script postinst configure 0.0.1
+run_script prerm remove
+run_script prerm upgrade 0.0.1
+run_script postrm remove
+for command in 'systemctl daemon-reload' 'udevadm control --reload-rules' 'udevadm trigger'; do
+  grep -q "$command" "$work/control/postinst" || fail "postinst never runs '$command'"
+done
+
+# --- The unit ------------------------------------------------------------------------------
+unit=$work/root/usr/lib/systemd/system/mallet.service
+setting() { sed -n "s/^$1=//p" "$unit"; }
+[[ $(setting ExecStart) == /usr/libexec/mallet/mallet-kiosk ]] || fail "ExecStart=$(setting ExecStart)"
+[[ $(setting Restart) == always ]] || fail "Restart=$(setting Restart)"
+[[ $(setting RestartSec) =~ ^[0-9]+$ ]] && (($(setting RestartSec) >= 2)) || fail "RestartSec=$(setting RestartSec)"
+[[ $(setting StartLimitIntervalSec) == 0 ]] || fail "StartLimitIntervalSec=$(setting StartLimitIntervalSec)"
+[[ $(setting RestartPreventExitStatus) == 0 ]] || fail "RestartPreventExitStatus=$(setting RestartPreventExitStatus)"
+[[ $(setting WatchdogSec) =~ ^[1-9][0-9]*$ ]] || fail "WatchdogSec=$(setting WatchdogSec)"
+[[ $(setting NotifyAccess) == all ]] || fail "NotifyAccess=$(setting NotifyAccess)"
+[[ $(setting User) == mallet ]] || fail "User=$(setting User)"
+[[ $(setting PAMName) == mallet ]] || fail "PAMName=$(setting PAMName) (the package ships /etc/pam.d/mallet)"
+[[ $(setting WantedBy) == graphical.target ]] || fail "WantedBy=$(setting WantedBy)"
+if command -v systemd-analyze >/dev/null; then
+  # systemd's own parser, with the unit's programs pointing into the unpacked root.
+  sed "s|=/usr/libexec/|=$work/root/usr/libexec/|" "$unit" >"$work/mallet.service"
+  verdict=$(cd "$work" && systemd-analyze verify --man=no "$work/mallet.service" 2>&1) ||
+    fail "systemd-analyze verify failed: $verdict"
+  [[ -z $verdict ]] || fail "systemd-analyze verify: $verdict"
+else
+  echo "package: systemd-analyze not installed: the unit was not given to systemd's parser"
+fi
+
+if ((failures > 0)); then
+  echo "package: $failures problem(s) in $deb" >&2
+  exit 1
+fi
+echo "package: $deb: ${#mode[@]} files, control fields, conffiles, scripts and unit as expected"

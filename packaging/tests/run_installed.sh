@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The kiosk run from the package unpacked into a scratch root (`dpkg -x`: the installed
+# tree without root rights): --version, a headless frame whose log names the scene under
+# ROOT/etc/mallet, and proofs that the models come from ROOT/usr/share/mallet and the
+# settings from ROOT/etc/mallet/mallet.toml — never from the source tree this binary was
+# built from. Run outside the source tree, with no MALLET_DATA_DIR and no display.
+#   run_installed.sh DEB_DIR SCRATCH VERSION [VAR=VALUE...]
+# The VAR=VALUEs are set for mallet only (under ASan: the Vulkan driver's preload).
+set -euo pipefail
+dir=$1 scratch=$2 version=$3
+shift 3
+deb=$dir/mallet_${version}_$(dpkg --print-architecture).deb
+rm -rf "$scratch"
+mkdir -p "$scratch"
+root=$scratch/root
+dpkg -x "$deb" "$root"
+cd "$scratch"
+failures=0
+fail() {
+  echo "package: $*" >&2
+  failures=$((failures + 1))
+}
+env_vars=("$@")
+run() {  # ARGS...: mallet's output in $output, its status in $status
+  status=0
+  output=$(env -u MALLET_DATA_DIR -u DISPLAY -u WAYLAND_DISPLAY "${env_vars[@]}" "$root/usr/bin/mallet" "$@" 2>&1) ||
+    status=$?
+}
+
+run --version
+[[ $status == 0 && $output == *"$version"* ]] || fail "mallet --version: status $status: $output"
+
+# One headless frame from the installed paths.
+out=$scratch/out
+run run --headless --seconds 0.3 --size 160x90 --out "$out"
+[[ $status == 0 ]] || fail "mallet run --headless: status $status: $output"
+for f in screenshot.png audio.wav log.txt; do
+  [[ -s $out/$f ]] || fail "mallet run --headless wrote no $out/$f"
+done
+if [[ -f $out/log.txt ]]; then
+  grep -qx "scene: $root/etc/mallet/scenes/percussion.toml" "$out/log.txt" ||
+    fail "log.txt does not name the scene under $root/etc/mallet: $(cat "$out/log.txt")"
+fi
+
+# The models are the unpacked root's: without one, the kiosk stops naming that file.
+model=$root/usr/share/mallet/models/wood_bar.glb
+mv "$model" "$model.away"
+run run --headless --seconds 0.1 --size 160x90 --out "$scratch/no-model"
+[[ $status == 2 && $output == *"$model"* ]] ||
+  fail "without $model: status $status (expected 2, naming it): $output"
+mv "$model.away" "$model"
+
+# The kiosk's settings are ROOT/etc/mallet/mallet.toml: a mistake there is reported.
+settings=$root/etc/mallet/mallet.toml
+cp "$settings" "$settings.orig"
+printf 'no_such_setting = 1\n' | cat - "$settings.orig" >"$settings"
+run run --headless --seconds 0.1 --size 160x90 --out "$scratch/bad-settings"
+[[ $status == 2 && $output == *"$settings:1"* ]] ||
+  fail "with a bad $settings: status $status (expected 2, naming it): $output"
+mv "$settings.orig" "$settings"
+
+# The udev rule the package ships is the one `mallet wiimote list` tells to install.
+rule=$(grep -v '^#' "$root/usr/lib/udev/rules.d/70-mallet-wiimote.rules" | grep -v '^$')
+[[ $(wc -l <<<"$rule") == 1 ]] || fail "the udev rule file holds $(wc -l <<<"$rule") rules"
+run wiimote list
+if [[ $output == *"No Wii Remote found"* ]]; then
+  [[ $output == *"$rule"* ]] || fail "mallet wiimote list does not print the packaged rule $rule: $output"
+  [[ $output == *"/usr/lib/udev/rules.d/70-mallet-wiimote.rules"* ]] ||
+    fail "mallet wiimote list does not name the packaged rule's file: $output"
+else
+  echo "package: a Wii Remote is connected: the hint is not printed, not compared"
+fi
+
+if ((failures > 0)); then
+  echo "package: $failures problem(s) running the kiosk unpacked in $root" >&2
+  exit 1
+fi
+echo "package: the kiosk runs from $root with its settings from $root/etc/mallet"

@@ -1,0 +1,71 @@
+#pragma once
+// The kiosk's loop on a simulated clock, without a window: a visitor's samples (replayed)
+// or, when nobody has played for `idle_after`, the attract mode's ghost player; the
+// contact solver; the audio engine rendering into a sink. The headless `mallet run` and the
+// soak test drive it; time only moves when they say so, so a day of play can be compressed.
+//
+// Order of work: input is always fed up to a time before the audio up to that time is
+// rendered, so every impact is posted before the block it falls in and starts on its own
+// sample.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+
+#include "app/audio_setup.hpp"
+#include "app/strike_loop.hpp"
+#include "core/app_config.hpp"
+#include "core/scene.hpp"
+
+namespace mallet::app {
+
+class HeadlessLoop {
+ public:
+  struct Counters {
+    std::uint64_t visitor_strikes = 0, ghost_strikes = 0;
+    std::uint64_t refused_posts = 0;        //!< the engine's ring was full (never expected)
+    std::uint64_t audio_frames = 0;
+    std::uint64_t non_finite_samples = 0;
+    double peak = 0;                        //!< largest |sample| rendered
+  };
+
+  HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after);
+
+  //! A visitor's hand (sphere centre, world metres) at t >= now(): takes over from the
+  //! ghost at once.
+  void visitor(Nanos t, Vec2 hand);
+  //! Moves the clock to t: the ghost plays if idle, and the audio is rendered up to t.
+  void advance(Nanos t);
+  //! Renders audio up to t with no input at all (the tail after the last stroke).
+  void drain_audio(Nanos t);
+
+  Nanos now() const { return now_; }
+  bool attract() const { return ghost_.has_value(); }
+  Vec2 displayed(Nanos t_present) const { return loop_.displayed(t_present); }
+  const Counters& counters() const { return counters_; }
+  const audio::AudioEngine& engine() const { return *rig_.engine; }
+  int sample_rate_hz() const { return rate_; }
+  int channels() const { return channels_; }
+
+  std::function<void(const Impact&, bool ghost)> on_strike;
+  std::function<void(std::span<const float>)> on_audio;  //!< interleaved frames
+
+ private:
+  void feed_ghost_until(Nanos t);
+  void strike(const Impact& impact, bool ghost);
+  void render_audio_until(Nanos t);
+
+  const Scene& scene_;
+  int rate_, channels_;
+  Nanos idle_after_;
+  AudioRig rig_;
+  StrikeLoop loop_;
+  std::optional<AttractLoop> ghost_;
+  Nanos now_ = 0;
+  Nanos last_visitor_;
+  std::int64_t audio_pos_ = 0;
+  std::vector<float> block_;
+  Counters counters_;
+};
+
+}  // namespace mallet::app

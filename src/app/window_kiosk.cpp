@@ -1,0 +1,342 @@
+#include "app/window_kiosk.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include "app/audio_setup.hpp"
+#include "app/data_paths.hpp"
+#include "app/render_setup.hpp"
+#include "app/simulate.hpp"
+#include "app/strike_loop.hpp"
+#include "audio/portaudio_output.hpp"
+#include "core/config/app_config_loader.hpp"
+#include "core/config/scene_config.hpp"
+#include "core/file_error.hpp"
+#include "core/kiosk_states.hpp"
+#include "render/font_atlas.hpp"
+#include "render/overlay.hpp"
+#include "render/pipeline_cache.hpp"
+#include "render/window_target.hpp"
+
+namespace mallet::app {
+namespace {
+
+std::atomic<bool> g_reload{false};
+void on_sighup(int) { g_reload.store(true); }
+
+render::PresentMode present_mode_of(const RenderConfig& r) {
+  return r.present_mode == "mailbox"     ? render::PresentMode::mailbox
+         : r.present_mode == "immediate" ? render::PresentMode::immediate
+                                         : render::PresentMode::fifo;
+}
+
+KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
+  KioskStatesConfig k;
+  k.idle_after_s = o.idle_after_s.value_or(c.attract.idle_after_s);
+  return k;
+}
+
+std::string strike_line(const Scene& scene, const Impact& i) {
+  const Target& t = scene.targets.at(i.target);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s", format_seconds(i.t_ns).c_str(), t.id,
+                t.instrument.c_str(), t.note, i.speed_m_per_s);
+  return buf;
+}
+
+//! Everything that depends on the scene and the settings, rebuilt on a reload.
+struct Stage {
+  AppConfig config;
+  Scene scene;
+  AudioRig rig;
+  std::unique_ptr<audio::PortAudioOutput> output;
+  std::string audio_status;
+  std::unique_ptr<render::SceneRenderer> renderer;
+  std::unique_ptr<StrikeLoop> loop;
+};
+
+class WindowKiosk {
+ public:
+  WindowKiosk(const KioskOptions& o, KioskSetup setup);
+  int run();
+
+ private:
+  void build(KioskSetup setup);
+  void on_key(int key, int mods);
+  void handle_keys(Nanos now);
+  void reload();
+  void draw_overlay(Nanos now, double frame_ms);
+  void strike(const Impact& impact);
+  void apply_volume();
+
+  KioskOptions options_;
+  render::WindowSystem glfw_;
+  std::unique_ptr<render::Context> ctx_;
+  std::unique_ptr<render::PipelineCache> cache_;
+  std::unique_ptr<render::WindowTarget> window_;
+  std::unique_ptr<render::FontAtlas> font_;
+  std::unique_ptr<render::Overlay> overlay_;
+  // The stage goes before the states and ghost that refer to its scene.
+  std::unique_ptr<Stage> stage_;
+  std::unique_ptr<KioskStates> states_;
+  std::optional<AttractLoop> ghost_;
+  std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
+  double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
+  Nanos started_ = 0;
+};
+
+WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup) : options_(o) {
+  render::ContextOptions co;
+  co.validation = validation_from_env();
+  co.device_name = o.device.empty() ? setup.config.render.device : o.device;
+  co.instance_extensions = render::WindowSystem::instance_extensions();
+  co.swapchain = true;
+  ctx_ = std::make_unique<render::Context>(co);
+  cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
+  render::WindowOptions wo;
+  const VkExtent2D size = parse_size(o.size, "--size");
+  wo.width = static_cast<int>(size.width);
+  wo.height = static_cast<int>(size.height);
+  wo.fullscreen = !o.windowed;
+  wo.hide_cursor = !o.windowed;
+  wo.monitor = setup.config.render.monitor;
+  wo.present_mode = present_mode_of(setup.config.render);
+  window_ = std::make_unique<render::WindowTarget>(*ctx_, wo);
+  glfwSetWindowUserPointer(window_->window(), this);
+  glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (action == GLFW_PRESS || action == GLFW_REPEAT)
+      static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
+  });
+  font_ = std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
+                                              std::max(14.0f, static_cast<float>(window_->extent().height) / 24.0f));
+  overlay_ = std::make_unique<render::Overlay>(*font_);
+  started_ = monotonic_now();
+  volume_ = setup.config.audio.volume;
+  gain_ = setup.config.actuator.gain;
+  build(std::move(setup));
+  std::fprintf(stderr, "<6>mallet run: %s, %ux%u, %s\n", ctx_->device_name().c_str(), window_->extent().width,
+               window_->extent().height, stage_->audio_status.c_str());
+}
+
+void WindowKiosk::build(KioskSetup setup) {
+  auto stage = std::make_unique<Stage>();
+  stage->config = std::move(setup.config);
+  stage->scene = std::move(setup.scene);
+  const AppConfig& c = stage->config;
+  render::RenderSettings rs;
+  rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
+                                       : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
+  stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(), rs,
+                                                            cache_->get());
+  stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
+  stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
+  // The old output must stop before the new one opens the device.
+  if (stage_ && stage_->output) stage_->output->stop();
+  try {
+    stage->output = std::make_unique<audio::PortAudioOutput>(*stage->rig.engine, c.audio);
+    stage->output->start();
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", stage->output->device().name.c_str(),
+                  stage->output->output_latency_s() * 1e3);
+    stage->audio_status = buf;
+  } catch (const std::exception& e) {  // the scene still plays, silently
+    std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
+    stage->output.reset();
+    stage->audio_status = "audio: none (running silent)";
+  }
+  const Nanos now = monotonic_now();
+  ghost_.reset();
+  stage_ = std::move(stage);
+  states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
+  states_->input_source(now, InputSource::mouse);  // the Wii Remote is not wired into the kiosk yet
+  apply_volume();
+}
+
+void WindowKiosk::apply_volume() {
+  const double attract = states_ && states_->attract_volume() ? stage_->config.attract.volume : 1.0;
+  stage_->rig.engine->set_acoustic_volume(volume_ * attract);
+  stage_->rig.engine->set_actuator_gain(gain_);
+}
+
+void WindowKiosk::on_key(int key, int mods) { keys_.emplace_back(key, mods); }
+
+void WindowKiosk::handle_keys(Nanos now) {
+  for (const auto& [key, mods] : keys_) {
+    const bool chord = key == GLFW_KEY_O && (mods & GLFW_MOD_CONTROL) && (mods & GLFW_MOD_ALT);
+    if (chord) {
+      states_->operator_chord(now);
+      continue;
+    }
+    if (states_->state() != KioskState::operator_page) continue;  // visitors' keys do nothing
+    switch (key) {
+      case GLFW_KEY_ESCAPE: states_->operator_page_closed(now); break;
+      case GLFW_KEY_Q: states_->quit_requested(now); break;
+      case GLFW_KEY_R: states_->recalibrate(now); break;
+      case GLFW_KEY_UP: volume_ = std::min(1.0, volume_ + 0.05); break;
+      case GLFW_KEY_DOWN: volume_ = std::max(0.0, volume_ - 0.05); break;
+      case GLFW_KEY_RIGHT: gain_ = std::min(1.0, gain_ + 0.02); break;
+      case GLFW_KEY_LEFT: gain_ = std::max(0.0, gain_ - 0.02); break;
+      default: break;
+    }
+  }
+  keys_.clear();
+}
+
+void WindowKiosk::reload() {
+  std::string why;
+  std::optional<KioskSetup> setup = load_setup(options_, why);
+  if (!setup) {
+    std::fprintf(stderr, "<4>reload refused, the running configuration stays: %s\n", why.c_str());
+    return;
+  }
+  try {
+    vkDeviceWaitIdle(ctx_->device());
+    volume_ = setup->config.audio.volume;
+    gain_ = setup->config.actuator.gain;
+    build(std::move(*setup));
+    std::fprintf(stderr, "<5>reloaded the settings and the scene\n");
+  } catch (const FileError& e) {  // e.g. a model the new scene names is broken
+    std::fprintf(stderr, "<4>reload refused, the running configuration stays: %s\n", e.what());
+  }
+}
+
+void WindowKiosk::strike(const Impact& impact) {
+  stage_->rig.engine->post(impact);
+  std::fprintf(stderr, "<6>%s\n", strike_line(stage_->scene, impact).c_str());
+}
+
+void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
+  render::Overlay& o = *overlay_;
+  o.clear();
+  const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
+  const float px = font_->pixel_height();
+  if (const KioskHint hint = states_->hint(); hint != KioskHint::none) {
+    const std::string text(hint_text(hint));
+    const float bw = font_->measure(text) + 2 * px, bh = px * 1.8f, y = h * 0.08f;
+    o.fill_rect((w - bw) / 2, y, bw, bh, {0.0f, 0.0f, 0.0f, 0.55f});
+    o.text(w / 2, y + bh / 2 + px * 0.35f, text, {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
+  }
+  if (states_->overlay().mouse_notice)
+    o.text(px, h - px, "Mouse", {1.0f, 1.0f, 1.0f, 0.35f});
+  if (states_->state() != KioskState::operator_page) return;
+  char lines[8][160];
+  const double uptime = to_seconds(now - started_);
+  std::snprintf(lines[0], sizeof lines[0], "Operator — Mallet");
+  std::snprintf(lines[1], sizeof lines[1], "input: mouse (Wii Remote not wired yet)");
+  std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
+  std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,
+                std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
+  std::snprintf(lines[4], sizeof lines[4], "volume %.0f %%  (Up / Down)", volume_ * 100);
+  std::snprintf(lines[5], sizeof lines[5], "actuator gain %.2f  (Left / Right)", gain_);
+  std::snprintf(lines[6], sizeof lines[6], "R recalibrate    Q quit    Esc close");
+  std::snprintf(lines[7], sizeof lines[7], "scene: %s", stage_->scene.file.c_str());
+  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 28), ph = line * 9;
+  const float x0 = (w - pw) / 2, y0 = (h - ph) / 2;
+  o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
+  o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
+  for (int i = 0; i < 8; ++i)
+    o.text(x0 + px, y0 + line * static_cast<float>(i + 1), lines[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
+}
+
+int WindowKiosk::run() {
+  double last_x = -1, last_y = -1;
+  const Nanos quit_after = static_cast<Nanos>(std::llround(options_.quit_after_s * 1e9));
+  Nanos last_frame = monotonic_now();
+  double frame_ms = 0;
+  for (;;) {
+    glfwPollEvents();
+    const Nanos now = monotonic_now();
+    frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
+    last_frame = now;
+    if (reload_requested()) reload();
+    handle_keys(now);
+    if (window_->close_requested()) {
+      glfwSetWindowShouldClose(window_->window(), GLFW_FALSE);
+      if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes from the page
+      states_->window_close_requested(now);
+    }
+    if (states_->should_quit() || (quit_after > 0 && now - started_ >= quit_after)) break;
+
+    double x = 0, y = 0;
+    int w = 1, h = 1;
+    glfwGetCursorPos(window_->window(), &x, &y);
+    glfwGetWindowSize(window_->window(), &w, &h);
+    const bool moved = last_x >= 0 && (x != last_x || y != last_y);
+    last_x = x;
+    last_y = y;
+    const Vec2 screen{x / std::max(w, 1), y / std::max(h, 1)};
+    if (moved) states_->pointer(now, screen);
+    states_->tick(now);
+    apply_volume();
+
+    if (states_->visitor_plays() && moved) {
+      if (ghost_) {  // a visitor takes over from the ghost within this frame
+        ghost_.reset();
+        stage_->loop->reset();
+      }
+      if (auto impact = stage_->loop->feed(now, stage_->scene.screen_to_world.map(screen.x, screen.y)))
+        strike(*impact);
+    } else if (states_->ghost_plays()) {
+      if (!ghost_) {
+        ghost_.emplace(stage_->scene, now);
+        stage_->loop->reset();
+      }
+      for (const PointerSample& s : ghost_->samples_until(now))
+        if (auto impact = stage_->loop->feed(s.t_ns, {s.x, s.y})) strike(*impact);
+    } else {
+      ghost_.reset();
+    }
+
+    draw_overlay(now, frame_ms);
+    render::FrameState state;
+    state.mallet_centre = stage_->loop->displayed(window_->predicted_present(now));
+    state.overlay = overlay_.get();
+    window_->draw(*stage_->renderer, state);
+  }
+  vkDeviceWaitIdle(ctx_->device());
+  if (stage_->output) stage_->output->stop();
+  if (ctx_->validation_messages() > 0) {
+    std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",
+                 static_cast<unsigned long long>(ctx_->validation_messages()), ctx_->first_validation_message().c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void watch_for_reload() {
+  struct sigaction sa {};
+  sa.sa_handler = on_sighup;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGHUP, &sa, nullptr);
+}
+
+bool reload_requested() { return g_reload.exchange(false); }
+
+std::optional<KioskSetup> load_setup(const KioskOptions& o, std::string& why) {
+  try {
+    KioskSetup s{o.config ? config::load_app_config(*o.config) : AppConfig{}, config::load_scene(o.scene)};
+    return s;
+  } catch (const FileError& e) {
+    why = e.what();
+    return std::nullopt;
+  }
+}
+
+int run_window_kiosk(const KioskOptions& options, Scene scene, AppConfig config) {
+  watch_for_reload();
+  WindowKiosk kiosk(options, KioskSetup{std::move(config), std::move(scene)});
+  return kiosk.run();
+}
+
+}  // namespace mallet::app

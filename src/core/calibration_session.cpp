@@ -1,0 +1,250 @@
+#include "core/calibration_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <variant>
+
+namespace mallet {
+
+namespace {
+
+bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+std::string px_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+// |H(camera) − target| in screen px; nothing where H sends the point to infinity.
+std::optional<double> screen_error_px(const Homography& h, Vec2 camera, Vec2 target, ScreenSize screen) {
+  const auto p = h.try_map(camera);
+  if (!p) return std::nullopt;
+  return std::hypot((p->x - target.x) * screen.width_px, (p->y - target.y) * screen.height_px);
+}
+
+}  // namespace
+
+std::string validate(const CalibrationSessionConfig& c) {
+  auto seconds_ok = [](double s) { return std::isfinite(s) && s > 0 && from_seconds(s).has_value(); };
+  auto px_ok = [](double v) { return std::isfinite(v) && v > 0; };
+  if (c.columns < 2) return "columns must be >= 2";
+  if (c.rows < 2) return "rows must be >= 2";
+  if (!(c.margin_x >= 0 && c.margin_x < 0.5)) return "margin_x must be >= 0 and < 0.5";
+  if (!(c.margin_y >= 0 && c.margin_y < 0.5)) return "margin_y must be >= 0 and < 0.5";
+  if (!seconds_ok(c.dwell_s)) return "dwell_s must be a finite number of seconds > 0";
+  if (!px_ok(c.dwell_radius_camera_px)) return "dwell_radius_camera_px must be a finite number > 0";
+  if (!px_ok(c.max_std_dev_camera_px)) return "max_std_dev_camera_px must be a finite number > 0";
+  if (!seconds_ok(c.max_gap_s)) return "max_gap_s must be a finite number of seconds > 0";
+  if (c.min_dwell_samples < 1) return "min_dwell_samples must be >= 1";
+  if (!(std::isfinite(c.min_separation_camera_px) && c.min_separation_camera_px >= 0))
+    return "min_separation_camera_px must be a finite number >= 0";
+  if (!px_ok(c.max_error_screen_px)) return "max_error_screen_px must be a finite number > 0";
+  if (c.repeat_worst < 1) return "repeat_worst must be >= 1";
+  if (c.max_repeat_rounds < 0) return "max_repeat_rounds must be >= 0";
+  if (!px_ok(c.screen.width_px) || !px_ok(c.screen.height_px)) return "screen size must be > 0";
+  return {};
+}
+
+std::vector<Vec2> calibration_grid(const CalibrationSessionConfig& c) {
+  std::vector<Vec2> out;
+  for (int r = 0; r < c.rows; ++r)
+    for (int k = 0; k < c.columns; ++k)
+      out.push_back({c.margin_x + (1 - 2 * c.margin_x) * k / (c.columns - 1),
+                     c.margin_y + (1 - 2 * c.margin_y) * r / (c.rows - 1)});
+  return out;
+}
+
+const char* to_string(CalibrationStep step) {
+  switch (step) {
+    case CalibrationStep::dwelling: return "dwelling";
+    case CalibrationStep::dwell_reset: return "dwell_reset";
+    case CalibrationStep::unstable: return "unstable";
+    case CalibrationStep::still_on_last: return "still_on_last";
+    case CalibrationStep::ignored: return "ignored";
+    case CalibrationStep::target_measured: return "target_measured";
+    case CalibrationStep::round_rejected: return "round_rejected";
+    case CalibrationStep::accepted: return "accepted";
+    case CalibrationStep::failed: return "failed";
+  }
+  return "?";
+}
+
+CalibrationSession::CalibrationSession(CalibrationSessionConfig config)
+    : CalibrationSession(config, calibration_grid(config)) {}
+
+CalibrationSession::CalibrationSession(CalibrationSessionConfig config, std::vector<Vec2> targets)
+    : config_(config), targets_(std::move(targets)) {
+  if (const std::string problem = validate(config_); !problem.empty()) throw std::invalid_argument(problem);
+  if (targets_.size() < 4) throw std::invalid_argument("a calibration needs at least 4 targets");
+  if (!std::all_of(targets_.begin(), targets_.end(), finite))
+    throw std::invalid_argument("calibration targets must be finite");
+  dwell_ns_ = *from_seconds(config_.dwell_s);
+  max_gap_ns_ = *from_seconds(config_.max_gap_s);
+  measured_.assign(targets_.size(), std::nullopt);
+  queue_.resize(targets_.size());
+  std::iota(queue_.begin(), queue_.end(), 0);
+}
+
+std::optional<int> CalibrationSession::current_target() const {
+  if (status_ != CalibrationStatus::measuring || queue_.empty()) return std::nullopt;
+  return queue_.front();
+}
+
+double CalibrationSession::progress() const {
+  if (window_.empty()) return 0.0;
+  return std::min(1.0, to_seconds(window_last_ns_ - window_first_ns_) / to_seconds(dwell_ns_));
+}
+
+std::optional<Vec2> CalibrationSession::measured(int target) const {
+  if (target < 0 || static_cast<std::size_t>(target) >= measured_.size()) return std::nullopt;
+  return measured_[static_cast<std::size_t>(target)];
+}
+
+void CalibrationSession::clear_window() {
+  window_.clear();
+  sum_x_ = sum_y_ = 0;
+}
+
+CalibrationStep CalibrationSession::feed(Nanos t_ns, Vec2 p) {
+  if (status_ != CalibrationStatus::measuring || !finite(p) || (last_sample_ns_ && t_ns <= *last_sample_ns_)) {
+    ++counters_.ignored;
+    return CalibrationStep::ignored;
+  }
+  ++counters_.samples;
+  last_sample_ns_ = t_ns;
+  if (must_leave_) {
+    if (distance(p, *must_leave_) <= config_.min_separation_camera_px) return CalibrationStep::still_on_last;
+    must_leave_.reset();
+  }
+  CalibrationStep step = CalibrationStep::dwelling;
+  if (!window_.empty()) {
+    const double n = static_cast<double>(window_.size());
+    const Vec2 mean{sum_x_ / n, sum_y_ / n};
+    if (t_ns - window_last_ns_ > max_gap_ns_ || distance(p, mean) > config_.dwell_radius_camera_px) {
+      clear_window();
+      ++counters_.dwell_resets;
+      step = CalibrationStep::dwell_reset;
+    }
+  }
+  if (window_.empty()) window_first_ns_ = t_ns;
+  window_.push_back(p);
+  window_last_ns_ = t_ns;
+  sum_x_ += p.x;
+  sum_y_ += p.y;
+  if (static_cast<int>(window_.size()) < config_.min_dwell_samples || t_ns - window_first_ns_ < dwell_ns_) return step;
+
+  const double n = static_cast<double>(window_.size());
+  const Vec2 mean{sum_x_ / n, sum_y_ / n};
+  double sq = 0;
+  for (Vec2 q : window_) sq += (q.x - mean.x) * (q.x - mean.x) + (q.y - mean.y) * (q.y - mean.y);
+  clear_window();
+  if (std::sqrt(sq / n) > config_.max_std_dev_camera_px) {
+    ++counters_.unstable_windows;
+    return CalibrationStep::unstable;
+  }
+  measured_[static_cast<std::size_t>(queue_.front())] = mean;
+  queue_.erase(queue_.begin());
+  must_leave_ = mean;
+  return queue_.empty() ? finish_round() : CalibrationStep::target_measured;
+}
+
+void CalibrationSession::repeat(std::vector<int> which) {
+  ++round_;
+  ++counters_.rounds_rejected;
+  for (int i : which) measured_[static_cast<std::size_t>(i)].reset();
+  queue_ = std::move(which);
+}
+
+CalibrationStep CalibrationSession::finish_round() {
+  std::vector<Vec2> from;
+  for (const auto& m : measured_) from.push_back(*m);
+  const auto result = fit_homography(from, targets_, config_.screen);
+  last_fit_.reset();
+  leave_one_out_px_.clear();
+  without_px_.clear();
+  const bool rounds_left = round_ < config_.max_repeat_rounds;
+  if (const auto* reason = std::get_if<std::string>(&result)) {
+    failure_ = "the fit was refused: " + *reason;
+    if (!rounds_left) {
+      status_ = CalibrationStatus::failed;
+      return CalibrationStep::failed;
+    }
+    std::vector<int> all(targets_.size());
+    std::iota(all.begin(), all.end(), 0);
+    repeat(std::move(all));
+    return CalibrationStep::round_rejected;
+  }
+  last_fit_ = std::get<HomographyFit>(result);
+  const HomographyFit& fit = *last_fit_;
+
+  // Each point against the fit of all the others; where those cannot be fitted, its
+  // full-fit error stands in and the others' error is +inf.
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    std::vector<Vec2> f, t;
+    for (std::size_t j = 0; j < from.size(); ++j)
+      if (j != i) {
+        f.push_back(from[j]);
+        t.push_back(targets_[j]);
+      }
+    double err = fit.reprojection_error_px[i];
+    double without = std::numeric_limits<double>::infinity();
+    if (f.size() >= 4) {
+      const auto others = fit_homography(f, t, config_.screen);
+      if (const auto* o = std::get_if<HomographyFit>(&others)) {
+        if (auto e = screen_error_px(o->h, from[i], targets_[i], config_.screen)) err = *e;
+        without = o->max_px;
+      }
+    }
+    leave_one_out_px_.push_back(err);
+    without_px_.push_back(without);
+  }
+  if (fit.max_px <= config_.max_error_screen_px) {
+    failure_.clear();
+    status_ = CalibrationStatus::accepted;
+    return CalibrationStep::accepted;
+  }
+  failure_ = "the largest reprojection error is " + px_text(fit.max_px) + " px, above " +
+             px_text(config_.max_error_screen_px) + " px";
+  if (!rounds_left) {
+    failure_ += " after " + std::to_string(round_ + 1) + " round(s)";
+    status_ = CalibrationStatus::failed;
+    return CalibrationStep::failed;
+  }
+  std::vector<int> order(targets_.size());
+  std::iota(order.begin(), order.end(), 0);
+  // With 5 targets every fit of the other 4 is exact: only the prediction error tells.
+  const bool others_overdetermined = targets_.size() >= 6;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    if (others_overdetermined && without_px_[ua] != without_px_[ub]) return without_px_[ua] < without_px_[ub];
+    return leave_one_out_px_[ua] > leave_one_out_px_[ub];
+  });
+  order.resize(std::min(order.size(), static_cast<std::size_t>(config_.repeat_worst)));
+  repeat(std::move(order));
+  return CalibrationStep::round_rejected;
+}
+
+std::optional<Calibration> CalibrationSession::calibration(std::string remote, std::string created_utc) const {
+  if (status_ != CalibrationStatus::accepted || !last_fit_) return std::nullopt;
+  const HomographyFit& fit = *last_fit_;
+  Calibration c;
+  c.camera_to_screen = fit.h;
+  c.screen = fit.screen;
+  c.points = static_cast<std::int64_t>(fit.reprojection_error_px.size());
+  c.rms_error_screen_px = fit.rms_px;
+  c.max_error_screen_px = fit.max_px;
+  c.rms_error_camera_px = fit.camera_rms_px;
+  c.max_error_camera_px = fit.camera_max_px;
+  c.remote = std::move(remote);
+  c.created_utc = std::move(created_utc);
+  c.created_by = "mallet run (calibration screen)";
+  return c;
+}
+
+}  // namespace mallet

@@ -1,0 +1,209 @@
+#include "core/kiosk_states.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mallet {
+
+namespace {
+
+bool positive_seconds(double s) { return std::isfinite(s) && s > 0 && from_seconds(s).has_value(); }
+
+}  // namespace
+
+std::string validate(const KioskStatesConfig& c) {
+  if (!positive_seconds(c.idle_after_s)) return "idle_after_s must be a finite number of seconds > 0";
+  if (!std::isfinite(c.dead_band_screen_units) || c.dead_band_screen_units < 0)
+    return "dead_band_screen_units must be a finite number >= 0";
+  if (!std::isfinite(c.lost_hint_after_s) || c.lost_hint_after_s < 0 || !from_seconds(c.lost_hint_after_s))
+    return "lost_hint_after_s must be a finite number of seconds >= 0";
+  if (!positive_seconds(c.close_notice_s)) return "close_notice_s must be a finite number of seconds > 0";
+  return {};
+}
+
+const char* to_string(KioskState state) {
+  switch (state) {
+    case KioskState::attract: return "attract";
+    case KioskState::play: return "play";
+    case KioskState::calibration: return "calibration";
+    case KioskState::operator_page: return "operator";
+  }
+  return "?";
+}
+
+std::string_view hint_text(KioskHint hint) {
+  switch (hint) {
+    case KioskHint::none: return "";
+    case KioskHint::invitation: return "Pick up the mallet and strike a bar";
+    case KioskHint::point_at_screen: return "Point the mallet at the screen";
+    case KioskHint::close_needs_chord: return "This kiosk closes from the operator page only";
+  }
+  return "";
+}
+
+KioskStates::KioskStates(KioskStatesConfig config, Nanos now_ns) : config_(config) {
+  if (const std::string problem = validate(config_); !problem.empty()) throw std::invalid_argument(problem);
+  idle_after_ns_ = *from_seconds(config_.idle_after_s);
+  lost_hint_ns_ = *from_seconds(config_.lost_hint_after_s);
+  close_notice_ns_ = *from_seconds(config_.close_notice_s);
+  since_ = now_ = last_movement_ = lost_since_ = now_ns;
+}
+
+Nanos KioskStates::advance(Nanos t_ns) {
+  now_ = std::max(now_, t_ns);
+  if (state_ == KioskState::play && now_ - last_movement_ >= idle_after_ns_) enter(KioskState::attract, now_);
+  if (close_refused_ && now_ - close_refused_at_ >= close_notice_ns_) close_refused_ = false;
+  return now_;
+}
+
+bool KioskStates::enter(KioskState next, Nanos t_ns) {
+  if (next == state_) return false;
+  state_ = next;
+  since_ = t_ns;
+  return true;
+}
+
+void KioskStates::play_from(Nanos t_ns) {
+  last_movement_ = t_ns;
+  enter(KioskState::play, t_ns);
+}
+
+bool KioskStates::tick(Nanos now_ns) {
+  const KioskState before = state_;
+  advance(now_ns);
+  return state_ != before;
+}
+
+bool KioskStates::pointer(Nanos t_ns, Vec2 screen) {
+  const KioskState before = state_;
+  const Nanos t = advance(t_ns);
+  if (!std::isfinite(screen.x) || !std::isfinite(screen.y)) return state_ != before;
+  if (!tracking_) tracking_ = true;  // a sample is the dot, seen
+  const bool real = !have_anchor_ || std::hypot(screen.x - anchor_.x, screen.y - anchor_.y) > config_.dead_band_screen_units;
+  if (!real) return state_ != before;
+  // The very first sample only sets where the stick rests: it is no movement yet.
+  const bool first = !have_anchor_;
+  have_anchor_ = true;
+  anchor_ = screen;
+  if (first) return state_ != before;
+  if (state_ == KioskState::attract || state_ == KioskState::play) play_from(t);
+  return state_ != before;
+}
+
+bool KioskStates::tracking_lost(Nanos t_ns) {
+  const KioskState before = state_;
+  const Nanos t = advance(t_ns);
+  if (source_ != InputSource::mouse && tracking_) {
+    tracking_ = false;
+    lost_since_ = t;
+  }
+  return state_ != before;
+}
+
+bool KioskStates::tracking_regained(Nanos t_ns) {
+  const KioskState before = state_;
+  advance(t_ns);
+  tracking_ = true;
+  return state_ != before;
+}
+
+bool KioskStates::input_source(Nanos t_ns, InputSource source) {
+  const KioskState before = state_;
+  const Nanos t = advance(t_ns);
+  if (source != source_) {
+    source_ = source;
+    have_anchor_ = false;  // another device's coordinates say nothing about this one's rest
+    tracking_ = source == InputSource::mouse;
+    lost_since_ = t;
+  }
+  return state_ != before;
+}
+
+bool KioskStates::operator_chord(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ == KioskState::operator_page) return false;
+  return enter(KioskState::operator_page, t);
+}
+
+bool KioskStates::recalibrate(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ != KioskState::operator_page || source_ == InputSource::mouse) return false;
+  calibration_from_operator_ = true;
+  calibration_pending_ = false;
+  return enter(KioskState::calibration, t);
+}
+
+bool KioskStates::calibration_needed(Nanos t_ns) {
+  const KioskState before = state_;
+  const Nanos t = advance(t_ns);
+  if (source_ == InputSource::mouse) return state_ != before;
+  if (state_ == KioskState::operator_page) {
+    calibration_pending_ = true;
+    return false;
+  }
+  if (state_ == KioskState::calibration) return state_ != before;
+  calibration_from_operator_ = false;
+  enter(KioskState::calibration, t);
+  return state_ != before;
+}
+
+bool KioskStates::calibration_accepted(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ != KioskState::calibration) return false;
+  play_from(t);
+  return true;
+}
+
+bool KioskStates::calibration_cancelled(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ != KioskState::calibration) return false;
+  if (calibration_from_operator_) return enter(KioskState::operator_page, t);
+  play_from(t);
+  return true;
+}
+
+bool KioskStates::operator_page_closed(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ != KioskState::operator_page) return false;
+  if (calibration_pending_ && source_ != InputSource::mouse) {
+    calibration_pending_ = false;
+    calibration_from_operator_ = false;
+    return enter(KioskState::calibration, t);
+  }
+  calibration_pending_ = false;
+  play_from(t);
+  return true;
+}
+
+bool KioskStates::quit_requested(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ == KioskState::operator_page) {
+    quit_ = true;
+    return true;
+  }
+  close_refused_ = true;
+  close_refused_at_ = t;
+  return false;
+}
+
+bool KioskStates::window_close_requested(Nanos t_ns) { return quit_requested(t_ns); }
+
+KioskOverlay KioskStates::overlay() const {
+  KioskOverlay o;
+  o.invitation = state_ == KioskState::attract;
+  o.point_at_screen = state_ == KioskState::play && !tracking_ && now_ - lost_since_ >= lost_hint_ns_;
+  o.mouse_notice = (state_ == KioskState::attract || state_ == KioskState::play) && source_ == InputSource::mouse;
+  o.close_needs_chord = close_refused_ && now_ - close_refused_at_ < close_notice_ns_;
+  return o;
+}
+
+KioskHint KioskStates::hint() const {
+  const KioskOverlay o = overlay();
+  if (o.close_needs_chord) return KioskHint::close_needs_chord;
+  if (o.point_at_screen) return KioskHint::point_at_screen;
+  if (o.invitation) return KioskHint::invitation;
+  return KioskHint::none;
+}
+
+}  // namespace mallet
