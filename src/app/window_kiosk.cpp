@@ -16,6 +16,7 @@
 #include "app/render_setup.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
+#include "app/systemd_notify.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
@@ -76,6 +77,7 @@ class WindowKiosk {
   void draw_overlay(Nanos now, double frame_ms);
   void strike(const Impact& impact);
   void apply_volume();
+  void heartbeat(Nanos now);
 
   KioskOptions options_;
   render::WindowSystem glfw_;
@@ -91,6 +93,11 @@ class WindowKiosk {
   std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
   Nanos started_ = 0;
+  // Liveness: the watchdog is fed only while input, audio and render all make progress.
+  SystemdNotifier notifier_ = SystemdNotifier::from_environment();
+  Nanos next_watchdog_ = 0, next_log_ = 0;
+  std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
+  std::uint64_t strikes_ = 0, callbacks_at_beat_ = 0;
 };
 
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup) : options_(o) {
@@ -208,7 +215,37 @@ void WindowKiosk::reload() {
   }
 }
 
+void WindowKiosk::heartbeat(Nanos now) {
+  const Nanos interval = notifier_.watchdog_interval().value_or(0);
+  const bool beat_due = interval > 0 && now >= next_watchdog_;
+  const bool log_due = now >= next_log_;
+  if (!beat_due && !log_due) return;
+  const audio::OutputCounters a = stage_->output ? stage_->output->counters() : audio::OutputCounters{};
+  // Audio is alive when its callbacks advance, or when its supervisor is retrying a lost
+  // device (that is survived, silently), or when the kiosk runs without a device at all.
+  const bool audio_alive =
+      !stage_->output || a.callbacks > callbacks_at_beat_ || !stage_->output->device_ok();
+  const bool render_alive = frames_ > frames_at_beat_;
+  const bool input_alive = polls_ > polls_at_beat_;
+  if (beat_due) {
+    if (audio_alive && render_alive && input_alive) notifier_.watchdog();
+    next_watchdog_ = now + interval;
+  }
+  if (log_due) {
+    std::fprintf(stderr, "<6>heartbeat: %s, frames %llu, strikes %llu, audio callbacks %llu, xruns %llu%s\n",
+                 to_string(states_->state()), static_cast<unsigned long long>(frames_),
+                 static_cast<unsigned long long>(strikes_), static_cast<unsigned long long>(a.callbacks),
+                 static_cast<unsigned long long>(a.xruns), stage_->output && !stage_->output->device_ok()
+                                                               ? ", audio device lost (retrying)" : "");
+    next_log_ = now + 60 * kNanosPerSecond;
+  }
+  frames_at_beat_ = frames_;
+  polls_at_beat_ = polls_;
+  callbacks_at_beat_ = a.callbacks;
+}
+
 void WindowKiosk::strike(const Impact& impact) {
+  ++strikes_;
   stage_->rig.engine->post(impact);
   std::fprintf(stderr, "<6>%s\n", strike_line(stage_->scene, impact).c_str());
 }
@@ -250,13 +287,19 @@ int WindowKiosk::run() {
   double last_x = -1, last_y = -1;
   const Nanos quit_after = static_cast<Nanos>(std::llround(options_.quit_after_s * 1e9));
   Nanos last_frame = monotonic_now();
+  next_log_ = last_frame + 60 * kNanosPerSecond;
   double frame_ms = 0;
   for (;;) {
     glfwPollEvents();
     const Nanos now = monotonic_now();
     frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
     last_frame = now;
-    if (reload_requested()) reload();
+    ++polls_;
+    if (reload_requested()) {
+      notifier_.reloading();
+      reload();
+      notifier_.ready();
+    }
     handle_keys(now);
     if (window_->close_requested()) {
       glfwSetWindowShouldClose(window_->window(), GLFW_FALSE);
@@ -299,8 +342,13 @@ int WindowKiosk::run() {
     render::FrameState state;
     state.mallet_centre = stage_->loop->displayed(window_->predicted_present(now));
     state.overlay = overlay_.get();
-    window_->draw(*stage_->renderer, state);
+    if (window_->draw(*stage_->renderer, state)) ++frames_;
+    if (frames_ == 1) notifier_.ready();
+    heartbeat(now);
   }
+  notifier_.stopping();
+  std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
+               static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes_));
   vkDeviceWaitIdle(ctx_->device());
   if (stage_->output) stage_->output->stop();
   if (ctx_->validation_messages() > 0) {

@@ -2,7 +2,15 @@
 // swapchain on lavapipe under a virtual X server (xvfb-run, from Debian's xvfb), draws
 // frames, and writes the last presented frame; it must match the offscreen render of
 // the same state.
+#include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cstdlib>
+#include <vector>
+
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 
@@ -114,6 +122,48 @@ TEST(WindowSmoke, SighupReloadsTheSettingsAndRefusesABrokenFile) {
   ASSERT_TRUE(wait_for(dir / "log.txt", "reloaded the settings")) << slurp(dir / "log.txt");
   // The kiosk kept running through both and quits by itself.
   EXPECT_TRUE(wait_for(dir / "log.txt", "strike t=")) << slurp(dir / "log.txt");
+}
+
+TEST(WindowSmoke, UnderSystemdTheKioskSaysReadyFeedsTheWatchdogAndSaysStopping) {
+  const auto dir = test::scratch_dir();
+  const auto socket_path = dir / "notify.sock";
+  const int fd = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", socket_path.c_str());
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+
+  // A datagram socket queues only a few messages: read them while the kiosk runs.
+  timeval timeout{0, 100'000};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  std::vector<std::string> messages;
+  std::atomic<bool> done{false};
+  std::thread reader([&] {
+    char buf[512];
+    while (!done.load()) {
+      const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+      if (n > 0) messages.emplace_back(buf, static_cast<std::size_t>(n));
+    }
+    for (ssize_t n; (n = ::recv(fd, buf, sizeof buf, MSG_DONTWAIT)) > 0;) messages.emplace_back(buf, n);
+  });
+  // Only the kiosk gets the variables: Xvfb, like any systemd-aware X server, would
+  // announce its own READY=1 on the same socket.
+  const std::string cmd = child_preload() + "xvfb-run -a -s '-screen 0 1024x768x24' env NOTIFY_SOCKET=" +
+                          socket_path.string() + " WATCHDOG_USEC=200000 " + std::string(MALLET_TEST_BINARY) +
+                          " run --windowed --size 160x90 --quit-after 2" +
+                          " --device llvmpipe > " + (dir / "log.txt").string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  done = true;
+  reader.join();
+  ASSERT_EQ(status, 0) << slurp(dir / "log.txt");
+  ::close(fd);
+  ASSERT_FALSE(messages.empty()) << slurp(dir / "log.txt");
+  EXPECT_EQ(messages.front(), "READY=1");
+  EXPECT_EQ(messages.back(), "STOPPING=1") << [&] { std::string all; for (auto& m : messages) all += m + " "; return all; }();
+  // Every 0.1 s for about 2 s: well over a handful, all while frames, input and audio ran.
+  const auto beats = std::count(messages.begin(), messages.end(), std::string("WATCHDOG=1"));
+  EXPECT_GE(beats, 5) << slurp(dir / "log.txt");
 }
 
 }  // namespace
