@@ -8,6 +8,7 @@
 // posted and counted by the engine; every replayed strike is accounted for each hour), no
 // voice left sounding after the last strike has decayed, and no heap growth between the
 // first hour and the last beyond a small bound.
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 
@@ -29,7 +30,8 @@
 #endif
 
 #ifdef MALLET_ASAN
-#include <sanitizer/allocator_interface.h>
+// From the sanitizer runtime (GCC does not ship its header, clang does).
+extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
 #else
 #include <malloc.h>
 #endif
