@@ -16,7 +16,10 @@ void register_run(CLI::App& app) {
       "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
       "sound and the actuator signal play on the configured audio device, and the attract mode's\n"
       "ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close\n"
-      "it; the operator quits with Ctrl+Alt+O. Each strike is logged on stderr.\n"
+      "it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, Q quit,\n"
+      "Esc close). SIGHUP re-reads the settings and the scene (a bad file is refused, the old ones\n"
+      "stay). Each strike and a heartbeat a minute are logged on stderr (journald priorities);\n"
+      "under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.\n"
       "Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs\n"
       "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
       "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
@@ -26,7 +29,7 @@ void register_run(CLI::App& app) {
                   "Settings file (default: " +
                       (o->config ? o->config->string() : std::string("built-in, same as config/mallet.toml")) + ")");
   cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
-  cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (closing it quits)");
+  cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (its close button quits)");
   cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
   cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
