@@ -7,21 +7,16 @@
 #include <memory>
 #include <span>
 
-#define GLFW_INCLUDE_VULKAN
-#include <GLFW/glfw3.h>
-
-#include "app/audio_setup.hpp"
 #include "app/data_paths.hpp"
 #include "app/render_setup.hpp"
-#include "app/simulate.hpp"
 #include "app/headless_loop.hpp"
-#include "app/strike_loop.hpp"
+#include "app/kiosk_text.hpp"
 #include "app/window_kiosk.hpp"
-#include "audio/portaudio_output.hpp"
 #include "audio/wav_file.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/kiosk_states.hpp"
 #include "core/sample_clock.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
@@ -30,26 +25,6 @@
 namespace mallet::app {
 namespace fs = std::filesystem;
 namespace {
-
-constexpr const char* kInvitation = "Pick up the mallet and strike a bar";
-
-//! The invitation of the attract mode, centred near the top, on a translucent band.
-void draw_invitation(render::Overlay& overlay, float width, float height) {
-  const render::FontAtlas& font = overlay.atlas();
-  const float w = font.measure(kInvitation) + 48, h = font.pixel_height() * 1.8f;
-  const float x = (width - w) / 2, y = height * 0.08f;
-  overlay.fill_rect(x, y, w, h, {0.0f, 0.0f, 0.0f, 0.55f});
-  overlay.text(width / 2, y + h / 2 + font.pixel_height() * 0.35f, kInvitation, {1.0f, 1.0f, 1.0f, 1.0f},
-               render::TextAlign::center);
-}
-
-std::string describe(const Scene& scene, const Impact& i) {
-  const Target& t = scene.targets.at(i.target);
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s", format_seconds(i.t_ns).c_str(), t.id,
-                t.instrument.c_str(), t.note, i.speed_m_per_s);
-  return buf;
-}
 
 fs::path new_out_dir() {
   const std::time_t now = std::time(nullptr);
@@ -72,7 +47,7 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
   const int rate = loop.sample_rate_hz();
   audio::WavWriter wav(out / "audio.wav", loop.channels(), rate);
   loop.on_audio = [&](std::span<const float> block) { wav.write(block); };
-  loop.on_strike = [&](const Impact& impact, bool) { say(describe(scene, impact)); };
+  loop.on_strike = [&](const Impact& impact, bool) { say(strike_line(scene, impact)); };
 
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
@@ -90,7 +65,8 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
   for (Nanos t = 0; t <= end; t += frame) {
     loop.advance(t);
     overlay.clear();
-    draw_invitation(overlay, static_cast<float>(ho.size.width), static_cast<float>(ho.size.height));
+    draw_banner(overlay, hint_text(KioskHint::invitation), static_cast<float>(ho.size.width),
+                static_cast<float>(ho.size.height));
     render::FrameState state;
     state.mallet_centre = loop.displayed(t);
     state.overlay = &overlay;

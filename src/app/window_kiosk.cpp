@@ -13,6 +13,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/data_paths.hpp"
+#include "app/kiosk_text.hpp"
 #include "app/render_setup.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
@@ -43,14 +44,6 @@ KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   KioskStatesConfig k;
   k.idle_after_s = o.idle_after_s.value_or(c.attract.idle_after_s);
   return k;
-}
-
-std::string strike_line(const Scene& scene, const Impact& i) {
-  const Target& t = scene.targets.at(i.target);
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s", format_seconds(i.t_ns).c_str(), t.id,
-                t.instrument.c_str(), t.note, i.speed_m_per_s);
-  return buf;
 }
 
 //! Everything that depends on the scene and the settings, rebuilt on a reload.
@@ -255,12 +248,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   o.clear();
   const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
   const float px = font_->pixel_height();
-  if (const KioskHint hint = states_->hint(); hint != KioskHint::none) {
-    const std::string text(hint_text(hint));
-    const float bw = font_->measure(text) + 2 * px, bh = px * 1.8f, y = h * 0.08f;
-    o.fill_rect((w - bw) / 2, y, bw, bh, {0.0f, 0.0f, 0.0f, 0.55f});
-    o.text(w / 2, y + bh / 2 + px * 0.35f, text, {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
-  }
+  if (const KioskHint hint = states_->hint(); hint != KioskHint::none) draw_banner(o, hint_text(hint), w, h);
   if (states_->overlay().mouse_notice)
     o.text(px, h - px, "Mouse", {1.0f, 1.0f, 1.0f, 0.35f});
   if (states_->state() != KioskState::operator_page) return;

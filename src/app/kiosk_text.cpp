@@ -1,0 +1,26 @@
+#include "app/kiosk_text.hpp"
+
+#include <cstdio>
+
+#include "app/simulate.hpp"
+
+namespace mallet::app {
+
+std::string strike_line(const Scene& scene, const Impact& i) {
+  const Target& t = scene.targets.at(i.target);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s", format_seconds(i.t_ns).c_str(), t.id,
+                t.instrument.c_str(), t.note, i.speed_m_per_s);
+  return buf;
+}
+
+void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height) {
+  const render::FontAtlas& font = overlay.atlas();
+  const float px = font.pixel_height();
+  const float w = font.measure(text) + 2 * px, h = px * 1.8f;
+  const float x = (width - w) / 2, y = height * 0.08f;
+  overlay.fill_rect(x, y, w, h, {0.0f, 0.0f, 0.0f, 0.55f});
+  overlay.text(width / 2, y + h / 2 + px * 0.35f, text, {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
+}
+
+}  // namespace mallet::app
