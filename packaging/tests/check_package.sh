@@ -114,6 +114,7 @@ stub adduser 'exit 0'
 stub deb-systemd-helper 'exit 0'
 stub systemctl 'exit 1'
 stub udevadm 'exit 1'
+# shellcheck disable=SC2016 # the stub's own $1
 stub getent '[ "$1" = passwd ] && exit 2; exit 0'  # no user mallet yet; every group exists
 for script in postinst prerm postrm; do
   [[ -x $work/control/$script ]] || fail "no executable $script"
@@ -151,7 +152,9 @@ unit=$work/root/usr/lib/systemd/system/mallet.service
 setting() { sed -n "s/^$1=//p" "$unit"; }
 [[ $(setting ExecStart) == /usr/libexec/mallet/mallet-kiosk ]] || fail "ExecStart=$(setting ExecStart)"
 [[ $(setting Restart) == always ]] || fail "Restart=$(setting Restart)"
-[[ $(setting RestartSec) =~ ^[0-9]+$ ]] && (($(setting RestartSec) >= 2)) || fail "RestartSec=$(setting RestartSec)"
+if ! [[ $(setting RestartSec) =~ ^[0-9]+$ ]] || (($(setting RestartSec) < 2)); then
+  fail "RestartSec=$(setting RestartSec), expected at least 2"
+fi
 [[ $(setting StartLimitIntervalSec) == 0 ]] || fail "StartLimitIntervalSec=$(setting StartLimitIntervalSec)"
 [[ $(setting RestartPreventExitStatus) == 0 ]] || fail "RestartPreventExitStatus=$(setting RestartPreventExitStatus)"
 [[ $(setting WatchdogSec) =~ ^[1-9][0-9]*$ ]] || fail "WatchdogSec=$(setting WatchdogSec)"
