@@ -232,18 +232,8 @@ CalibrationStep CalibrationSession::finish_round() {
 
 std::optional<Calibration> CalibrationSession::calibration(std::string remote, std::string created_utc) const {
   if (status_ != CalibrationStatus::accepted || !last_fit_) return std::nullopt;
-  const HomographyFit& fit = *last_fit_;
-  Calibration c;
-  c.camera_to_screen = fit.h;
-  c.screen = fit.screen;
-  c.points = static_cast<std::int64_t>(fit.reprojection_error_px.size());
-  c.rms_error_screen_px = fit.rms_px;
-  c.max_error_screen_px = fit.max_px;
-  c.rms_error_camera_px = fit.camera_rms_px;
-  c.max_error_camera_px = fit.camera_max_px;
-  c.remote = std::move(remote);
-  c.created_utc = std::move(created_utc);
-  c.created_by = "mallet run (calibration screen)";
+  Calibration c = calibration_from_fit(*last_fit_, "mallet run (calibration screen)", std::move(remote));
+  c.created_utc = std::move(created_utc);  // the caller's clock, so that tests are exact
   return c;
 }
 
