@@ -11,6 +11,11 @@
 //
 // SIGHUP reloads the settings and the scene; an invalid new file is refused with its
 // reason on stderr and the running configuration stays.
+//
+// Faults: a lost audio device is survived (silent, retried by PortAudioOutput); an
+// out-of-date swapchain is recreated (WindowTarget). A lost GPU device
+// (VK_ERROR_DEVICE_LOST) is not recovered in-process: the RenderError ends the run with
+// exit status 1, and systemd (Restart=always, RestartSec=2) starts a fresh kiosk.
 #include <filesystem>
 #include <optional>
 
