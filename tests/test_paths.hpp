@@ -7,6 +7,7 @@
 
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/impact.hpp"
 
 namespace mallet::test {
 
@@ -18,6 +19,18 @@ inline std::filesystem::path percussion_scene() { return config_dir() / "scenes"
 inline const Scene& percussion() {
   static const Scene scene = config::load_scene(percussion_scene());
   return scene;
+}
+
+//! A strike on a bar of the shipped scene at t with impact speed v, as the solver emits it.
+inline Impact strike(int target, Nanos t, double v) {
+  const Target& bar = percussion().targets[static_cast<std::size_t>(target)];
+  Impact i;
+  i.t_ns = t;
+  i.target = target;
+  i.material = bar.material;
+  i.note = bar.note;
+  i.speed_m_per_s = v;
+  return i;
 }
 
 inline constexpr Nanos kDay = 86'400 * kNanosPerSecond;

@@ -15,6 +15,7 @@
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/impact.hpp"
+#include "core/time.hpp"
 
 namespace mallet::app {
 
@@ -42,11 +43,6 @@ void print_devices() {
                 d.max_output_channels, d.default_sample_rate_hz, d.default_low_latency_s * 1e3,
                 d.is_default ? "  (default)" : "");
   std::printf("Select one with [audio].device in the settings file: its index or a part of its name.\n");
-}
-
-Nanos steady_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
 }
 
 void run_audio_test(const AudioTestOptions& o) {
@@ -78,7 +74,7 @@ void run_audio_test(const AudioTestOptions& o) {
   output.start();
   const Target& bar = scene.targets[static_cast<std::size_t>(o.target)];
   Impact impact;
-  impact.t_ns = steady_now_ns() + 50'000'000;  // 50 ms from now
+  impact.t_ns = monotonic_now() + 50'000'000;  // 50 ms from now
   impact.target = bar.id;
   impact.material = bar.material;
   impact.note = bar.note;

@@ -15,6 +15,8 @@
 #define MALLET_HAVE_ALSA_ERROR_HANDLER 1
 #endif
 
+#include "core/time.hpp"
+
 namespace mallet::audio {
 
 namespace {
@@ -175,11 +177,6 @@ Nanos frames_to_ns(std::int64_t frames, int rate) {
   return (frames / rate) * kNanosPerSecond + (frames % rate) * kNanosPerSecond / rate;
 }
 
-Nanos steady_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 }  // namespace
 
 class PortAudioOutput::Session : public PaSession {};
@@ -261,7 +258,7 @@ void PortAudioOutput::start_stream_locked() {
   // Frame 0 is heard one output latency after the start; frames already rendered (a
   // restart, a reopen) lie before it. See FRAME 0'S TIME in the header.
   const Nanos latency_ns = static_cast<Nanos>(std::llround(latency_s_ * 1e9));
-  engine_.set_origin(steady_now_ns() + latency_ns - frames_to_ns(engine_.position(), sample_rate_));
+  engine_.set_origin(monotonic_now() + latency_ns - frames_to_ns(engine_.position(), sample_rate_));
   if (const PaError e = Pa_StartStream(static_cast<PaStream*>(stream_)); e != paNoError)
     throw std::runtime_error("audio: cannot start \"" + device_.name + "\": " + error_text(e));
 }

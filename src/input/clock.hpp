@@ -17,15 +17,9 @@ class Clock {
   virtual void sleep_for(Nanos duration_ns) = 0;
 };
 
-//! std::chrono::steady_clock (CLOCK_MONOTONIC on Linux): the clock every timestamp uses.
-inline Nanos steady_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 class SteadyClock final : public Clock {
  public:
-  Nanos now() override { return steady_now_ns(); }
+  Nanos now() override { return monotonic_now(); }  // core/time.hpp: the clock every timestamp uses
   void sleep_for(Nanos duration_ns) override {
     if (duration_ns > 0) std::this_thread::sleep_for(std::chrono::nanoseconds(duration_ns));
   }

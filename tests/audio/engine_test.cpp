@@ -62,16 +62,7 @@ std::vector<ModalPreset> simple_presets() {
   return {wood, metal};
 }
 
-Impact strike(int target, Nanos t, double v) {
-  const Target& bar = percussion().targets[static_cast<std::size_t>(target)];
-  Impact i;
-  i.t_ns = t;
-  i.target = target;
-  i.material = bar.material;
-  i.note = bar.note;
-  i.speed_m_per_s = v;
-  return i;
-}
+using test::strike;
 
 // Renders `frames` frames in blocks of `block`, posting each impact just before the
 // block in which it falls (as a live input thread would, with no lateness).

@@ -30,16 +30,7 @@ using test::percussion;
 constexpr int kRate = 48000;
 constexpr std::int64_t kFrames = kRate;  // one second of output per strike test
 
-Impact strike(int target, Nanos t, double v) {
-  const Target& bar = percussion().targets[static_cast<std::size_t>(target)];
-  Impact i;
-  i.t_ns = t;
-  i.target = target;
-  i.material = bar.material;
-  i.note = bar.note;
-  i.speed_m_per_s = v;
-  return i;
-}
+using test::strike;
 
 // Waits until `done()` holds, polling with small sleeps; the cap only keeps a broken
 // stream from hanging the test (the file plugin delivers a second in a few ms).
