@@ -4,8 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <variant>
 
 #include "app/commands.hpp"
@@ -88,11 +86,7 @@ PointPairs parse_points_csv(std::string_view text, const std::string& name) {
 }
 
 PointPairs read_points_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), 0, 0, "cannot open (does it exist?)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_points_csv(buffer.str(), path.string());
+  return parse_points_csv(text::read_file(path), path.string());
 }
 
 ScreenSize parse_screen_size(const std::string& text) {

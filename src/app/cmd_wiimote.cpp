@@ -2,10 +2,8 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <iterator>
-#include <sstream>
 #include <memory>
 #include <string>
 #include <variant>
@@ -75,11 +73,7 @@ void add_decode(CLI::App& wiimote) {
     if (*file == "-") {
       text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
     } else {
-      std::ifstream in(*file, std::ios::binary);
-      if (!in) throw FileError(*file, 0, 0, "cannot open (does it exist?)");
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      text = buffer.str();
+      text = text::read_file(*file);
     }
     const std::string out = decode_hex_text(text, *file == "-" ? std::string("<stdin>") : *file);
     std::fwrite(out.data(), 1, out.size(), stdout);

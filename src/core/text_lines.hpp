@@ -4,12 +4,25 @@
 // parsed whole or not at all.
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <optional>
 #include <string_view>
 #include <system_error>
 #include <vector>
 
+#include "core/file_error.hpp"
+
 namespace mallet::text {
+
+//! The whole file as bytes; FileError "FILE: cannot open (does it exist?)" if it cannot be read.
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path.string(), 0, 0, "cannot open (does it exist?)");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 inline std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);

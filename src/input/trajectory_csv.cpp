@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "core/file_error.hpp"
@@ -71,11 +70,7 @@ Trajectory parse_trajectory_csv(std::string_view text, const std::string& name) 
 }
 
 Trajectory read_trajectory_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), 0, 0, "cannot open (does it exist?)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_trajectory_csv(buffer.str(), path.string());
+  return parse_trajectory_csv(text::read_file(path), path.string());
 }
 
 }  // namespace mallet::input

@@ -3,9 +3,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <ostream>
-#include <sstream>
 
 #include "core/file_error.hpp"
 #include "core/text_lines.hpp"
@@ -513,11 +511,7 @@ Recording parse_replay(std::string_view text, const std::string& name) {
 }
 
 Recording read_replay(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), 0, 0, "cannot open (does it exist?)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_replay(buffer.str(), path.string());
+  return parse_replay(text::read_file(path), path.string());
 }
 
 std::string format_replay_line(Nanos t_ns, std::span<const std::uint8_t> report) {
