@@ -21,6 +21,19 @@ inline const Scene& percussion() {
   return scene;
 }
 
+inline std::filesystem::path texture_scene() { return config_dir() / "scenes" / "texture.toml"; }
+inline std::filesystem::path wall_scene() { return config_dir() / "scenes" / "wall.toml"; }
+
+//! The shipped texture and wall scenes of the second paper, loaded once per test binary.
+inline const Scene& texture() {
+  static const Scene scene = config::load_scene(texture_scene());
+  return scene;
+}
+inline const Scene& wall() {
+  static const Scene scene = config::load_scene(wall_scene());
+  return scene;
+}
+
 //! A strike on a bar of the shipped scene at t with impact speed v, as the solver emits it.
 inline Impact strike(int target, Nanos t, double v) {
   const Target& bar = percussion().targets[static_cast<std::size_t>(target)];

@@ -31,10 +31,17 @@ void HeadlessLoop::feed_ghost_until(Nanos t) {
     const Nanos start = std::max(now_, last_visitor_ + idle_after_);
     ghost_.emplace(scene_, start);
     loop_.reset();
+    loop_.set_cycle_materials(true);
   }
   if (!ghost_) return;
-  for (const PointerSample& s : ghost_->samples_until(t))
+  for (const PointerSample& s : ghost_->samples_until(t)) {
     if (auto impact = loop_.feed(s.t_ns, {s.x, s.y})) strike(*impact, true);
+    post_motion();
+  }
+}
+
+void HeadlessLoop::post_motion() {
+  if (loop_.motion() && !rig_.engine->post_motion(*loop_.motion())) ++counters_.refused_posts;
 }
 
 void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
@@ -45,9 +52,11 @@ void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
   if (ghost_) {  // a visitor takes over from the ghost within this sample
     ghost_.reset();
     loop_.reset();
+    loop_.set_cycle_materials(false);
   }
   last_visitor_ = t;
   if (auto impact = loop_.feed(t, hand)) strike(*impact, false);
+  post_motion();
   render_audio_until(t);
   now_ = std::max(now_, t);
 }

@@ -42,6 +42,7 @@ class HeadlessLoop {
   Nanos now() const { return now_; }
   bool attract() const { return ghost_.has_value(); }
   Vec2 displayed(Nanos t_present) const { return loop_.displayed(t_present); }
+  const StrikeLoop& strike_loop() const { return loop_; }
   const Counters& counters() const { return counters_; }
   const audio::AudioEngine& engine() const { return *rig_.engine; }
   int sample_rate_hz() const { return rate_; }
@@ -53,6 +54,7 @@ class HeadlessLoop {
  private:
   void feed_ghost_until(Nanos t);
   void strike(const Impact& impact, bool ghost);
+  void post_motion();  //!< the texture scene's cursor motion of the last feed, to the stripes
   void render_audio_until(Nanos t);
 
   const Scene& scene_;

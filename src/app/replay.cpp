@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/file_error.hpp"
+#include "core/texture_cursor.hpp"
 
 namespace mallet::app {
 
@@ -16,6 +17,13 @@ Replay::Replay(const Scene& scene, const ContactConfig& contact, BounceMode boun
     if (mallet_.counters().accepted != accepted_before) path_.push_back({s.t_ns, hand});
   }
   if (path_.empty()) throw FileError(trajectory_name, 0, 0, "no usable sample (every position is nan or inf)");
+  if (scene.texture) {
+    TextureCursor cursor(*scene.texture);
+    for (const HandSample& h : path_) {
+      const StripeMotion m = cursor.update(h.t, h.hand);
+      texture_path_.push_back({h.t, cursor.cursor(), cursor.gain(), m});
+    }
+  }
 }
 
 Vec2 Replay::hand_at(Nanos t) const {
@@ -30,6 +38,17 @@ Vec2 Replay::hand_at(Nanos t) const {
 }
 
 CursorState Replay::cursor_at(Nanos t) const {
+  if (!texture_path_.empty()) {  // the cursor on the straight line between two samples
+    const std::vector<TextureSample>& p = texture_path_;
+    const Vec2 hand = hand_at(t);
+    if (t <= p.front().t) return {hand, p.front().cursor, 0.0, 1.0};
+    if (t >= p.back().t) return {hand, p.back().cursor, 0.0, 1.0};
+    const auto it = std::upper_bound(p.begin(), p.end(), t, [](Nanos v, const TextureSample& s) { return v < s.t; });
+    const TextureSample& b = *it;
+    const TextureSample& a = *(it - 1);
+    const double s = static_cast<double>(t - a.t) / static_cast<double>(b.t - a.t);
+    return {hand, lerp(a.cursor, b.cursor, s), 0.0, b.gain};
+  }
   VisualVibration vibration(bounce_);
   const auto after = std::upper_bound(impacts_.begin(), impacts_.end(), t,
                                       [](Nanos v, const Impact& i) { return v < i.t_ns; });

@@ -25,6 +25,15 @@ struct CursorState {
   Vec2 hand;     //!< where the hand is (world metres)
   Vec2 shown;    //!< the displayed head's centre, visual vibration included
   double offset; //!< Eq. 1 visual displacement along the normal (m)
+  double gain = 1.0;  //!< texture scene: the Speed technique's gain over the current segment
+};
+
+//! The texture scene's cursor at one accepted sample.
+struct TextureSample {
+  Nanos t;
+  Vec2 cursor;        //!< after the Speed technique
+  double gain;        //!< of the segment ending here
+  StripeMotion motion;
 };
 
 class Replay {
@@ -36,6 +45,8 @@ class Replay {
   const std::vector<Impact>& impacts() const { return impacts_; }
   const std::vector<HandSample>& path() const { return path_; }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
+  //! Texture scenes: the cursor after the Speed technique at every accepted sample.
+  const std::vector<TextureSample>& texture_path() const { return texture_path_; }
 
   //! The hand's straight-line path between accepted samples (the solver's model).
   Vec2 hand_at(Nanos t) const;
@@ -48,6 +59,7 @@ class Replay {
   BounceMode bounce_;
   std::vector<Impact> impacts_;
   std::vector<HandSample> path_;
+  std::vector<TextureSample> texture_path_;
 };
 
 }  // namespace mallet::app

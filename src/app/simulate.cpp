@@ -132,18 +132,49 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     check_stream(f, path_events);
   }
 
-  // --- cursor.csv: the displayed head = held hand + the visual vibration along the normal
+  // --- cursor.csv: the displayed head = held hand + the visual vibration along the normal.
+  // Texture scenes add the Speed technique's gain and the stripes' phase (Eq. 1 of the
+  // second paper), computed by the same StripeSignal the audio engine runs, fed the same
+  // motion updates on the same samples.
+  const std::vector<TextureSample>& texture_path = replay.texture_path();
   {
     const fs::path path_cursor = out.stage("cursor.csv");
     std::ofstream f(path_cursor);
-    f << "t,hand_x,hand_y,cursor_x,cursor_y,offset\n";
+    f << "t,hand_x,hand_y,cursor_x,cursor_y,offset" << (scene.texture ? ",gain,stripe_phase" : "") << '\n';
+    std::optional<StripeSignal> stripes;
+    if (scene.texture) stripes.emplace(scene.texture->stripes, rate);
+    std::size_t next_motion = 0;
+    std::int64_t stripe_pos = 0;
+    std::vector<double> scratch;
     const Nanos t0 = path.front().t;
     for (std::uint64_t k = 0;; ++k) {
       const Nanos t = t0 + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / options.trace_rate_hz));
       if (t > t_end) break;
       const CursorState c = replay.cursor_at(t);
       f << format_seconds(t) << ',' << g9(c.hand.x) << ',' << g9(c.hand.y) << ',' << g9(c.shown.x) << ','
-        << g9(c.shown.y) << ',' << g9(c.offset) << '\n';
+        << g9(c.shown.y) << ',' << g9(c.offset);
+      if (stripes) {
+        const std::int64_t at = std::max<std::int64_t>(0, align_to_sample(t, rate).index);
+        while (stripe_pos < at) {
+          std::int64_t until = at;
+          if (next_motion < texture_path.size())
+            until = std::min(until, std::max(stripe_pos, align_to_sample(texture_path[next_motion].t, rate).index));
+          if (until == stripe_pos) {
+            const StripeMotion& m = texture_path[next_motion++].motion;
+            stripes->motion(m.speed_m_per_s, m.on_texture);
+            continue;
+          }
+          scratch.assign(static_cast<std::size_t>(until - stripe_pos), 0.0);
+          stripes->add_to(scratch.data(), static_cast<int>(scratch.size()), 0.0);
+          stripe_pos = until;
+        }
+        while (next_motion < texture_path.size() && align_to_sample(texture_path[next_motion].t, rate).index <= stripe_pos) {
+          const StripeMotion& m = texture_path[next_motion++].motion;
+          stripes->motion(m.speed_m_per_s, m.on_texture);
+        }
+        f << ',' << g9(c.gain) << ',' << g9(stripes->current_phase());
+      }
+      f << '\n';
       ++result.cursor_rows;
     }
     check_stream(f, path_cursor);
@@ -159,13 +190,19 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     const std::int64_t frames = std::max<std::int64_t>(end.index, 1);
     constexpr int kBlock = 1024;
     std::vector<float> block(static_cast<std::size_t>(kBlock * routing.channels));
-    std::size_t next_impact = 0;
+    std::size_t next_impact = 0, next_motion = 0;
     for (std::int64_t first = 0; first < frames; first += kBlock) {
       const int n = static_cast<int>(std::min<std::int64_t>(kBlock, frames - first));
       const std::int64_t block_end = first + n;
       while (next_impact < result.impacts.size() &&
              align_to_sample(result.impacts[next_impact].t_ns, rate).index < block_end)
         rig.engine->post(result.impacts[next_impact++]);
+      // The stripes' motion updates, as the input thread posts them. At most the ring's
+      // capacity per block (a 1024-frame block holds far fewer pointer samples).
+      for (std::size_t posted = 0; next_motion < texture_path.size() && posted < audio::AudioEngine::kRingCapacity &&
+                                   align_to_sample(texture_path[next_motion].t, rate).index < block_end;
+           ++posted)
+        rig.engine->post_motion(texture_path[next_motion++].motion);
       rig.engine->process(block.data(), n);
       wav.write(std::span<const float>(block.data(), static_cast<std::size_t>(n * routing.channels)));
     }

@@ -10,28 +10,46 @@
 #include "core/attract_tune.hpp"
 #include "core/mallet.hpp"
 #include "core/scene.hpp"
+#include "core/texture_cursor.hpp"
 #include "core/visual_vibration.hpp"
 
 namespace mallet::app {
 
+//! In a texture scene there is nothing to strike: the hand drives the Speed technique
+//! and every sample yields a StripeMotion for the actuator's stripes. In a wall scene the
+//! wall's material can be switched (operator) or cycled after every strike (attract).
 class StrikeLoop {
  public:
   StrikeLoop(const Scene& scene, const AppConfig& config);
 
   //! The hand (sphere centre, world metres) at t; the strike it made, if any.
   std::optional<Impact> feed(Nanos t, Vec2 hand);
+  //! The texture scene's cursor motion from the last feed (for AudioEngine::post_motion).
+  const std::optional<StripeMotion>& motion() const { return motion_; }
   //! Forget the previous sample: the next one starts a new stroke (input source changed).
-  void reset() { mallet_.reset(); }
+  void reset();
 
   //! Where the head is drawn for a frame shown at `t_present`.
   Vec2 displayed(Nanos t_present) const;
   const Mallet::Counters& counters() const { return mallet_.counters(); }
+  //! The Speed technique's gain of the last displacement (1 outside texture scenes).
+  double gain() const { return texture_ ? texture_->gain() : 1.0; }
+
+  //! The wall's material (index in Scene::materials), and switching it to the next of
+  //! Scene::wall_materials; -1 / nothing in scenes without a wall.
+  int wall_material() const;
+  void next_wall_material();
+  //! Attract mode: the wall's material moves on after every strike.
+  void set_cycle_materials(bool on) { cycle_materials_ = on; }
 
  private:
   const Scene& scene_;
   Mallet mallet_;
   VisualVibration vibration_;
   Vec2 hand_{0.0, 0.3};
+  std::optional<TextureCursor> texture_;
+  std::optional<StripeMotion> motion_;
+  bool cycle_materials_ = false;
 };
 
 //! The attract mode's ghost player, looping its phrase from `start` for as long as asked.

@@ -42,6 +42,9 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
                                                 &presets_[i], t.frequency_hz, static_cast<int>(i), t.note};
     }
   }
+  for (const Material& m : scene.materials) material_actuator_.push_back(m.actuator);
+  if (scene.texture) stripes_.emplace(scene.texture->stripes, settings_.sample_rate_hz);
+  pending_motions_.reserve(kRingCapacity);
   voices_.resize(static_cast<std::size_t>(settings_.max_voices));
   pending_.reserve(kMaxPending);
   acoustic_bus_.resize(kMaxBlock);
@@ -53,6 +56,26 @@ bool AudioEngine::post(const Impact& impact) {
   if (ring_.push(impact)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;
+}
+
+bool AudioEngine::post_motion(const StripeMotion& motion) {
+  if (!stripes_) return true;
+  if (motion_ring_.push(motion)) return true;
+  dropped_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+void AudioEngine::schedule_motion(const StripeMotion& motion, std::int64_t block_start) {
+  if (pending_motions_.size() == kRingCapacity) {  // cannot happen: the ring holds no more
+    dropped_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  // Like an impact: on its own sample, never before the block (a late update applies now).
+  const SampleAlignment a = align_to_sample(motion.t_ns + ahead_ns_ - origin_ns_, settings_.sample_rate_hz);
+  std::int64_t start = std::max(a.index, block_start);
+  // Updates apply in order: none before the one queued ahead of it.
+  if (!pending_motions_.empty()) start = std::max(start, pending_motions_.back().start);
+  pending_motions_.push_back({motion, start});
 }
 
 EngineCounters AudioEngine::counters() const {
@@ -103,8 +126,12 @@ void AudioEngine::start_voice(const Pending& p) {
   const TargetTable& t = targets_[static_cast<std::size_t>(p.impact.target)];
   const int fs = settings_.sample_rate_hz;
   const double v = p.impact.speed_m_per_s;
-  voice->actuator.start(gain_.load(std::memory_order_relaxed) * t.actuator.amplitude * v, t.actuator.decay_per_s,
-                        t.actuator.freq_hz, p.delay_s, fs);
+  // The strike's own material (the wall's can be switched); the target's if none is given.
+  const std::size_t m = static_cast<std::size_t>(p.impact.material);
+  const VibrationParams& act = p.impact.material >= 0 && m < material_actuator_.size() ? material_actuator_[m]
+                                                                                         : t.actuator;
+  voice->actuator.start(gain_.load(std::memory_order_relaxed) * act.amplitude * v, act.decay_per_s, act.freq_hz,
+                        p.delay_s, fs);
   if (settings_.acoustic_enabled && !external_) voice->acoustic.strike(*t.preset, t.fundamental_hz, v, p.delay_s, fs);
   else voice->acoustic.stop();
   // An external synth has no sub-sample phase: its note starts on this sample.
@@ -114,6 +141,7 @@ void AudioEngine::start_voice(const Pending& p) {
 }
 
 void AudioEngine::render(double* acoustic, double* actuator, int frames) {
+  if (stripes_) stripes_->add_to(actuator, frames, gain_.load(std::memory_order_relaxed));
   for (Voice& v : voices_) {
     if (!v.active) continue;
     v.actuator.add_to(actuator, frames);
@@ -135,6 +163,7 @@ void AudioEngine::process(float* out, int frames) {
     const int n = std::min(frames - done, kMaxBlock);
     const std::int64_t block_start = position_;
     while (auto impact = ring_.pop()) schedule(*impact, block_start);
+    while (auto motion = motion_ring_.pop()) schedule_motion(*motion, block_start);
 
     std::fill_n(acoustic_bus_.begin(), n, 0.0);
     std::fill_n(actuator_bus_.begin(), n, 0.0);
@@ -151,8 +180,15 @@ void AudioEngine::process(float* out, int frames) {
           ++i;
         }
       }
+      std::size_t applied = 0;
+      while (applied < pending_motions_.size() && pending_motions_[applied].start <= now) {
+        const StripeMotion& m = pending_motions_[applied++].motion;
+        stripes_->motion(m.speed_m_per_s, m.on_texture);
+      }
+      if (applied) pending_motions_.erase(pending_motions_.begin(), pending_motions_.begin() + static_cast<std::ptrdiff_t>(applied));
       std::int64_t next = block_start + n;
       for (const Pending& p : pending_) next = std::min(next, p.start);
+      if (!pending_motions_.empty()) next = std::min(next, pending_motions_.front().start);
       const int end = static_cast<int>(next - block_start);
       render(acoustic_bus_.data() + frame, actuator_bus_.data() + frame, end - frame);
       if (external_) external_->render(acoustic_bus_.data() + frame, end - frame);

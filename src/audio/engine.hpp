@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "core/app_config.hpp"
 #include "core/impact.hpp"
 #include "core/scene.hpp"
+#include "core/stripe_signal.hpp"
 
 namespace mallet::audio {
 
@@ -77,6 +79,10 @@ class AudioEngine {
 
   //! Producer side (one thread): queue an impact. False if the ring is full.
   bool post(const Impact& impact);
+  //! Producer side (the same thread): the texture scene's cursor motion for the
+  //! vibrotactile stripes, scheduled on its own sample like an impact. Ignored (true) in
+  //! scenes without a texture; false if the ring is full.
+  bool post_motion(const StripeMotion& motion);
 
   //! The monotonic-clock time of frame 0. Set before the stream starts.
   void set_origin(Nanos origin_ns) { origin_ns_ = origin_ns; }
@@ -109,6 +115,10 @@ class AudioEngine {
     std::int64_t start = 0;  //!< sample index
     double delay_s = 0;      //!< sub-sample offset
   };
+  struct PendingMotion {
+    StripeMotion motion;
+    std::int64_t start = 0;
+  };
   struct TargetTable {
     VibrationParams actuator;
     const ModalPreset* preset = nullptr;
@@ -118,13 +128,18 @@ class AudioEngine {
   };
 
   void schedule(const Impact& impact, std::int64_t block_start);
+  void schedule_motion(const StripeMotion& motion, std::int64_t block_start);
   void start_voice(const Pending& p);
   void render(double* acoustic, double* actuator, int frames);
 
   EngineSettings settings_;
   std::vector<ModalPreset> presets_;
   std::vector<TargetTable> targets_;
+  std::vector<VibrationParams> material_actuator_;  //!< per Scene::materials, for Impact::material
   SpscRing<Impact, kRingCapacity> ring_;
+  SpscRing<StripeMotion, kRingCapacity> motion_ring_;
+  std::vector<PendingMotion> pending_motions_;  //!< in arrival order; capacity kRingCapacity
+  std::optional<StripeSignal> stripes_;          //!< texture scenes only
   std::vector<Voice> voices_;
   std::vector<Pending> pending_;  //!< capacity kMaxPending, never grows in process()
   std::vector<double> acoustic_bus_, actuator_bus_;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/ghost_player.hpp"
+#include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
 
 namespace mallet {
@@ -22,5 +23,13 @@ std::vector<ScriptedStrike> attract_phrase(const Scene& scene, Nanos start_ns, c
 
 //! How long one phrase and its rest last.
 Nanos attract_period(const Scene& scene, const AttractTune& tune = {});
+
+//! The texture scene's ghost: the hand (world metres, in PointerSample's fields) sweeps
+//! across the disc through its centre, left to right, then back a little higher, at
+//! `speed` m/s, sampled at `rate_hz` from `start_ns`; then rests. Empty without a texture.
+std::vector<PointerSample> attract_sweep(const Scene& scene, Nanos start_ns, double rate_hz,
+                                         double speed_m_per_s = 0.12);
+//! How long one sweep and its rest last (0 without a texture).
+Nanos attract_sweep_period(const Scene& scene, double speed_m_per_s = 0.12);
 
 }  // namespace mallet

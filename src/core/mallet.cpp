@@ -32,7 +32,17 @@ std::vector<ContactZone> contact_zones(const Scene& scene) {
 }
 
 Mallet::Mallet(const Scene& scene, ContactConfig config)
-    : scene_(&scene), config_(config), zones_(contact_zones(scene)) {}
+    : scene_(&scene), config_(config), zones_(contact_zones(scene)) {
+  for (const Target& t : scene.targets) materials_.push_back(t.material);
+}
+
+void Mallet::set_material(int target, int material) {
+  if (target >= 0 && static_cast<std::size_t>(target) < materials_.size() && material >= 0 &&
+      static_cast<std::size_t>(material) < scene_->materials.size())
+    materials_[static_cast<std::size_t>(target)] = material;
+}
+
+int Mallet::material_of(int target) const { return materials_.at(static_cast<std::size_t>(target)); }
 
 void Mallet::reset() { last_.reset(); }
 
@@ -91,7 +101,7 @@ std::optional<Impact> Mallet::update(Nanos t_ns, Vec2 hand) {
         Impact out;
         out.t_ns = last_->t_ns + static_cast<Nanos>(std::llround(hit_s * static_cast<double>(dt)));
         out.target = target.id;
-        out.material = target.material;
+        out.material = materials_[static_cast<std::size_t>(target.id)];
         out.note = target.note;
         out.speed_m_per_s = v;
         out.x_m = a.x + (hand.x - a.x) * hit_s;

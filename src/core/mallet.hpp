@@ -79,6 +79,11 @@ class Mallet {
   bool armed() const { return armed_; }
   void reset();  //!< forget the previous sample (e.g. tracking was lost)
 
+  //! The material a target's strikes carry from now on (the wall's material switch);
+  //! ignored unless both indices are valid. Initially each target's configured material.
+  void set_material(int target, int material);
+  int material_of(int target) const;
+
  private:
   struct Last {
     Nanos t_ns;
@@ -88,6 +93,7 @@ class Mallet {
   const Scene* scene_;
   ContactConfig config_;
   std::vector<ContactZone> zones_;
+  std::vector<int> materials_;  //!< per target
   std::optional<Last> last_;
   bool armed_ = true;
   double rearm_y_ = 0;

@@ -1,11 +1,16 @@
 #pragma once
 // A scene: the instruments' bars (targets) in the vertical plane, their materials and
 // notes, the mallet head's radius and the screen → world mapping.
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/material.hpp"
 #include "core/screen_to_world.hpp"
+#include "core/speed_technique.hpp"
+#include "core/stripe_signal.hpp"
+#include "core/texture_relief.hpp"
 
 namespace mallet {
 
@@ -44,7 +49,27 @@ struct Camera {
   double eye_z_m = 1.6;     //!< in front of the mallet's plane (> 0)
 };
 
+//! What a scene is (config key `kind`):
+//!  percussion  the first paper's instruments, struck from above (default);
+//!  texture     the second paper's bump or hole explored with the Speed technique and
+//!              vibrotactile stripes — no targets, nothing is struck;
+//!  wall        the second paper's wall to tap: one target whose instrument is "wall",
+//!              with a material the operator (or the attract loop) switches.
+enum class SceneKind { percussion, texture, wall };
+inline const char* to_string(SceneKind kind) {
+  return kind == SceneKind::texture ? "texture" : kind == SceneKind::wall ? "wall" : "percussion";
+}
+
+//! The texture scene's stimulus: the relief under the disc, the Speed technique's law and
+//! the stripes on the actuator channel.
+struct TextureStimulus {
+  TextureRelief relief;
+  SpeedTechniqueConfig speed;
+  StripeParams stripes;
+};
+
 struct Scene {
+  SceneKind kind = SceneKind::percussion;
   std::string name;
   std::string file;                  //!< where it was loaded from (for messages)
   std::string instruments_file;      //!< acoustic presets, resolved against the scene's folder
@@ -55,6 +80,11 @@ struct Scene {
   std::vector<Material> materials;   //!< only those the scene uses
   std::vector<Instrument> instruments;
   std::vector<Target> targets;
+  std::optional<TextureStimulus> texture;  //!< kind == texture only
+  std::vector<int> wall_materials;         //!< kind == wall: the materials to switch between
+  //! Drawn behind everything, sRGB 0..1 (the second paper's scenes: grey). Unset: a dark room.
+  std::optional<std::array<double, 3>> background_srgb;
+  std::string mallet_model = "mallet_head.glb";  //!< glTF in models/ drawn as the mallet head / cursor
 
   const Material& material_of(const Target& t) const { return materials.at(t.material); }
 };

@@ -38,6 +38,19 @@ glm::dvec2 project_to_screen(const glm::mat4& view_proj, glm::dvec3 world) {
 
 std::vector<Instance> instrument_instances(const Scene& scene) {
   std::vector<Instance> out;
+  if (scene.texture) {  // the white disc, just behind the cursor's plane so the cursor's shadow falls on it
+    // Set back by the cursor's radius, and enlarged about the eye's axis by the same
+    // perspective factor, so that on screen it covers exactly the disc of the plane z = 0
+    // that TextureRelief::covers() describes.
+    const TextureRelief& r = scene.texture->relief;
+    const double depth = scene.mallet_radius_m;
+    const double k = (scene.camera.eye_z_m + depth) / scene.camera.eye_z_m;
+    const glm::dvec3 centre{scene.camera.eye_x_m + (r.center.x - scene.camera.eye_x_m) * k,
+                            scene.camera.eye_y_m + (r.center.y - scene.camera.eye_y_m) * k, -depth};
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), centre);
+    m = glm::scale(m, {r.radius_m * k, r.radius_m * k, 1.0});
+    out.push_back({kTextureDiscModel, glm::mat4(m), -1});
+  }
   for (const Instrument& inst : scene.instruments) {
     if (inst.targets.empty()) continue;
     for (int id : inst.targets) {
@@ -46,6 +59,7 @@ std::vector<Instance> instrument_instances(const Scene& scene) {
       m = glm::scale(m, {bar.x_max - bar.x_min, bar.thickness_m, bar.length_m});
       out.push_back({inst.bar_model, glm::mat4(m), bar.id});
     }
+    if (inst.rail_model.empty()) continue;  // the wall stands alone
     // Two rails under the bars' nodal points, from the first bar to the last: graded
     // lengths make them converge, as on a real frame.
     const Target& first = scene.targets.at(inst.targets.front());
@@ -70,7 +84,7 @@ std::vector<Instance> instrument_instances(const Scene& scene) {
 Instance mallet_instance(const Scene& scene, Vec2 centre) {
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), {centre.x, centre.y, 0.0});
   m = glm::scale(m, glm::dvec3(scene.mallet_radius_m));
-  return {"mallet_head.glb", glm::mat4(m), -1};
+  return {scene.mallet_model, glm::mat4(m), -1};
 }
 
 }  // namespace mallet::render

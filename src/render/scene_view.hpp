@@ -31,10 +31,13 @@ struct Instance {
 //! where real instruments support their bars (rails, cords).
 inline constexpr double kNodalPoint = 0.224;
 
-//! Bars and rails of every instrument (static for a scene).
+//! The texture scene's disc: radius 1 in the plane z = 0 facing the viewer, scaled to the relief.
+inline constexpr const char* kTextureDiscModel = "texture_disc.glb";
+
+//! Bars and rails of every instrument, the wall, the texture's disc (static for a scene).
 std::vector<Instance> instrument_instances(const Scene& scene);
 
-//! The mallet head: a unit sphere scaled to the scene's radius at `centre` (plane z = 0).
+//! The mallet head (Scene::mallet_model): a unit sphere scaled to the scene's radius at `centre` (plane z = 0).
 Instance mallet_instance(const Scene& scene, Vec2 centre);
 
 }  // namespace mallet::render

@@ -35,13 +35,14 @@ std::string with(const std::string& from, const std::string& to) {
   return text.replace(at, from.size(), to);
 }
 
-TEST(InstrumentsConfig, ShippedFileHasTheFourPresets) {
+TEST(InstrumentsConfig, ShippedFileHasTheFourPresetsAndTheWallsKnock) {
   const std::vector<ModalPreset> presets = config::load_instruments(test::config_dir() / "instruments.toml");
-  ASSERT_EQ(presets.size(), 4u);
+  ASSERT_EQ(presets.size(), 5u);
   EXPECT_EQ(presets[0].name, "xylophone");
   EXPECT_EQ(presets[1].name, "glockenspiel");
   EXPECT_EQ(presets[2].name, "marimba");
   EXPECT_EQ(presets[3].name, "vibraphone");
+  EXPECT_EQ(presets[4].name, "wall");
   for (const ModalPreset& p : presets) {
     ASSERT_FALSE(p.modes.empty()) << p.name;
     EXPECT_EQ(p.modes[0].ratio, 1.0) << p.name;

@@ -26,8 +26,9 @@ namespace fs = std::filesystem;
 
 using Vec3f = std::array<float, 3>;
 
-const std::array<const char*, 6> kShippedModels{"wood_bar",          "metal_bar",   "xylophone_rail",
-                                                "glockenspiel_rail", "mallet_head", "mallet_stick"};
+const std::array<const char*, 9> kShippedModels{"wood_bar",          "metal_bar",    "xylophone_rail",
+                                                "glockenspiel_rail", "mallet_head",  "mallet_stick",
+                                                "texture_disc",      "wall_panel",   "cursor_head"};
 
 fs::path shipped(const std::string& name) { return test::source_dir() / "models" / (name + ".glb"); }
 
@@ -95,6 +96,17 @@ TEST(GltfModel, EveryShippedModelLoadsWithCounterClockwiseFrontFaces) {
     EXPECT_GT(triangle_count(model), 0u);
     expect_front_faces_wind_counter_clockwise(model);
   }
+}
+
+TEST(GltfModel, TextureDiscIsAUnitWhiteDiscFacingTheViewer) {
+  const Model model = load_gltf(shipped("texture_disc"));
+  expect_bounds(model, {-1.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 0.0f});
+  for (const auto& v : model.primitives[0].vertices) EXPECT_EQ(v.normal[2], 1.0f);
+  const PbrMaterial& white = only_material(model);
+  EXPECT_EQ(white.metallic, 0.0f);
+  EXPECT_EQ(white.base_color[0], white.base_color[2]);  // neutral
+  const PbrMaterial& green = only_material(load_gltf(shipped("cursor_head")));
+  EXPECT_GT(green.base_color[1], 4 * green.base_color[0]);  // the paper's green cursor
 }
 
 TEST(GltfModel, WoodBarIsAUnitBarOfRosewoodWithGrainAlongItsLength) {

@@ -25,6 +25,16 @@ using test::percussion;
 constexpr int kTolerance = 3;                 // per channel, of 255
 constexpr double kMaxDifferingFraction = 0.001;
 
+HeadlessOptions golden_options() {
+  HeadlessOptions o;
+  o.size = {640, 360};
+  o.validation = render::Validation::required;
+  o.cache_dir = "";
+  o.device = "llvmpipe";
+  if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+  return o;
+}
+
 HeadlessRenderer& renderer() {
   static HeadlessRenderer r = [] {
     HeadlessOptions o;
@@ -45,7 +55,8 @@ Replay replay_of(std::initializer_list<std::array<double, 3>> samples) {
   return Replay(percussion(), ContactConfig{}, BounceMode::signed_eq1, t, InputSpace::world, "test");
 }
 
-void expect_matches_golden(const render::Image& actual, const std::string& name) {
+void expect_matches_golden(const render::Image& actual, const std::string& name,
+                           HeadlessRenderer& used = renderer()) {
   const std::filesystem::path golden = test::source_dir() / "tests" / "golden" / (name + ".png");
   if (const char* update = std::getenv("MALLET_UPDATE_GOLDENS"); update && std::string(update) == "1") {
     render::write_png(actual, golden);
@@ -62,7 +73,7 @@ void expect_matches_golden(const render::Image& actual, const std::string& name)
                   << "%) differ by more than " << kTolerance << "/255, max " << diff.max_channel_delta
                   << "; wrote " << (dir / (name + ".actual.png")) << " and .diff.png";
   }
-  EXPECT_EQ(renderer().context().validation_messages(), 0u) << renderer().context().first_validation_message();
+  EXPECT_EQ(used.context().validation_messages(), 0u) << used.context().first_validation_message();
 }
 
 render::Image render_at(const Replay& replay, Nanos t) {
@@ -118,6 +129,44 @@ TEST(Golden, OverlayTextTargetAndProgressRingOverTheScene) {
   state.mallet_centre = r.cursor_at(0).shown;
   state.overlay = &overlay;
   expect_matches_golden(renderer().render(state), "overlay_over_scene");
+}
+
+}  // namespace
+}  // namespace mallet::app
+
+namespace mallet::app {
+namespace {
+
+// ---- the second paper's scenes ----
+
+Replay replay_in(const Scene& scene, std::initializer_list<std::array<double, 3>> samples) {
+  input::Trajectory t;
+  for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
+  return Replay(scene, ContactConfig{}, BounceMode::signed_eq1, t, InputSpace::world, "test");
+}
+
+TEST(Golden, TextureBumpWithTheCursorClimbingIt) {
+  // Grey background, the white disc, the green cursor held back by the Speed technique.
+  static HeadlessRenderer r(test::texture(), golden_options());
+  const Replay replay = replay_in(test::texture(), {{0.0, -0.15, 0.02}, {0.5, -0.03, 0.02}});
+  const CursorState c = replay.cursor_at(500'000'000);
+  ASSERT_GT(c.shown.x, -0.15);
+  ASSERT_LT(c.shown.x, c.hand.x);  // climbing: the cursor lags the hand
+  render::FrameState state;
+  state.mallet_centre = c.shown;
+  expect_matches_golden(r.render(state), "texture_bump_cursor_climbing", r);
+}
+
+TEST(Golden, WoodenWallTwentyMillisecondsAfterATap) {
+  static HeadlessRenderer r(test::wall(), golden_options());
+  const Scene& wall = test::wall();
+  const Replay replay = replay_in(wall, {{0.0, 0.03, 0.08}, {0.2, 0.03, -0.02}});
+  ASSERT_EQ(replay.impacts().size(), 1u);
+  const Nanos t = replay.impacts()[0].t_ns + 20'000'000;
+  render::FrameState state;
+  state.mallet_centre = replay.cursor_at(t).shown;
+  ASSERT_GT(replay.cursor_at(t).offset, 0.0);  // bouncing off the surface
+  expect_matches_golden(r.render(state), "wall_20ms_after_tap", r);
 }
 
 }  // namespace

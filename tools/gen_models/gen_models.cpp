@@ -26,6 +26,9 @@ MaterialSpec bar_steel() { return {"bar_steel", {0.85, 0.85, 0.88, 1.0}, 1.0, 0.
 MaterialSpec rail_dark_wood() { return {"rail_dark_wood", {0.08, 0.035, 0.018, 1.0}, 0.0, 0.75, {}, {}}; }
 MaterialSpec rail_felt_case() { return {"rail_felt_case", {0.05, 0.05, 0.055, 1.0}, 0.0, 0.95, {}, {}}; }
 MaterialSpec mallet_head_white() { return {"mallet_head_white", {0.92, 0.92, 0.92, 1.0}, 0.0, 0.4, {}, {}}; }
+// The second paper's scenes: a white disc or wall on grey, a green cursor.
+MaterialSpec paper_white() { return {"paper_white", {1.0, 1.0, 1.0, 1.0}, 0.0, 0.9, {}, {}}; }
+MaterialSpec cursor_green() { return {"cursor_green", {0.02, 0.55, 0.06, 1.0}, 0.0, 0.5, {}, {}}; }
 MaterialSpec stick_light_wood() { return {"stick_light_wood", {0.70, 0.50, 0.30, 1.0}, 0.0, 0.6, {}, {}}; }
 
 // A bar: x ∈ [-0.5, 0.5] width, y ∈ [-1, 0] thickness (top face at y = 0), z ∈ [-0.5, 0.5]
@@ -43,6 +46,9 @@ std::vector<ModelSpec> shipped_models() {
   models.push_back({"glockenspiel_rail", unit_rail(), rail_felt_case()});
   models.push_back({"mallet_head", uv_sphere(48, 22), mallet_head_white()});  // 2016 triangles
   models.push_back({"mallet_stick", capped_cylinder(32), stick_light_wood()});
+  models.push_back({"texture_disc", disc(128), paper_white()});
+  models.push_back({"wall_panel", unit_bar(), paper_white()});
+  models.push_back({"cursor_head", uv_sphere(48, 22), cursor_green()});
   return models;
 }
 

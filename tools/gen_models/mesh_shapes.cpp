@@ -132,4 +132,20 @@ MeshData capped_cylinder(int segments) {
   return mesh;
 }
 
+MeshData disc(int segments) {
+  MeshData mesh;
+  const Vec3 n{0.0, 0.0, 1.0};
+  const std::uint16_t centre = push_vertex(mesh, {0.0, 0.0, 0.0}, n, {0.5, 0.5});
+  std::vector<std::uint16_t> rim;
+  for (int i = 0; i < segments; ++i) {
+    // Counter-clockwise seen from +z: x = cos, y = sin.
+    const double phi = angle(i, segments);
+    const double x = std::cos(phi), y = std::sin(phi);
+    rim.push_back(push_vertex(mesh, {x, y, 0.0}, n, {0.5 + x / 2, 0.5 - y / 2}));
+  }
+  for (int i = 0; i < segments; ++i)
+    push_triangle(mesh, centre, rim[static_cast<std::size_t>(i)], rim[static_cast<std::size_t>((i + 1) % segments)]);
+  return mesh;
+}
+
 }  // namespace mallet::gen

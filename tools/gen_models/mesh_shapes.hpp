@@ -29,6 +29,10 @@ MeshData box(const Vec3& min, const Vec3& max, LengthAxis length);
 //! `stacks` from the north pole (+y) to the south pole; u around, v = 0 at the north pole.
 MeshData uv_sphere(int slices, int stacks);
 
+//! A flat disc of radius 1 in the plane z = 0 facing +z (towards the viewer), a fan of
+//! `segments` triangles; u, v map x, y from [-1, 1] to [0, 1] (v down).
+MeshData disc(int segments);
+
 //! A cylinder of radius 1 around y from y = 0 to y = 1: a smooth side and two flat caps.
 MeshData capped_cylinder(int segments);
 

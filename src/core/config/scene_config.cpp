@@ -73,11 +73,113 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
   scene.instruments.push_back(std::move(inst));
 }
 
+void read_texture(TableReader& top, Scene& scene) {
+  TextureStimulus tex;
+  {
+    TableReader t = top.table("texture");
+    const std::string shape = t.string("shape");
+    if (shape == "bump") tex.relief.shape = ReliefShape::bump;
+    else if (shape == "hole") tex.relief.shape = ReliefShape::hole;
+    else t.fail("shape", "must be \"bump\" or \"hole\", got \"" + shape + "\"");
+    const std::string profile = t.string_or("profile", "gaussian");
+    if (profile == "gaussian") tex.relief.profile = ReliefProfile::gaussian;
+    else if (profile == "cosine") tex.relief.profile = ReliefProfile::cosine;
+    else t.fail("profile", "must be \"gaussian\" or \"cosine\", got \"" + profile + "\"");
+    tex.relief.center = {t.number("center_x_m"), t.number("center_y_m")};
+    tex.relief.radius_m = t.number("radius_m");
+    t.require_positive("radius_m", tex.relief.radius_m);
+    tex.relief.height_m = t.number("height_m");
+    t.require_positive("height_m", tex.relief.height_m);
+    t.finish();
+  }
+  if (std::optional<TableReader> t = top.optional_table("speed_technique")) {
+    SpeedTechniqueConfig& c = tex.speed;
+    c.slope_gain = t->number_or("slope_gain", c.slope_gain);
+    t->require_range("slope_gain", c.slope_gain, 0.0, 1000.0);
+    c.gain_min = t->number_or("gain_min", c.gain_min);
+    t->require_range("gain_min", c.gain_min, 0.01, 1.0);
+    c.gain_max = t->number_or("gain_max", c.gain_max);
+    t->require_range("gain_max", c.gain_max, 1.0, 100.0);
+    c.relax_distance_m = t->number_or("relax_distance_m", c.relax_distance_m);
+    t->require_positive("relax_distance_m", c.relax_distance_m);
+    c.max_offset_m = t->number_or("max_offset_m", c.max_offset_m);
+    t->require_positive("max_offset_m", c.max_offset_m);
+    t->finish();
+  }
+  if (std::optional<TableReader> t = top.optional_table("stripes")) {
+    StripeParams& p = tex.stripes;
+    p.amplitude = t->number_or("amplitude", p.amplitude);
+    t->require_range("amplitude", p.amplitude, 0.0, 10.0);
+    p.wavelength_m = t->number_or("wavelength_m", p.wavelength_m);
+    t->require_range("wavelength_m", p.wavelength_m, 1e-5, 1.0);
+    p.phase_rad = t->number_or("phase_rad", p.phase_rad);
+    t->require_range("phase_rad", p.phase_rad, -100.0, 100.0);
+    p.fade_s = t->number_or("fade_ms", p.fade_s * 1e3) / 1e3;
+    t->require_range("fade_ms", p.fade_s * 1e3, 0.0, 1000.0);
+    p.rest_speed_m_per_s = t->number_or("rest_speed_m_per_s", p.rest_speed_m_per_s);
+    t->require_non_negative("rest_speed_m_per_s", p.rest_speed_m_per_s);
+    p.max_freq_hz = t->number_or("max_freq_hz", p.max_freq_hz);
+    t->require_range("max_freq_hz", p.max_freq_hz, 1.0, 20000.0);
+    p.motion_timeout_s = t->number_or("motion_timeout_ms", p.motion_timeout_s * 1e3) / 1e3;
+    t->require_range("motion_timeout_ms", p.motion_timeout_s * 1e3, 1.0, 10000.0);
+    t->finish();
+  }
+  scene.texture = tex;
+}
+
+void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
+  TableReader t = top.table("wall");
+  Instrument inst;
+  inst.name = "wall";
+  inst.voice = t.string_or("voice", "wall");
+  inst.midi_program = static_cast<int>(t.integer_or("midi_program", 115));  // GM Woodblock
+  t.require_range("midi_program", inst.midi_program, 0, 127);
+  inst.bar_model = t.string_or("model", "wall_panel.glb");
+  inst.rail_model.clear();
+  const std::vector<std::string> names = t.strings("materials");
+  if (names.empty()) t.fail("materials", "needs at least one material");
+  for (const std::string& n : names) {
+    const Material* m = library.find(n);
+    if (!m) t.fail("materials", "unknown material \"" + n + "\" (known: " + library.names() + ")");
+    scene.wall_materials.push_back(add_material(scene, *m));
+  }
+  const std::string first = t.string_or("material", names.front());
+  const auto it = std::find(names.begin(), names.end(), first);
+  if (it == names.end()) t.fail("material", "\"" + first + "\" is not one of the wall's materials");
+  inst.material = scene.wall_materials[static_cast<std::size_t>(it - names.begin())];
+
+  Target wall;
+  wall.id = 0;
+  wall.instrument = inst.name;
+  wall.material = inst.material;
+  wall.note = static_cast<int>(t.integer_or("note", 60));
+  t.require_range("note", wall.note, 0, 127);
+  wall.frequency_hz = note_frequency_hz(wall.note, scene.tuning_a4_hz);
+  wall.x_min = t.number("x_min_m");
+  wall.x_max = t.number("x_max_m");
+  if (!(wall.x_max > wall.x_min)) t.fail("x_max_m", "must be greater than x_min_m");
+  wall.top_y = t.number("top_y_m");
+  const double bottom = t.number("bottom_y_m");
+  if (!(wall.top_y > bottom)) t.fail("top_y_m", "must be greater than bottom_y_m");
+  wall.thickness_m = wall.top_y - bottom;
+  wall.length_m = t.number_or("depth_m", 2 * scene.mallet_radius_m);
+  t.require_positive("depth_m", wall.length_m);
+  t.finish();
+  inst.targets.push_back(wall.id);
+  scene.targets.push_back(std::move(wall));
+  scene.instruments.push_back(std::move(inst));
+}
+
 Scene read(const toml::table& root, const std::string& file, const MaterialLibrary& library) {
   TableReader top(root, file);
   Scene scene;
   scene.file = file;
   scene.name = top.string("name");
+  const std::string kind = top.string_or("kind", "percussion");
+  if (kind == "texture") scene.kind = SceneKind::texture;
+  else if (kind == "wall") scene.kind = SceneKind::wall;
+  else if (kind != "percussion")
+    top.fail("kind", "must be \"percussion\", \"texture\" or \"wall\", got \"" + kind + "\"");
   top.string_or("materials_file", "");  // resolved by the caller
   scene.instruments_file = top.string_or("instruments_file", "../instruments.toml");
   scene.mallet_radius_m = top.number("mallet_radius_m");
@@ -102,7 +204,23 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
     cam->finish();
   }
 
-  for (TableReader& t : top.tables("instrument")) read_instrument(std::move(t), library, scene);
+  if (top.has("background_srgb")) {
+    const std::vector<double> bg = top.numbers("background_srgb");
+    if (bg.size() != 3) top.fail("background_srgb", "needs three numbers (red, green, blue in 0..1)");
+    for (double c : bg)
+      if (!(c >= 0 && c <= 1)) top.fail("background_srgb", "components must be in 0..1");
+    scene.background_srgb = std::array<double, 3>{bg[0], bg[1], bg[2]};
+  }
+  scene.mallet_model = top.string_or("mallet_model", scene.mallet_model);
+
+  if (scene.kind == SceneKind::percussion) {
+    for (TableReader& t : top.tables("instrument")) read_instrument(std::move(t), library, scene);
+  } else {
+    if (top.has("instrument"))
+      top.fail("instrument", std::string("a ") + to_string(scene.kind) + " scene has no [[instrument]]");
+    if (scene.kind == SceneKind::texture) read_texture(top, scene);
+    else read_wall(top, library, scene);
+  }
   top.finish();
 
   // Bars may touch but never overlap: a strike must name exactly one bar.
