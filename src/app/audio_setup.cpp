@@ -6,7 +6,9 @@
 namespace mallet::app {
 
 AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz, bool acoustic_enabled) {
-  const std::vector<ModalPreset> library = config::load_instruments(scene.instruments_file);
+  // A scene without instruments (the texture) needs no acoustic presets at all.
+  const std::vector<ModalPreset> library =
+      scene.instruments.empty() ? std::vector<ModalPreset>{} : config::load_instruments(scene.instruments_file);
   std::vector<ModalPreset> presets;
   std::vector<int> programs;
   for (const Instrument& inst : scene.instruments) {
