@@ -8,9 +8,11 @@ namespace mallet::app {
 
 std::string strike_line(const Scene& scene, const Impact& i) {
   const Target& t = scene.targets.at(i.target);
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s", format_seconds(i.t_ns).c_str(), t.id,
-                t.instrument.c_str(), t.note, i.speed_m_per_s);
+  char buf[224];
+  const std::size_t m = static_cast<std::size_t>(i.material);
+  const char* material = i.material >= 0 && m < scene.materials.size() ? scene.materials[m].name.c_str() : "?";
+  std::snprintf(buf, sizeof buf, "strike t=%s bar=%d %s note=%d speed=%.3f m/s material=%s",
+                format_seconds(i.t_ns).c_str(), t.id, t.instrument.c_str(), t.note, i.speed_m_per_s, material);
   return buf;
 }
 
