@@ -20,6 +20,8 @@ void register_simulate(CLI::App& app) {
       "  DIR/cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset  at --trace-rate, world metres;\n"
       "                  cursor = the displayed mallet head (held on the surface while the hand\n"
       "                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement\n"
+      "                  texture scenes add gain,stripe_phase: cursor = the cursor after the Speed\n"
+      "                  technique, gain = its gain, stripe_phase = the stripes' phase (rad)\n"
       "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
       "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample\n"
       "                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.\n"

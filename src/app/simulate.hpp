@@ -3,6 +3,7 @@
 // and writes the stimuli a researcher needs to reproduce a session:
 //   events.csv  t,target,instrument,material,note,velocity       (one row per impact)
 //   cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset         (at --trace-rate)
+//               texture scenes add ,gain,stripe_phase (the Speed technique's gain, Eq. 1's phase)
 //   audio.wav   float32, channels as routed in the config (default 0 acoustic, 1 actuator)
 #include <cstdint>
 #include <filesystem>
