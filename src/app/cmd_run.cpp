@@ -9,7 +9,6 @@ namespace mallet::app {
 
 void register_run(CLI::App& app) {
   auto o = std::make_shared<KioskOptions>();
-  o->scene = default_scene();
   o->config = default_settings();  // the operator's mallet.toml (/etc/mallet when installed)
   CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
   cmd->footer(
@@ -24,7 +23,10 @@ void register_run(CLI::App& app) {
       "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
       "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
       "and DIR/log.txt (one line per strike), then exits 0.");
-  cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--scene", o->scene,
+                  "Scene file (default: [scenes] start of the settings, a file in the scenes/ folder next to "
+                  "them: percussion.toml)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--config", o->config,
                   "Settings file (default: " +
                       (o->config ? o->config->string() : std::string("built-in, same as config/mallet.toml")) + ")");

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <system_error>
 
 #ifndef MALLET_SOURCE_DATA_DIR
@@ -56,6 +57,15 @@ inline std::filesystem::path data_dir() { return data_paths().data; }
 inline std::filesystem::path config_dir() { return data_paths().config; }
 
 inline std::filesystem::path default_scene() { return config_dir() / "scenes" / "percussion.toml"; }
+
+//! A scene named in the settings ([scenes] start / choices): relative names are files in the
+//! scenes/ folder next to the settings file (the config folder for the built-in settings).
+inline std::filesystem::path scene_file(const std::optional<std::filesystem::path>& settings,
+                                        const std::string& name) {
+  const std::filesystem::path p(name);
+  if (p.is_absolute()) return p;
+  return (settings ? settings->parent_path() : config_dir()) / "scenes" / p;
+}
 
 //! The kiosk's settings file when there is one (<config>/mallet.toml); else the built-in
 //! defaults apply (they equal the shipped file).

@@ -92,10 +92,12 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
 
 }  // namespace
 
-int run_kiosk(const KioskOptions& o) {
-  if (o.idle_after_s && !(*o.idle_after_s > 0 && *o.idle_after_s <= 86400))
+int run_kiosk(const KioskOptions& options) {
+  if (options.idle_after_s && !(*options.idle_after_s > 0 && *options.idle_after_s <= 86400))
     throw FileError("--idle-after", 0, 0, "must be in (0, 86400] seconds");
-  const AppConfig config = o.config ? config::load_app_config(*o.config) : AppConfig{};
+  const AppConfig config = options.config ? config::load_app_config(*options.config) : AppConfig{};
+  KioskOptions o = options;
+  if (o.scene.empty()) o.scene = scene_file(options.config, config.scenes.start);
   Scene scene = config::load_scene(o.scene);
   if (o.headless) return run_headless(o, scene, config, "--headless");
   if (!render::WindowSystem::display_available())

@@ -11,7 +11,7 @@
 namespace mallet::app {
 
 struct KioskOptions {
-  std::filesystem::path scene;
+  std::filesystem::path scene;                  //!< empty = [scenes] start of the settings
   std::optional<std::filesystem::path> config;
   bool headless = false;
   bool windowed = false;

@@ -2,6 +2,7 @@
 // The kiosk's settings (config/mallet.toml). The defaults here are the shipped file's
 // values; a test keeps the two equal.
 #include <string>
+#include <vector>
 
 #include "core/ir_camera_settings.hpp"
 #include "core/ir_tracker.hpp"
@@ -69,6 +70,13 @@ struct RenderConfig {
   int monitor = 0;                    //!< which monitor the fullscreen kiosk uses (GLFW's order)
 };
 
+//! [scenes]: which scene the kiosk shows, and which the operator page can switch to. File
+//! names are relative to the scenes/ folder next to the settings file.
+struct ScenesConfig {
+  std::string start = "percussion.toml";
+  std::vector<std::string> choices{"percussion.toml", "texture.toml", "wall.toml"};
+};
+
 struct AppConfig {
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
@@ -79,6 +87,7 @@ struct AppConfig {
   WiimoteConfig wiimote;
   RenderConfig render;
   AttractConfig attract;
+  ScenesConfig scenes;
 };
 
 }  // namespace mallet

@@ -190,6 +190,8 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.wiimote.silence_timeout_ms, defaults.wiimote.silence_timeout_ms);
   EXPECT_EQ(shipped.wiimote.reconnect_min_ms, defaults.wiimote.reconnect_min_ms);
   EXPECT_EQ(shipped.wiimote.reconnect_max_ms, defaults.wiimote.reconnect_max_ms);
+  EXPECT_EQ(shipped.scenes.start, defaults.scenes.start);
+  EXPECT_EQ(shipped.scenes.choices, defaults.scenes.choices);
 }
 
 TEST(AppConfig, InputDefaultsAreTheIssuesChoices) {

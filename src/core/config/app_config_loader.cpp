@@ -133,6 +133,15 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("monitor", r.monitor, 0, 15);
     t->finish();
   }
+  if (auto t = top.optional_table("scenes")) {
+    ScenesConfig& sc = c.scenes;
+    sc.start = t->string_or("start", sc.start);
+    if (t->has("choices")) sc.choices = t->strings("choices");
+    for (const std::string& f : sc.choices)
+      if (f.empty()) t->fail("choices", "a scene file name is empty");
+    if (sc.start.empty()) t->fail("start", "must name a scene file");
+    t->finish();
+  }
   top.finish();
   return c;
 }
