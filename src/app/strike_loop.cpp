@@ -12,6 +12,10 @@ std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
   return impact;
 }
 
+void StrikeLoop::show(const Impact& impact) {
+  vibration_.start(impact, scene_.materials.at(static_cast<std::size_t>(impact.material)).visual);
+}
+
 Vec2 StrikeLoop::displayed(Nanos t_present) const {
   const Vec2 shown = mallet_.displayed_centre(hand_);
   return {shown.x, shown.y + vibration_.offset_m(t_present)};

@@ -20,11 +20,16 @@ class StrikeLoop {
 
   //! The hand (sphere centre, world metres) at t; the strike it made, if any.
   std::optional<Impact> feed(Nanos t, Vec2 hand);
+  //! A strike that did not come from the hand (a study stimulus): the bounce starts as
+  //! for a real one.
+  void show(const Impact& impact);
   //! Forget the previous sample: the next one starts a new stroke (input source changed).
   void reset() { mallet_.reset(); }
 
   //! Where the head is drawn for a frame shown at `t_present`.
   Vec2 displayed(Nanos t_present) const;
+  //! Eq. 1's visual displacement alone (metres along the normal) at `t_present`.
+  double visual_offset_m(Nanos t_present) const { return vibration_.offset_m(t_present); }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
 
  private:

@@ -141,6 +141,18 @@ std::vector<std::int64_t> TableReader::integers(std::string_view key) {
   return out;
 }
 
+std::vector<std::string> TableReader::strings(std::string_view key) {
+  const toml::node& node = required(key);
+  const toml::array* array = node.as_array();
+  if (!array) fail_at(&node, key, "expected an array of strings, got " + describe_value(node));
+  std::vector<std::string> out;
+  for (const toml::node& el : *array) {
+    if (!el.is_string()) fail_at(&el, key, "expected a string, got " + describe_value(el));
+    out.push_back(el.as_string()->get());
+  }
+  return out;
+}
+
 TableReader TableReader::table(std::string_view key) {
   const toml::node& node = required(key);
   const toml::table* t = node.as_table();

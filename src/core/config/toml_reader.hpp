@@ -36,6 +36,7 @@ class TableReader {
   bool boolean_or(std::string_view key, bool fallback);
   std::vector<double> numbers(std::string_view key);
   std::vector<std::int64_t> integers(std::string_view key);
+  std::vector<std::string> strings(std::string_view key);
   bool has(std::string_view key) const;
 
   TableReader table(std::string_view key);
