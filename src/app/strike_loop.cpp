@@ -8,7 +8,7 @@ StrikeLoop::StrikeLoop(const Scene& scene, const AppConfig& config)
 std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
   hand_ = hand;
   std::optional<Impact> impact = mallet_.update(t, hand);
-  if (impact) vibration_.start(*impact, scene_.materials.at(impact->material).visual);
+  if (impact) show(*impact);
   return impact;
 }
 
