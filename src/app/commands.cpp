@@ -20,6 +20,7 @@ void register_commands(CLI::App& app) {
   register_calibrate(app);
   register_render(app);
   register_run(app);
+  register_study(app);
 }
 
 }  // namespace mallet::app

@@ -20,6 +20,7 @@ void register_wiimote(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_render(CLI::App& app);
 void register_run(CLI::App& app);
+void register_study(CLI::App& app);
 
 //! `mallet bench` subcommands, each in its own file.
 void add_bench_audio(CLI::App& bench);

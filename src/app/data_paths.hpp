@@ -59,12 +59,15 @@ inline std::filesystem::path config_dir() { return data_paths().config; }
 inline std::filesystem::path default_scene() { return config_dir() / "scenes" / "percussion.toml"; }
 
 //! A scene named in the settings ([scenes] start / choices): relative names are files in the
-//! scenes/ folder next to the settings file (the config folder for the built-in settings).
+//! scenes/ folder next to the settings file if it has one, else the shipped scenes/.
 inline std::filesystem::path scene_file(const std::optional<std::filesystem::path>& settings,
                                         const std::string& name) {
   const std::filesystem::path p(name);
   if (p.is_absolute()) return p;
-  return (settings ? settings->parent_path() : config_dir()) / "scenes" / p;
+  std::error_code ec;
+  if (settings && std::filesystem::exists(settings->parent_path() / "scenes" / p, ec))
+    return settings->parent_path() / "scenes" / p;
+  return config_dir() / "scenes" / p;
 }
 
 //! The kiosk's settings file when there is one (<config>/mallet.toml); else the built-in

@@ -11,14 +11,14 @@ constexpr Nanos kStep = 20'000'000;  // input and audio advance together in 20 m
 constexpr int kMaxBlock = 4096;
 }  // namespace
 
-HeadlessLoop::HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after)
+HeadlessLoop::HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after, bool acoustic_enabled)
     : scene_(scene),
       rate_(config.audio.sample_rate_hz),
       channels_(config.audio.routing.channels),
       idle_after_(idle_after),
-      rig_(make_audio_rig(scene, config, config.audio.sample_rate_hz)),
+      rig_(make_audio_rig(scene, config, config.audio.sample_rate_hz, acoustic_enabled)),
       loop_(scene, config),
-      last_visitor_(-idle_after) {}
+      last_visitor_(idle_after == kNoAttract ? 0 : -idle_after) {}
 
 void HeadlessLoop::strike(const Impact& impact, bool ghost) {
   if (!rig_.engine->post(impact)) ++counters_.refused_posts;
@@ -27,6 +27,7 @@ void HeadlessLoop::strike(const Impact& impact, bool ghost) {
 }
 
 void HeadlessLoop::feed_ghost_until(Nanos t) {
+  if (idle_after_ == kNoAttract) return;
   if (!ghost_ && t - last_visitor_ >= idle_after_) {
     const Nanos start = std::max(now_, last_visitor_ + idle_after_);
     ghost_.emplace(scene_, start);
@@ -59,6 +60,12 @@ void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
   post_motion();
   render_audio_until(t);
   now_ = std::max(now_, t);
+}
+
+void HeadlessLoop::present(const Impact& impact) {
+  advance(impact.t_ns);  // the audio before the stimulus's block is settled; its own block is not
+  loop_.show(impact);
+  strike(impact, false);
 }
 
 void HeadlessLoop::advance(Nanos t) {

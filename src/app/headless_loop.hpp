@@ -9,6 +9,7 @@
 // sample.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -29,11 +30,18 @@ class HeadlessLoop {
     double peak = 0;                        //!< largest |sample| rendered
   };
 
-  HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after);
+  //! `idle_after` = kNoAttract: the ghost never plays (study mode).
+  static constexpr Nanos kNoAttract = std::numeric_limits<Nanos>::max();
+  //! `acoustic_enabled` false: the speaker channel stays silent.
+  HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after, bool acoustic_enabled = true);
 
   //! A visitor's hand (sphere centre, world metres) at t >= now(): takes over from the
   //! ghost at once.
   void visitor(Nanos t, Vec2 hand);
+  //! A strike made by the program, not the hand (a study stimulus) at impact.t_ns >= now():
+  //! the audio up to it is rendered first, then both channels and the bounce start as for a
+  //! visitor's strike.
+  void present(const Impact& impact);
   //! Moves the clock to t: the ghost plays if idle, and the audio is rendered up to t.
   void advance(Nanos t);
   //! Renders audio up to t with no input at all (the tail after the last stroke).
@@ -43,6 +51,7 @@ class HeadlessLoop {
   bool attract() const { return ghost_.has_value(); }
   Vec2 displayed(Nanos t_present) const { return loop_.displayed(t_present); }
   const StrikeLoop& strike_loop() const { return loop_; }
+  double visual_offset_m(Nanos t_present) const { return loop_.visual_offset_m(t_present); }
   const Counters& counters() const { return counters_; }
   const audio::AudioEngine& engine() const { return *rig_.engine; }
   int sample_rate_hz() const { return rate_; }

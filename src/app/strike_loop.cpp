@@ -22,10 +22,14 @@ std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
   }
   std::optional<Impact> impact = mallet_.update(t, hand);
   if (impact) {
-    vibration_.start(*impact, scene_.materials.at(impact->material).visual);
+    show(*impact);
     if (cycle_materials_) next_wall_material();
   }
   return impact;
+}
+
+void StrikeLoop::show(const Impact& impact) {
+  vibration_.start(impact, scene_.materials.at(static_cast<std::size_t>(impact.material)).visual);
 }
 
 int StrikeLoop::wall_material() const {

@@ -26,11 +26,16 @@ class StrikeLoop {
   std::optional<Impact> feed(Nanos t, Vec2 hand);
   //! The texture scene's cursor motion from the last feed (for AudioEngine::post_motion).
   const std::optional<StripeMotion>& motion() const { return motion_; }
+  //! A strike that did not come from the hand (a study stimulus): the bounce starts as
+  //! for a real one.
+  void show(const Impact& impact);
   //! Forget the previous sample: the next one starts a new stroke (input source changed).
   void reset();
 
   //! Where the head is drawn for a frame shown at `t_present`.
   Vec2 displayed(Nanos t_present) const;
+  //! Eq. 1's visual displacement alone (metres along the normal) at `t_present`.
+  double visual_offset_m(Nanos t_present) const { return vibration_.offset_m(t_present); }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
   //! The Speed technique's gain of the last displacement (1 outside texture scenes).
   double gain() const { return texture_ ? texture_->gain() : 1.0; }

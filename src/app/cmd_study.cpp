@@ -1,0 +1,102 @@
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "app/commands.hpp"
+#include "app/data_paths.hpp"
+#include "app/study_session.hpp"
+#include "core/file_error.hpp"
+#include "core/study/results_csv.hpp"
+#include "core/study/study_summary.hpp"
+#include "render/window_target.hpp"
+
+namespace mallet::app {
+
+namespace {
+
+void add_summary(CLI::App& study) {
+  auto results = std::make_shared<std::string>();
+  auto participant = std::make_shared<std::string>();
+  CLI::App* cmd = study.add_subcommand("summary", "Per-condition accuracy and a psychometric fit of a results CSV");
+  cmd->footer(
+      "Prints, per condition: trials, correct answers, accuracy and mean response time; then, for\n"
+      "2AFC rows (those with a difference_pct), the maximum-likelihood fit of\n"
+      "  P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold)))\n"
+      "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference.\n"
+      "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.");
+  cmd->add_option("--results", *results, "Results CSV written by `mallet study`")->required();
+  cmd->add_option("--participant", *participant, "Only this participant's rows (default: all)");
+  cmd->callback([results, participant] {
+    const study::ResultsFile file = study::read_results(*results);
+    if (!file.exists) throw FileError(*results, 0, 0, "file not found");
+    for (const std::string& w : file.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::printf("%s: ", results->c_str());
+    std::fputs(study::format_summary(study::summarize(file.rows, *participant)).c_str(), stdout);
+  });
+}
+
+}  // namespace
+
+void register_study(CLI::App& app) {
+  auto o = std::make_shared<StudyOptions>();
+  auto headless = std::make_shared<bool>(false);
+  auto stop_after = std::make_shared<int>(0);
+  o->scene = default_scene();
+  o->config = default_settings();
+  CLI::App* cmd = app.add_subcommand("study", "Run a perception study protocol (2AFC harder / name the material)");
+  cmd->require_subcommand(0, 1);
+  cmd->footer(
+      "mallet study --protocol FILE.toml --participant ID --headless [--answers FILE] [--out CSV]\n"
+      "mallet study summary --results CSV\n"
+      "Runs a psychophysics protocol (config/study/example.toml documents one): every condition\n"
+      "(visual_only, tactile_only, both, none) x pair or stimulus, `repetitions` times, in an order\n"
+      "shuffled per participant (seeded by the protocol's seed and the ID: the same ID gets the same\n"
+      "order) with each 2AFC pair shown in both orders equally often. Headless, on a simulated clock,\n"
+      "through the kiosk's own audio engine and bounce; answers come from --answers (one a line:\n"
+      "1 or 2, or a material name, optionally followed by a response time in ms) or, without it, from\n"
+      "a simulated observer (rows marked source=simulated). One CSV row per trial, fsync'd before the\n"
+      "next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then\n"
+      "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak.\n"
+      "Run again with the same participant to resume: trials already in the CSV are skipped; an\n"
+      "incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.\n"
+      "The windowed, interactive mode is not built yet: --headless is required where a display is.");
+  cmd->add_option("--protocol", o->protocol, "Protocol file (TOML)")->check(CLI::ExistingFile);
+  cmd->add_option("--participant", o->participant, "Participant ID (letters, digits, _ - .)");
+  cmd->add_option("--out", o->out, "Results CSV, appended to (default: the protocol's `output`)");
+  cmd->add_option("--answers", o->answers, "Answer script; without it a simulated observer answers");
+  cmd->add_option("--audio", o->audio, "Also write this run's stimuli to a WAV file (channels as [audio.routing])");
+  cmd->add_option("--scene", o->scene, "Scene file (its materials and bars)")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (the only mode so far)");
+  cmd->add_option("--stop-after", *stop_after, "Test hook: end the process abruptly after N rows, as a crash would")
+      ->group("");
+  add_summary(*cmd);
+  cmd->callback([cmd, o, headless, stop_after] {
+    if (cmd->get_subcommand("summary")->parsed()) return;
+    if (o->protocol.empty()) throw CLI::RequiredError("--protocol");
+    if (o->participant.empty()) throw CLI::RequiredError("--participant");
+    if (!*headless && render::WindowSystem::display_available())
+      throw FileError("--headless", 0, 0,
+                      "the windowed, interactive study is not built yet; run with --headless (answers from "
+                      "--answers FILE, or the simulated observer)");
+    if (*stop_after > 0)
+      o->after_row = [n = *stop_after](int rows) {
+        if (rows < n) return;
+        std::fflush(stdout);
+        std::_Exit(3);  // no destructors, no flushing: what a crash leaves behind
+      };
+    const StudyRunResult r = run_study(*o);
+    for (const std::string& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::printf("participant %s: %d trials in the schedule\n", o->participant.c_str(), r.total);
+    if (r.already_recorded)
+      std::printf("resumed: %d trial(s) already in %s\n", r.already_recorded, r.csv.c_str());
+    if (r.answered && r.simulated)
+      std::printf("note: no --answers: the simulated observer answered (rows marked source=simulated)\n");
+    std::printf("answered %d trial(s) in this run, %d correct; %d of %d recorded\n", r.answered, r.correct,
+                r.already_recorded + r.answered, r.total);
+    if (r.answers_ran_out) std::printf("note: the answer script ran out; run again with more answers to continue\n");
+    for (const auto& p : r.written) std::printf("wrote %s\n", p.c_str());
+  });
+}
+
+}  // namespace mallet::app

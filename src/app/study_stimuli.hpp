@@ -1,0 +1,21 @@
+#pragma once
+// How a study stimulus reaches the participant through the kiosk's own code: each
+// stimulus × condition becomes a bar of a study scene — a copy of the protocol's
+// reference bar (so the note, if any, is the same for every stimulus) — whose material
+// keeps only what the condition presents: visual_only zeroes the actuator triple's A,
+// tactile_only the visual one, none both. A tap is then an Impact on that bar: the audio
+// engine plays Eq. 1 on the actuator channel and the strike loop bounces the mallet with
+// Eq. 1, exactly as for a visitor's strike.
+#include "core/impact.hpp"
+#include "core/scene.hpp"
+#include "core/study/study_protocol.hpp"
+
+namespace mallet::app {
+
+Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol);
+
+//! The tap presenting `stimulus` (index in protocol.stimuli) under `condition` at t.
+Impact stimulus_impact(const Scene& study_scene, const study::StudyProtocol& protocol, int stimulus,
+                       study::StudyCondition condition, Nanos t);
+
+}  // namespace mallet::app

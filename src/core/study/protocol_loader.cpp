@@ -1,0 +1,169 @@
+#include "core/study/protocol_loader.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "core/config/toml_reader.hpp"
+
+namespace mallet::study {
+
+bool is_plain_name(std::string_view s) {
+  if (s.empty() || s.size() > 64) return false;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+                    c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+namespace {
+
+using config::TableReader;
+
+constexpr const char* kPlain = "must be 1-64 letters, digits, '_', '-' or '.'";
+
+Nanos seconds_key(TableReader& t, std::string_view key, double fallback_s, double lo, double hi) {
+  const double s = t.number_or(key, fallback_s);
+  t.require_range(key, s, lo, hi);
+  return static_cast<Nanos>(std::llround(s * 1e9));
+}
+
+StudyTiming read_timing(TableReader t) {
+  const StudyTiming d;
+  StudyTiming timing;
+  timing.lead = seconds_key(t, "lead_s", to_seconds(d.lead), 0, 60);
+  timing.stimulus = seconds_key(t, "stimulus_s", to_seconds(d.stimulus), 0.05, 60);
+  timing.stimulus_interval = seconds_key(t, "stimulus_interval_s", to_seconds(d.stimulus_interval), 0.05, 60);
+  timing.inter_trial = seconds_key(t, "inter_trial_s", to_seconds(d.inter_trial), 0, 60);
+  if (timing.stimulus_interval < timing.stimulus)
+    t.fail("stimulus_interval_s", "must be >= stimulus_s, so the first stimulus is over before the second");
+  t.finish();
+  return timing;
+}
+
+Stimulus read_stimulus(TableReader t, const std::vector<Material>& materials) {
+  Stimulus s;
+  s.name = t.string("name");
+  if (!is_plain_name(s.name)) t.fail("name", "\"" + s.name + "\" " + kPlain);
+  const std::string material = t.string("material");
+  const Material* found = nullptr;
+  for (const Material& m : materials)
+    if (m.name == material) found = &m;
+  if (!found) {
+    std::string known;
+    for (const Material& m : materials) known += (known.empty() ? "" : ", ") + m.name;
+    t.fail("material", "unknown material \"" + material + "\" (the scene has: " + known + ")");
+  }
+  s.decay_scale = t.number_or("decay_scale", 1.0);
+  t.require_range("decay_scale", s.decay_scale, 0.01, 100);
+  s.material = *found;
+  s.material.visual.decay_per_s *= s.decay_scale;
+  s.material.actuator.decay_per_s *= s.decay_scale;
+  t.finish();
+  return s;
+}
+
+int stimulus_index(TableReader& t, std::string_view key, const std::vector<Stimulus>& stimuli) {
+  const std::string name = t.string(key);
+  for (std::size_t i = 0; i < stimuli.size(); ++i)
+    if (stimuli[i].name == name) return static_cast<int>(i);
+  std::string known;
+  for (const Stimulus& s : stimuli) known += (known.empty() ? "" : ", ") + s.name;
+  t.fail(key, "no [[stimulus]] named \"" + name + "\" (known: " + known + ")");
+}
+
+StimulusPair read_pair(TableReader t, const std::vector<Stimulus>& stimuli) {
+  StimulusPair p;
+  p.a = stimulus_index(t, "a", stimuli);
+  p.b = stimulus_index(t, "b", stimuli);
+  t.finish();
+  if (p.a == p.b) t.fail("b", "a pair needs two different stimuli");
+  const Material& a = stimuli[static_cast<std::size_t>(p.a)].material;
+  const Material& b = stimuli[static_cast<std::size_t>(p.b)].material;
+  const double dv = b.visual.decay_per_s - a.visual.decay_per_s;
+  const double da = b.actuator.decay_per_s - a.actuator.decay_per_s;
+  if (dv == 0 || da == 0 || (dv > 0) != (da > 0))
+    t.fail("b",
+           "\"harder\" is the stimulus with the larger decay_per_s (B), visual and actuator alike; these two "
+           "are equal or ordered differently by the two triples");
+  p.harder = dv > 0 ? p.b : p.a;
+  const Material& hard = p.harder == p.a ? a : b;
+  const Material& soft = p.harder == p.a ? b : a;
+  p.difference_pct = 100.0 * (hard.visual.decay_per_s / soft.visual.decay_per_s - 1.0);
+  return p;
+}
+
+StudyProtocol read(const toml::table& root, const std::string& file, const std::vector<Material>& materials,
+                   std::size_t bar_count) {
+  TableReader top(root, file);
+  StudyProtocol p;
+  p.file = file;
+  p.name = top.string("name");
+  if (!is_plain_name(p.name)) top.fail("name", "\"" + p.name + "\" " + kPlain);
+
+  const std::string task = top.string("task");
+  if (task == "2afc_harder") p.task = StudyTask::two_afc_harder;
+  else if (task == "name_material") p.task = StudyTask::name_material;
+  else top.fail("task", "expected \"2afc_harder\" or \"name_material\", got \"" + task + "\"");
+
+  std::set<std::string> seen;
+  for (const std::string& c : top.strings("conditions")) {
+    const auto condition = condition_from_name(c);
+    if (!condition) top.fail("conditions", "unknown condition \"" + c + "\" (visual_only, tactile_only, both, none)");
+    if (!seen.insert(c).second) top.fail("conditions", "\"" + c + "\" is listed twice");
+    p.conditions.push_back(*condition);
+  }
+  if (p.conditions.empty()) top.fail("conditions", "lists no condition");
+
+  const std::int64_t reps = top.integer("repetitions");
+  top.require_range("repetitions", static_cast<double>(reps), 1, 1000);
+  if (p.task == StudyTask::two_afc_harder && reps % 2 != 0)
+    top.fail("repetitions", "must be even for 2afc_harder, so each pair is shown in both orders equally often");
+  p.repetitions = static_cast<int>(reps);
+
+  const std::int64_t seed = top.integer("seed");
+  if (seed < 0) top.fail("seed", "must be >= 0");
+  p.seed = static_cast<std::uint64_t>(seed);
+  p.output = top.string_or("output", "study-results.csv");
+  if (p.output.empty()) top.fail("output", "must not be empty");
+  p.impact_speed_m_per_s = top.number_or("impact_speed_m_per_s", p.impact_speed_m_per_s);
+  top.require_range("impact_speed_m_per_s", p.impact_speed_m_per_s, 0.01, 10);
+  p.sound = top.boolean_or("sound", false);
+  const std::int64_t bar = top.integer_or("reference_bar", 0);
+  if (bar < 0 || static_cast<std::size_t>(bar) >= bar_count)
+    top.fail("reference_bar", "must name a bar of the scene: 0 to " + std::to_string(bar_count - 1));
+  p.reference_bar = static_cast<int>(bar);
+  if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing);
+
+  std::set<std::string> names;
+  std::vector<TableReader> stimulus_tables = top.tables("stimulus");
+  for (TableReader& t : stimulus_tables) {
+    p.stimuli.push_back(read_stimulus(t, materials));
+    if (!names.insert(p.stimuli.back().name).second)
+      t.fail("name", "a second [[stimulus]] named \"" + p.stimuli.back().name + "\"");
+  }
+
+  if (p.task == StudyTask::two_afc_harder) {
+    for (TableReader& t : top.tables("pair")) p.pairs.push_back(read_pair(t, p.stimuli));
+  } else {
+    if (top.has("pair")) top.fail("pair", "only a 2afc_harder protocol has pairs");
+    for (std::size_t i = 0; i < p.stimuli.size(); ++i) p.named.push_back(static_cast<int>(i));
+  }
+  top.finish();
+  return p;
+}
+
+}  // namespace
+
+StudyProtocol load_study_protocol(const std::filesystem::path& path, const std::vector<Material>& materials,
+                                  std::size_t bar_count) {
+  return read(config::parse_file(path), path.string(), materials, bar_count);
+}
+
+StudyProtocol parse_study_protocol(std::string_view text, const std::string& name,
+                                   const std::vector<Material>& materials, std::size_t bar_count) {
+  return read(config::parse_text(text, name), name, materials, bar_count);
+}
+
+}  // namespace mallet::study

@@ -1,0 +1,193 @@
+#include "core/study/results_csv.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "core/file_error.hpp"
+
+namespace mallet::study {
+
+namespace {
+
+std::string g(double v, const char* format) {
+  if (std::isnan(v)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
+    fields.push_back(line.substr(start, comma - start));
+  fields.push_back(line.substr(start));
+  return fields;
+}
+
+struct Columns {
+  static constexpr int kMissing = -1;
+  int participant = kMissing, trial = kMissing, condition = kMissing, stimuli = kMissing, answer = kMissing,
+      correct = kMissing, response_time_ms = kMissing, protocol = kMissing, task = kMissing,
+      difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
+      actuator_peak = kMissing;
+};
+
+Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
+  Columns c;
+  const std::pair<const char*, int*> names[] = {
+      {"participant", &c.participant}, {"trial", &c.trial},       {"condition", &c.condition},
+      {"stimuli", &c.stimuli},         {"answer", &c.answer},     {"correct", &c.correct},
+      {"response_time_ms", &c.response_time_ms}, {"protocol", &c.protocol}, {"task", &c.task},
+      {"difference_pct", &c.difference_pct}, {"source", &c.source}, {"session", &c.session},
+      {"visual_peak_m", &c.visual_peak_m}, {"actuator_peak", &c.actuator_peak}};
+  for (const auto& [name, index] : names)
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) *index = static_cast<int>(i);
+  for (int i = 0; i < 7; ++i)
+    if (*names[i].second == Columns::kMissing)
+      throw FileError(file, 1, 0, std::string("missing column \"") + names[i].first + "\" (expected a header " +
+                                      "starting participant,trial,condition,stimuli,answer,correct,response_time_ms)");
+  return c;
+}
+
+double number(const std::string& s, const std::string& file, std::uint32_t line, const char* column,
+              bool empty_is_nan) {
+  if (s.empty() && empty_is_nan) return std::nan("");
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+    throw FileError(file, line, 0, std::string(column) + ": \"" + s + "\" is not a number");
+  return v;
+}
+
+ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const std::string& file,
+                    std::uint32_t line) {
+  const auto field = [&](int i) -> std::string { return i == Columns::kMissing ? std::string() : f[static_cast<std::size_t>(i)]; };
+  ResultRow r;
+  r.participant = field(c.participant);
+  const double trial = number(field(c.trial), file, line, "trial", false);
+  if (trial < 1 || trial != std::floor(trial) || trial > 1e9)
+    throw FileError(file, line, 0, "trial: \"" + field(c.trial) + "\" is not a trial number (1, 2, ...)");
+  r.trial = static_cast<int>(trial);
+  r.condition = field(c.condition);
+  r.stimuli = field(c.stimuli);
+  r.answer = field(c.answer);
+  const std::string correct = field(c.correct);
+  if (correct != "0" && correct != "1") throw FileError(file, line, 0, "correct: \"" + correct + "\" is not 0 or 1");
+  r.correct = correct == "1";
+  r.response_time_ms = number(field(c.response_time_ms), file, line, "response_time_ms", false);
+  r.protocol = field(c.protocol);
+  r.task = field(c.task);
+  r.difference_pct = number(field(c.difference_pct), file, line, "difference_pct", true);
+  r.source = field(c.source);
+  r.session = field(c.session);
+  r.visual_peak_m = number(field(c.visual_peak_m), file, line, "visual_peak_m", true);
+  r.actuator_peak = number(field(c.actuator_peak), file, line, "actuator_peak", true);
+  return r;
+}
+
+[[noreturn]] void fail_io(const std::filesystem::path& path, const std::string& what, int e) {
+  throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(e));
+}
+
+}  // namespace
+
+std::string format_row(const ResultRow& r) {
+  std::string out = r.participant + ',' + std::to_string(r.trial) + ',' + r.condition + ',' + r.stimuli + ',' +
+                    r.answer + ',' + (r.correct ? "1" : "0") + ',' + g(r.response_time_ms, "%.3f") + ',' +
+                    r.protocol + ',' + r.task + ',' + g(r.difference_pct, "%.6g") + ',' + r.source + ',' +
+                    r.session + ',' + g(r.visual_peak_m, "%.6g") + ',' + g(r.actuator_peak, "%.6g");
+  out += '\n';
+  return out;
+}
+
+ResultsFile read_results(const std::filesystem::path& path) {
+  ResultsFile out;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return out;
+  if (std::filesystem::is_directory(path, ec)) throw FileError(path.string(), 0, 0, "is a directory, expected a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path.string(), 0, 0, "cannot open");
+  out.exists = true;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string file = path.string();
+  Columns columns;
+  std::size_t header_fields = 0;
+  std::uint32_t line_no = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    ++line_no;
+    const std::size_t nl = text.find('\n', pos);
+    if (nl == std::string::npos) {
+      out.warnings.push_back(file + ":" + std::to_string(line_no) +
+                             ": incomplete last line ignored (the program stopped while writing it); "
+                             "that trial will be run again");
+      break;
+    }
+    std::string line = text.substr(pos, nl - pos);
+    pos = nl + 1;
+    out.complete_bytes = pos;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    std::vector<std::string> fields = split(line);
+    if (!out.has_header) {
+      columns = find_columns(fields, file);
+      out.header = line;
+      header_fields = fields.size();
+      out.has_header = true;
+      continue;
+    }
+    if (fields.size() != header_fields)
+      throw FileError(file, line_no, 0, "expected " + std::to_string(header_fields) + " fields, got " +
+                                            std::to_string(fields.size()));
+    out.rows.push_back(parse_row(fields, columns, file, line_no));
+    out.lines.push_back(line_no);
+  }
+  return out;
+}
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsFile& existing) : path_(path) {
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) fail_io(path, "cannot open for appending", errno);
+  const auto keep = existing.has_header ? static_cast<off_t>(existing.complete_bytes) : 0;
+  if (::ftruncate(fd_, keep) != 0) fail_io(path, "cannot cut off the incomplete last line", errno);
+  if (::lseek(fd_, 0, SEEK_END) < 0) fail_io(path, "cannot seek", errno);
+  if (!existing.has_header) {
+    write_durably(std::string(kResultsHeader) + "\n");
+    // A new file: its folder entry must reach the disk too.
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+      ::fsync(dfd);
+      ::close(dfd);
+    }
+  }
+}
+
+ResultsWriter::~ResultsWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void ResultsWriter::write_durably(const std::string& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail_io(path_, "write failed", errno);
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd_) != 0) fail_io(path_, "fsync failed", errno);
+}
+
+void ResultsWriter::append(const ResultRow& row) { write_durably(format_row(row)); }
+
+}  // namespace mallet::study

@@ -1,0 +1,77 @@
+#pragma once
+// The study's results file: one CSV row per answered trial, appended and made durable
+// (one write(2) of the whole row, then fsync) before the next trial starts, so a crash
+// or a power cut loses at most the trial in progress. Columns:
+//   participant,trial,condition,stimuli,answer,correct,response_time_ms   (the required ones)
+//   ,protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak  (extras)
+// `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
+// name_material); `source` who answered (file, simulated); `session` when that run began
+// (UTC); the two peaks are what the condition really presented (measured on the rendered
+// output): the largest visual displacement in metres and the largest actuator sample.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mallet::study {
+
+inline constexpr const char* kResultsHeader =
+    "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
+    "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak";
+
+struct ResultRow {
+  std::string participant;
+  int trial = 0;
+  std::string condition;
+  std::string stimuli;
+  std::string answer;
+  bool correct = false;
+  double response_time_ms = 0;
+  std::string protocol;
+  std::string task;
+  double difference_pct = 0;  //!< NaN: none (written as an empty field)
+  std::string source;
+  std::string session;
+  double visual_peak_m = 0;
+  double actuator_peak = 0;
+};
+
+//! The row as written, ending in '\n'.
+std::string format_row(const ResultRow& row);
+
+struct ResultsFile {
+  bool exists = false;
+  bool has_header = false;            //!< a complete header line is there
+  std::string header;                 //!< that line
+  std::vector<ResultRow> rows;        //!< complete rows, in file order
+  std::vector<std::uint32_t> lines;   //!< each row's line number
+  std::vector<std::string> warnings;  //!< "FILE:LINE: ..." for an incomplete last line
+  std::uintmax_t complete_bytes = 0;  //!< the file's length up to its last complete line
+};
+
+//! Reads a results file. A last line without its '\n' (a crash in the middle of a write)
+//! is ignored with a warning naming FILE:LINE; any other bad line is a FileError. Needs
+//! the seven required columns; `difference_pct` and the other extras are optional.
+//! A missing file reads as empty (exists = false).
+ResultsFile read_results(const std::filesystem::path& path);
+
+//! Appends rows durably. Opening cuts the file back to `complete_bytes` (dropping an
+//! incomplete last line, which would otherwise glue itself to the next row) and writes
+//! the header if the file holds none. Throws std::runtime_error naming the file.
+class ResultsWriter {
+ public:
+  ResultsWriter(const std::filesystem::path& path, const ResultsFile& existing);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  //! One write(2) of the row, then fsync(2): on return the row survives a crash.
+  void append(const ResultRow& row);
+
+ private:
+  void write_durably(const std::string& bytes);
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
+}  // namespace mallet::study

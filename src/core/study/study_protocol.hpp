@@ -1,0 +1,84 @@
+#pragma once
+// A psychophysics protocol for study mode (both papers' stated future work: a perceptual
+// evaluation of the visual and tactile vibrations). A protocol names a task, the sensory
+// conditions, the stimuli (materials of config/materials.toml, optionally with Eq. 1's
+// decay rate B scaled), how often each is shown, and a seed; config/study/example.toml
+// documents every key.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/time.hpp"
+
+namespace mallet::study {
+
+enum class StudyTask {
+  two_afc_harder,  //!< "2afc_harder": two taps, which felt harder (answer 1 or 2)
+  name_material,   //!< "name_material": one tap, name its material
+};
+
+//! What a condition keeps of the stimulus: the visual vibration (Eq. 1, the material's
+//! visual triple), the actuator signal (Eq. 1, its actuator triple), both or neither.
+enum class StudyCondition { visual_only, tactile_only, both, none };
+
+inline constexpr StudyCondition kAllConditions[] = {StudyCondition::visual_only, StudyCondition::tactile_only,
+                                                    StudyCondition::both, StudyCondition::none};
+
+std::string_view task_name(StudyTask task);
+std::string_view condition_name(StudyCondition condition);
+std::optional<StudyCondition> condition_from_name(std::string_view name);
+inline bool shows_visual(StudyCondition c) { return c == StudyCondition::visual_only || c == StudyCondition::both; }
+inline bool plays_actuator(StudyCondition c) { return c == StudyCondition::tactile_only || c == StudyCondition::both; }
+
+//! One stimulus: a material whose two Eq. 1 triples are used as configured, except that
+//! B (decay_per_s) of both is multiplied by `decay_scale` (B grows with stiffness in
+//! Okamura's model: Table 1 gives metal a larger B than wood).
+struct Stimulus {
+  std::string name;     //!< unique in the protocol; what the CSV's `stimuli` column shows
+  Material material;    //!< name = the base material (the answer of name_material); triples scaled
+  double decay_scale = 1.0;
+};
+
+//! Two stimuli compared in a 2AFC trial. `harder` is the one with the larger B; the
+//! stimulus difference is 100·(B_harder/B_softer − 1) percent (the same for the visual and
+//! the actuator triple when both come from Table 1 and one decay_scale).
+struct StimulusPair {
+  int a = 0, b = 0;  //!< indices in StudyProtocol::stimuli
+  int harder = 0;    //!< a or b
+  double difference_pct = 0;
+};
+
+//! The simulated clock of one trial (int64 ns): lead, stimulus 1, [gap, stimulus 2], answer.
+struct StudyTiming {
+  Nanos lead = 500'000'000;              //!< trial start → first stimulus onset
+  Nanos stimulus_interval = 1'200'000'000;  //!< onset → onset of the two 2AFC stimuli
+  Nanos stimulus = 1'000'000'000;        //!< a stimulus is shown this long before what follows
+  Nanos inter_trial = 500'000'000;       //!< answer → next trial start
+};
+
+struct StudyProtocol {
+  std::string file;               //!< where it was loaded from (messages)
+  std::string name;               //!< CSV column `protocol`
+  StudyTask task = StudyTask::two_afc_harder;
+  std::vector<StudyCondition> conditions;
+  std::vector<Stimulus> stimuli;
+  std::vector<StimulusPair> pairs;  //!< 2AFC only
+  std::vector<int> named;           //!< name_material: the stimuli shown (indices)
+  int repetitions = 2;              //!< per condition × item; even for 2AFC (both orders)
+  std::uint64_t seed = 1;
+  std::string output;               //!< default results CSV (--out overrides)
+  double impact_speed_m_per_s = 0.5;
+  bool sound = false;               //!< the speaker's note: off, or one note for every stimulus
+  int reference_bar = 0;            //!< the bar whose note (and voice) every stimulus uses
+  StudyTiming timing;
+
+  //! Items per condition: pairs (2AFC) or named stimuli.
+  std::size_t items() const { return task == StudyTask::two_afc_harder ? pairs.size() : named.size(); }
+  //! The answers a participant may give: "1", "2" or the materials' names.
+  std::vector<std::string> answer_choices() const;
+};
+
+}  // namespace mallet::study

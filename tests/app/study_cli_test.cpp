@@ -1,0 +1,174 @@
+// `mallet study` end to end, as a researcher runs it: a whole short protocol headless; a
+// crash mid-session and its resumption; the summary; bad input exits 2 with one line.
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "core/study/results_csv.hpp"
+#include "run_cli.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+namespace fs = std::filesystem;
+using study::ResultRow;
+
+std::string example() { return (test::config_dir() / "study" / "example.toml").string(); }
+
+std::string study_args(const fs::path& csv, const std::string& participant = "P01") {
+  return "study --headless --protocol " + example() + " --participant " + participant + " --out " + csv.string();
+}
+
+std::vector<ResultRow> rows_of(const fs::path& csv) { return study::read_results(csv).rows; }
+
+TEST(StudyCli, RunsTheExampleProtocolHeadlessWithTheSimulatedObserver) {
+  const fs::path dir = test::scratch_dir();
+  const test::CliResult r = test::run_mallet(study_args(dir / "r.csv") + " --audio " + (dir / "a.wav").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("participant P01: 32 trials in the schedule"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("source=simulated"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "a.wav"));
+
+  const std::vector<ResultRow> rows = rows_of(dir / "r.csv");
+  ASSERT_EQ(rows.size(), 32u);
+  std::map<std::string, int> per_condition;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const ResultRow& row = rows[i];
+    EXPECT_EQ(row.trial, static_cast<int>(i + 1));
+    EXPECT_EQ(row.participant, "P01");
+    EXPECT_EQ(row.source, "simulated");
+    EXPECT_TRUE(row.answer == "1" || row.answer == "2");
+    ++per_condition[row.condition];
+    // What the condition presented, measured on the rendered output: the bounce only
+    // with vision, the actuator signal only with touch.
+    const bool visual = row.condition == "visual_only" || row.condition == "both";
+    const bool tactile = row.condition == "tactile_only" || row.condition == "both";
+    EXPECT_EQ(row.visual_peak_m > 1e-4, visual) << row.trial << " " << row.condition << " " << row.visual_peak_m;
+    EXPECT_EQ(row.visual_peak_m == 0.0, !visual);
+    EXPECT_EQ(row.actuator_peak > 1e-3, tactile) << row.trial << " " << row.condition << " " << row.actuator_peak;
+    EXPECT_EQ(row.actuator_peak == 0.0, !tactile);
+  }
+  EXPECT_EQ(per_condition, (std::map<std::string, int>{{"both", 8}, {"none", 8}, {"tactile_only", 8}, {"visual_only", 8}}));
+
+  const test::CliResult s = test::run_mallet("study summary --results " + (dir / "r.csv").string());
+  ASSERT_EQ(s.status, 0) << s.output;
+  EXPECT_NE(s.output.find("32 trials, 1 participant"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("visual_only          8"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("psychometric fit"), std::string::npos) << s.output;
+
+  // Running again: nothing left to do, nothing added.
+  const test::CliResult again = test::run_mallet(study_args(dir / "r.csv"));
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("answered 0 trial(s) in this run, 0 correct; 32 of 32 recorded"), std::string::npos)
+      << again.output;
+  EXPECT_EQ(rows_of(dir / "r.csv").size(), 32u);
+}
+
+TEST(StudyCli, ACrashMidSessionLosesNothingAndTheSessionResumes) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path csv = dir / "r.csv";
+  // P02 first, uninterrupted, in the same file: a resume must not touch another's rows.
+  ASSERT_EQ(test::run_mallet(study_args(csv, "P02")).status, 0);
+  // P01 is cut off abruptly after 5 trials ...
+  const test::CliResult crashed = test::run_mallet(study_args(csv) + " --stop-after 5");
+  ASSERT_EQ(crashed.status, 3) << crashed.output;
+  std::vector<ResultRow> rows = rows_of(csv);
+  ASSERT_EQ(rows.size(), 32u + 5u);
+  // ... and, as if it died in the middle of writing the sixth, a fragment of a row.
+  { std::ofstream(csv, std::ios::app) << "P01,6,bo"; }
+
+  const test::CliResult resumed = test::run_mallet(study_args(csv));
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("warning: " + csv.string() + ":39: incomplete last line ignored"), std::string::npos)
+      << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed: 5 trial(s) already in"), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find("answered 27 trial(s) in this run"), std::string::npos) << resumed.output;
+
+  const study::ResultsFile file = study::read_results(csv);
+  EXPECT_TRUE(file.warnings.empty());
+  std::map<std::string, std::multiset<int>> trials;
+  for (const ResultRow& row : file.rows) trials[row.participant].insert(row.trial);
+  for (const char* who : {"P01", "P02"}) {
+    ASSERT_EQ(trials[who].size(), 32u) << who;
+    for (int n = 1; n <= 32; ++n) EXPECT_EQ(trials[who].count(n), 1u) << who << " trial " << n;
+  }
+
+  // The resumed session is the session that was interrupted: same trials, same answers.
+  const fs::path whole = dir / "whole.csv";
+  ASSERT_EQ(test::run_mallet(study_args(whole)).status, 0);
+  std::map<int, ResultRow> uninterrupted;
+  for (const ResultRow& row : rows_of(whole)) uninterrupted[row.trial] = row;
+  for (const ResultRow& row : file.rows) {
+    if (row.participant != "P01") continue;
+    const ResultRow& w = uninterrupted.at(row.trial);
+    EXPECT_EQ(row.condition + row.stimuli + row.answer, w.condition + w.stimuli + w.answer) << row.trial;
+    EXPECT_DOUBLE_EQ(row.response_time_ms, w.response_time_ms);
+  }
+}
+
+TEST(StudyCli, AnswersFromAFileAndTheirMistakes) {
+  const fs::path dir = test::scratch_dir();
+  const std::string protocol = (test::config_dir() / "study" / "name_material.toml").string();
+  const fs::path answers = dir / "answers.txt";
+  {
+    std::ofstream f(answers);
+    f << "# one answer per trial\n";
+    for (int i = 0; i < 20; ++i) f << (i % 2 ? "wood" : "metal 512.5") << "\n";
+  }
+  const std::string args = "study --headless --protocol " + protocol + " --participant P7 --out " +
+                           (dir / "n.csv").string() + " --answers " + answers.string();
+  const test::CliResult r = test::run_mallet(args);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("answered 20 trial(s) in this run"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the answer script ran out"), std::string::npos) << r.output;
+  std::vector<ResultRow> rows = rows_of(dir / "n.csv");
+  ASSERT_EQ(rows.size(), 20u);
+  EXPECT_EQ(rows[0].answer, "metal");
+  EXPECT_DOUBLE_EQ(rows[0].response_time_ms, 512.5);
+  EXPECT_DOUBLE_EQ(rows[1].response_time_ms, 800.0);
+  EXPECT_EQ(rows[0].source, "file");
+  for (const ResultRow& row : rows) EXPECT_EQ(row.correct, row.answer == row.stimuli);  // stimulus = material here
+
+  { std::ofstream(answers) << "wood\n  glass\n"; }
+  const test::CliResult bad = test::run_mallet(args);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.output, "mallet: " + answers.string() +
+                            ":2:3: \"glass\" is not an answer of this protocol (wood, metal)\n");
+}
+
+TEST(StudyCli, BadInputIsOneLineAndExitStatus2) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path protocol = dir / "bad.toml";
+  {
+    std::ofstream f(protocol);
+    f << "name = \"x\"\ntask = \"2afc_harder\"\nconditions = [\"both\"]\nrepetitions = 2\nseed = 1\n"
+         "[[stimulus]]\nname = \"a\"\nmaterial = \"glass\"\n";
+  }
+  const std::string base = "study --headless --out " + (dir / "r.csv").string() + " --protocol ";
+  const test::CliResult r = test::run_mallet(base + protocol.string() + " --participant P01");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.output, "mallet: " + protocol.string() +
+                          ":8:12: stimulus[0].material: unknown material \"glass\" (the scene has: wood, metal)\n");
+  EXPECT_FALSE(fs::exists(dir / "r.csv"));
+
+  const test::CliResult who = test::run_mallet(base + example() + " --participant 'P 1'");
+  EXPECT_EQ(who.status, 2);
+  EXPECT_EQ(who.output, "mallet: --participant: \"P 1\" must be 1-64 letters, digits, '_', '-' or '.'\n");
+
+  // A results file from another protocol: refused, not mixed.
+  ASSERT_EQ(test::run_mallet(base + example() + " --participant P01 --stop-after 1").status, 3);
+  const std::string other = (test::config_dir() / "study" / "name_material.toml").string();
+  const test::CliResult mixed = test::run_mallet(base + other + " --participant P01");
+  EXPECT_EQ(mixed.status, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find((dir / "r.csv").string() + ":2: trial 1 of P01 is "), std::string::npos) << mixed.output;
+
+  const test::CliResult missing = test::run_mallet("study summary --results " + (dir / "nope.csv").string());
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_EQ(missing.output, "mallet: " + (dir / "nope.csv").string() + ": file not found\n");
+}
+
+}  // namespace
+}  // namespace mallet::app

@@ -1,0 +1,73 @@
+// Study protocols: the shipped examples load; every mistake is one FILE:LINE:COL line.
+#include <gtest/gtest.h>
+
+#include "core/study/protocol_loader.hpp"
+#include "core/study/study_fixture.hpp"
+
+namespace mallet::study {
+namespace {
+
+StudyProtocol load_shipped(const char* file) {
+  return load_study_protocol(test::config_dir() / "study" / file, test::percussion().materials,
+                             test::percussion().targets.size());
+}
+
+TEST(StudyProtocol, ShippedExampleLoads) {
+  const StudyProtocol p = load_shipped("example.toml");
+  EXPECT_EQ(p.name, "harder-2afc-example");
+  EXPECT_EQ(p.task, StudyTask::two_afc_harder);
+  EXPECT_EQ(p.conditions.size(), 4u);
+  ASSERT_EQ(p.stimuli.size(), 5u);
+  EXPECT_DOUBLE_EQ(p.stimuli[3].material.visual.decay_per_s, 8.0 * 1.3);
+  EXPECT_DOUBLE_EQ(p.stimuli[3].material.actuator.decay_per_s, 80.0 * 1.3);
+  EXPECT_EQ(p.stimuli[3].material.visual.freq_hz, 5.0);  // only B is scaled
+  ASSERT_EQ(p.pairs.size(), 4u);
+  EXPECT_NEAR(p.pairs[0].difference_pct, 5.0, 1e-9);
+  EXPECT_NEAR(p.pairs[3].difference_pct, 12.5, 1e-9);
+  EXPECT_EQ(p.items() * p.conditions.size() * static_cast<std::size_t>(p.repetitions), 32u);
+  EXPECT_EQ(p.timing.stimulus_interval, 1'200'000'000);
+  EXPECT_FALSE(p.sound);
+}
+
+TEST(StudyProtocol, ShippedNameMaterialLoads) {
+  const StudyProtocol p = load_shipped("name_material.toml");
+  EXPECT_EQ(p.task, StudyTask::name_material);
+  EXPECT_EQ(p.named.size(), 2u);
+  EXPECT_EQ(p.answer_choices(), (std::vector<std::string>{"wood", "metal"}));
+}
+
+std::string error_of(const std::string& text) {
+  return test::file_error_of([&] { test::parse_protocol(text, "bad.toml"); }).what();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(StudyProtocol, MistakesNameFileLineColumnAndKey) {
+  const std::string ok = test::kTwoAfcProtocol;
+  EXPECT_EQ(error_of(replaced(ok, "material = \"metal\"", "material = \"glass\"")),
+            "bad.toml:16:12: stimulus[2].material: unknown material \"glass\" (the scene has: wood, metal)");
+  EXPECT_EQ(error_of(replaced(ok, "repetitions = 4", "repetitions = 3")),
+            "bad.toml:5:15: repetitions: must be even for 2afc_harder, so each pair is shown in both orders "
+            "equally often");
+  EXPECT_EQ(error_of(replaced(ok, "\"none\"]", "\"smell\"]")),
+            "bad.toml:4:14: conditions: unknown condition \"smell\" (visual_only, tactile_only, both, none)");
+  EXPECT_EQ(error_of(replaced(ok, "seed = 42", "seed = 42\nrepetitons = 2")),
+            "bad.toml:7:14: repetitons: unknown key (misspelt? see the comments in the shipped file)");
+  EXPECT_EQ(error_of(replaced(ok, "b = \"wood_B110\"", "b = \"wood_B999\"")),
+            "bad.toml:19:5: pair[0].b: no [[stimulus]] named \"wood_B999\" (known: wood, wood_B110, metal)");
+  EXPECT_EQ(error_of(replaced(ok, "decay_scale = 1.1", "decay_scale = 1.0")),
+            "bad.toml:19:5: pair[0].b: \"harder\" is the stimulus with the larger decay_per_s (B), visual and "
+            "actuator alike; these two are equal or ordered differently by the two triples");
+  EXPECT_EQ(error_of(replaced(ok, "task = \"2afc_harder\"", "task = \"3afc\"")),
+            "bad.toml:3:8: task: expected \"2afc_harder\" or \"name_material\", got \"3afc\"");
+  EXPECT_EQ(error_of(replaced(ok, "name = \"t\"", "name = \"a,b\"")),
+            "bad.toml:2:8: name: \"a,b\" must be 1-64 letters, digits, '_', '-' or '.'");
+  EXPECT_EQ(error_of("name = \"t\"\ntask = \n"), "bad.toml:2:8: Error while parsing key-value pair: expected value, saw '\\n'");
+}
+
+}  // namespace
+}  // namespace mallet::study

@@ -1,0 +1,104 @@
+// The results file: rows survive as written; an incomplete last line (a crash during a
+// write) is dropped with a warning naming FILE:LINE and cut off before the next append.
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "core/study/results_csv.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::study {
+namespace {
+
+namespace fs = std::filesystem;
+
+ResultRow row(int trial, bool correct) {
+  ResultRow r;
+  r.participant = "P01";
+  r.trial = trial;
+  r.condition = "both";
+  r.stimuli = "wood|metal";
+  r.answer = correct ? "2" : "1";
+  r.correct = correct;
+  r.response_time_ms = 640.5;
+  r.protocol = "t";
+  r.task = "2afc_harder";
+  r.difference_pct = 12.5;
+  r.source = "file";
+  r.session = "2026-11-23T14:00:00Z";
+  r.visual_peak_m = 0.003;
+  r.actuator_peak = 0.08;
+  return r;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
+  EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
+  EXPECT_EQ(format_row(row(3, true)),
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
+  ResultRow naming = row(1, false);
+  naming.difference_pct = std::nan("");
+  EXPECT_NE(format_row(naming).find(",2afc_harder,,file,"), std::string::npos);  // no difference: empty
+}
+
+TEST(ResultsCsv, AppendsReadBackAndCutsAnIncompleteLastLine) {
+  const fs::path csv = test::scratch_dir() / "r.csv";
+  {
+    ResultsWriter w(csv, read_results(csv));
+    w.append(row(1, true));
+    w.append(row(2, false));
+  }
+  // A crash in the middle of the third row's write.
+  {
+    std::ofstream f(csv, std::ios::app | std::ios::binary);
+    f << "P01,3,both,wood|me";
+  }
+  const ResultsFile file = read_results(csv);
+  ASSERT_TRUE(file.has_header);
+  ASSERT_EQ(file.rows.size(), 2u);
+  EXPECT_EQ(file.lines, (std::vector<std::uint32_t>{2, 3}));
+  EXPECT_EQ(file.rows[1].trial, 2);
+  EXPECT_FALSE(file.rows[1].correct);
+  EXPECT_DOUBLE_EQ(file.rows[0].response_time_ms, 640.5);
+  ASSERT_EQ(file.warnings.size(), 1u);
+  EXPECT_EQ(file.warnings[0], csv.string() + ":4: incomplete last line ignored (the program stopped while "
+                                             "writing it); that trial will be run again");
+  {
+    ResultsWriter w(csv, file);  // resuming cuts the fragment off before appending
+    w.append(row(3, true));
+  }
+  const std::string text = slurp(csv);
+  EXPECT_EQ(text, std::string(kResultsHeader) + "\n" + format_row(row(1, true)) + format_row(row(2, false)) +
+                      format_row(row(3, true)));
+  EXPECT_TRUE(read_results(csv).warnings.empty());
+}
+
+TEST(ResultsCsv, AHalfWrittenHeaderStartsTheFileAgain) {
+  const fs::path csv = test::scratch_dir() / "r.csv";
+  { std::ofstream(csv) << "participant,tri"; }
+  const ResultsFile file = read_results(csv);
+  EXPECT_FALSE(file.has_header);
+  EXPECT_EQ(file.warnings.size(), 1u);
+  { ResultsWriter w(csv, file); }
+  EXPECT_EQ(slurp(csv), std::string(kResultsHeader) + "\n");
+}
+
+TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
+  const fs::path csv = test::scratch_dir() / "r.csv";
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0\n"; }
+  EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
+            csv.string() + ":2: trial: \"x\" is not a number");
+  { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
+  EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
+            csv.string() + ":1: missing column \"condition\" (expected a header starting "
+                           "participant,trial,condition,stimuli,answer,correct,response_time_ms)");
+}
+
+}  // namespace
+}  // namespace mallet::study
