@@ -25,6 +25,15 @@ class StrikeLoop {
 
   //! Where the head is drawn for a frame shown at `t_present`.
   Vec2 displayed(Nanos t_present) const;
+
+  //! What a frame needs of the loop, as a value another thread may hold: where the head
+  //! is held for a given hand (e.g. the 1€-filtered one), and the latest strike's bounce.
+  struct View {
+    Vec2 shown{0.0, 0.3};
+    VisualVibration vibration;
+    Vec2 displayed(Nanos t_present) const { return {shown.x, shown.y + vibration.offset_m(t_present)}; }
+  };
+  View view(Vec2 hand) const { return {mallet_.displayed_centre(hand), vibration_}; }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
 
  private:

@@ -49,8 +49,8 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
   ahead_ns_ = static_cast<Nanos>(std::llround(settings_.schedule_ahead_ms * 1e6));
 }
 
-bool AudioEngine::post(const Impact& impact) {
-  if (ring_.push(impact)) return true;
+bool AudioEngine::post(const Impact& impact, Producer from) {
+  if ((from == Producer::main ? ring_ : input_ring_).push(impact)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;
 }
@@ -135,6 +135,7 @@ void AudioEngine::process(float* out, int frames) {
     const int n = std::min(frames - done, kMaxBlock);
     const std::int64_t block_start = position_;
     while (auto impact = ring_.pop()) schedule(*impact, block_start);
+    while (auto impact = input_ring_.pop()) schedule(*impact, block_start);
 
     std::fill_n(acoustic_bus_.begin(), n, 0.0);
     std::fill_n(actuator_bus_.begin(), n, 0.0);

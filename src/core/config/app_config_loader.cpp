@@ -112,6 +112,13 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
+  if (auto t = top.optional_table("input")) {
+    InputConfig& i = c.input;
+    i.source = t->string_or("source", i.source);
+    if (i.source != "auto" && i.source != "wiimote" && i.source != "mouse")
+      t->fail("source", "expected \"auto\", \"wiimote\" or \"mouse\", got \"" + i.source + "\"");
+    t->finish();
+  }
   if (auto t = top.optional_table("attract")) {
     AttractConfig& a = c.attract;
     a.idle_after_s = t->number_or("idle_after_s", a.idle_after_s);

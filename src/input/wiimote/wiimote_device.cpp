@@ -274,6 +274,10 @@ void WiimoteDevice::publish(Nanos now) {
   s.mode_resets = mode_resets_;
   s.rumble_pulses = rumble_pulses_;
 
+  if (sink_) {
+    sink_(pending_, now);
+    pending_.clear();
+  }
   std::lock_guard lock(mutex_);
   for (const LedSample& sample : pending_) {
     if (samples_.size() < config_.queue_capacity) samples_.push_back(sample);

@@ -20,6 +20,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -122,6 +123,13 @@ class WiimoteDevice {
   WiimoteState state() const;
   //! Replaces `out` with the samples since the last drain; returns how many.
   std::size_t drain(std::vector<LedSample>& out);
+  //! The samples' consumer on the reading thread itself: after every step, `sink` gets that
+  //! step's samples (often none) and the step's time. The kiosk's input path runs there,
+  //! so a strike reaches the audio engine without waiting for a frame or a second thread.
+  //! The samples then bypass drain(). The sink must not block for long (it delays the next
+  //! read) and must not throw. Set it before start().
+  using SampleSink = std::function<void(std::span<const LedSample> samples, Nanos now)>;
+  void set_sample_sink(SampleSink sink) { sink_ = std::move(sink); }
   //! Replaces `out` with the raw reports since the last drain (keep_raw_reports only).
   std::size_t drain_raw(std::vector<RawReport>& out);
   //! Asks for one rumble pulse of rumble_ns (another request while one runs extends it).
@@ -165,6 +173,7 @@ class WiimoteDevice {
   std::uint64_t connects_ = 0, disconnects_ = 0, failed_attempts_ = 0, mode_resets_ = 0, rumble_pulses_ = 0;
   std::vector<LedSample> pending_;   //!< this step's samples, handed over in publish()
   std::vector<RawReport> pending_raw_;
+  SampleSink sink_;
 
   // Shared with the consumer.
   mutable std::mutex mutex_;

@@ -75,6 +75,33 @@ TEST(WiimoteDevice, ConnectsRunsTheIrStartupAndPublishesTheLedStampedAtReception
   EXPECT_EQ(device.drain(samples), 0u);  // drained once
 }
 
+TEST(WiimoteDevice, ASampleSinkGetsEverySampleOnTheReadingThreadInsteadOfTheQueue) {
+  Rig rig;
+  WiimoteDevice device(rig.finder, rig.clock);
+  std::vector<LedSample> sunk;
+  int calls = 0;
+  Nanos last_now = 0;
+  device.set_sample_sink([&](std::span<const LedSample> samples, Nanos now) {
+    ++calls;
+    EXPECT_GE(now, last_now);
+    last_now = now;
+    sunk.insert(sunk.end(), samples.begin(), samples.end());
+  });
+  ASSERT_TRUE(step_until(device, [&] { return running(device); }));
+  rig.remote->send_ir(20, 500, 300, 2, 0);
+  ASSERT_TRUE(step_until(device, [&] { return rig.remote->script.empty(); }));
+  ASSERT_EQ(sunk.size(), 20u);
+  EXPECT_EQ(sunk[0].event, IrTrackerEvent::regained);
+  EXPECT_EQ(sunk[19].point.x, 538.0);
+  EXPECT_GT(calls, 20);  // every step, with or without samples: the sink's clock
+  std::vector<LedSample> queued;
+  EXPECT_EQ(device.drain(queued), 0u);
+  // The remote vanishes: the sink hears `lost` from the step that dropped it.
+  rig.remote->gone = true;
+  ASSERT_TRUE(step_until(device, [&] { return device.state().link == LinkState::searching; }));
+  EXPECT_EQ(sunk.back().event, IrTrackerEvent::lost);
+}
+
 TEST(WiimoteDevice, SilenceDropsTheRemoteThenItReconnectsAndRerunsTheStartup) {
   Rig rig;
   WiimoteDevice device(rig.finder, rig.clock);

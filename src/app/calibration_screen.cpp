@@ -1,0 +1,100 @@
+#include "app/calibration_screen.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <system_error>
+
+namespace mallet::app {
+
+CalibrationScreen::CalibrationScreen(CalibrationSessionConfig config, std::optional<std::filesystem::path> save_to,
+                                     std::string remote)
+    : session_(config), save_to_(std::move(save_to)), remote_(std::move(remote)) {}
+
+CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
+  dot_seen_ = true;
+  if (outcome_ != Outcome::measuring) return CalibrationStep::ignored;
+  const CalibrationStep step = session_.feed(t_ns, camera_px);
+  if (step == CalibrationStep::round_rejected || step == CalibrationStep::failed) {
+    char buf[200];
+    if (const auto& fit = session_.last_fit())
+      std::snprintf(buf, sizeof buf, "Round %d: largest error %.1f px (limit %.1f px): measuring again",
+                    session_.round(), fit->max_px, session_.config().max_error_screen_px);
+    else
+      std::snprintf(buf, sizeof buf, "Round %d refused: %s", session_.round(), session_.failure().c_str());
+    last_round_ = buf;
+  }
+  if (step == CalibrationStep::accepted) accept();
+  if (step == CalibrationStep::failed) {
+    outcome_ = Outcome::failed;
+    message_ = "Calibration failed (" + session_.failure() + "); the previous calibration stays";
+  }
+  return step;
+}
+
+void CalibrationScreen::accept() {
+  result_ = session_.calibration(remote_, utc_timestamp_now());
+  const auto& fit = session_.last_fit();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "Calibrated: reprojection error %.1f px rms, %.1f px max", fit ? fit->rms_px : 0.0,
+                fit ? fit->max_px : 0.0);
+  message_ = buf;
+  if (!save_to_) {
+    outcome_ = Outcome::accepted;
+    message_ += " (mouse: not saved)";
+    return;
+  }
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(save_to_->parent_path(), ec);  // a failure shows in the write
+    write_calibration_file(*save_to_, *result_);
+    outcome_ = Outcome::accepted;
+    message_ += ", saved";
+  } catch (const std::exception& e) {
+    // Not written: the kiosk keeps its previous calibration, and the operator sees why.
+    outcome_ = Outcome::failed;
+    result_.reset();
+    message_ = std::string("Calibration not saved: ") + e.what();
+  }
+}
+
+void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
+  const float px = o.atlas().pixel_height();
+  const std::array<float, 4> white{1.0f, 1.0f, 1.0f, 1.0f}, dim{1.0f, 1.0f, 1.0f, 0.35f},
+      done{0.35f, 0.85f, 0.45f, 1.0f}, ring{1.0f, 0.78f, 0.2f, 1.0f};
+  o.fill_rect(0, 0, w, h, {0.02f, 0.02f, 0.04f, 0.86f});
+  o.text(w / 2, px * 2.2f, "Calibration", white, render::TextAlign::center);
+  o.text(w / 2, px * 3.6f, "Hold the mallet's light still on the ring until it fills", {1, 1, 1, 0.8f},
+         render::TextAlign::center);
+
+  const std::vector<Vec2>& targets = session_.targets();
+  const std::optional<int> current = session_.current_target();
+  const float r = std::max(10.0f, std::min(w, h) * 0.035f);
+  for (int i = 0; i < static_cast<int>(targets.size()); ++i) {
+    const float x = static_cast<float>(targets[static_cast<std::size_t>(i)].x) * w;
+    const float y = static_cast<float>(targets[static_cast<std::size_t>(i)].y) * h;
+    if (current && *current == i) {
+      o.stroke_circle(x, y, r, 2.0f, white);
+      o.fill_circle(x, y, r * 0.18f, white);
+      o.progress_ring(x, y, r + 6.0f, 6.0f, static_cast<float>(session_.progress()), ring);
+    } else if (session_.measured(i)) {
+      o.fill_circle(x, y, r * 0.3f, done);
+    } else {
+      o.stroke_circle(x, y, r * 0.5f, 1.5f, dim);
+    }
+  }
+
+  char status[200];
+  int measured = 0;
+  for (int i = 0; i < static_cast<int>(targets.size()); ++i) measured += session_.measured(i).has_value();
+  if (outcome_ == Outcome::measuring)
+    std::snprintf(status, sizeof status, "Target %d of %zu   round %d   %s", std::min(measured + 1, static_cast<int>(targets.size())),
+                  targets.size(), session_.round() + 1, dot_seen_ ? "light seen" : "no light seen");
+  else
+    std::snprintf(status, sizeof status, "%s", message_.c_str());
+  o.text(w / 2, h - px * 2.4f, status, outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
+         render::TextAlign::center);
+  if (outcome_ == Outcome::measuring && !last_round_.empty())
+    o.text(w / 2, h - px * 1.0f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
+}
+
+}  // namespace mallet::app
