@@ -391,9 +391,6 @@ TEST(KioskStates, ABadConfigIsRefusedWithItsKey) {
   EXPECT_STREQ(to_string(S::operator_page), "operator");
 }
 
-}  // namespace
-}  // namespace mallet
-
 TEST(KioskStates, ALostRemoteEndsPlayAtOnceAndSaysSoUntilItIsBack) {
   KioskStates k({}, kStart);
   k.input_source(kStart, InputSource::wiimote);
@@ -428,3 +425,6 @@ TEST(KioskStates, TheMouseHasNoRemoteToMiss) {
   EXPECT_EQ(k.state(), S::play);
   EXPECT_FALSE(k.overlay().remote_missing);
 }
+
+}  // namespace
+}  // namespace mallet
