@@ -14,6 +14,9 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
   dot_seen_ = true;
   if (outcome_ != Outcome::measuring) return CalibrationStep::ignored;
   const CalibrationStep step = session_.feed(t_ns, camera_px);
+  if (step == CalibrationStep::target_measured || step == CalibrationStep::unstable ||
+      step == CalibrationStep::round_rejected)
+    std::fprintf(stderr, "<6>calibration: %s at camera %.0f,%.0f\n", to_string(step), camera_px.x, camera_px.y);
   if (step == CalibrationStep::round_rejected || step == CalibrationStep::failed) {
     char buf[200];
     if (const auto& fit = session_.last_fit())
@@ -62,8 +65,9 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
   const std::array<float, 4> white{1.0f, 1.0f, 1.0f, 1.0f}, dim{1.0f, 1.0f, 1.0f, 0.35f},
       done{0.35f, 0.85f, 0.45f, 1.0f}, ring{1.0f, 0.78f, 0.2f, 1.0f};
   o.fill_rect(0, 0, w, h, {0.02f, 0.02f, 0.04f, 0.86f});
-  o.text(w / 2, px * 2.2f, "Calibration", white, render::TextAlign::center);
-  o.text(w / 2, px * 3.6f, "Hold the mallet's light still on the ring until it fills", {1, 1, 1, 0.8f},
+  // The words sit between the target rows (0.1, 0.5, 0.9 of the height by default).
+  o.text(w / 2, h * 0.27f, "Calibration", white, render::TextAlign::center);
+  o.text(w / 2, h * 0.27f + px * 1.5f, "Hold the mallet's light still on the ring until it fills", {1, 1, 1, 0.8f},
          render::TextAlign::center);
 
   const std::vector<Vec2>& targets = session_.targets();
@@ -91,10 +95,10 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
                   targets.size(), session_.round() + 1, dot_seen_ ? "light seen" : "no light seen");
   else
     std::snprintf(status, sizeof status, "%s", message_.c_str());
-  o.text(w / 2, h - px * 2.4f, status, outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
+  o.text(w / 2, h * 0.70f, status, outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
          render::TextAlign::center);
   if (outcome_ == Outcome::measuring && !last_round_.empty())
-    o.text(w / 2, h - px * 1.0f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
+    o.text(w / 2, h * 0.70f + px * 1.5f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
 }
 
 }  // namespace mallet::app

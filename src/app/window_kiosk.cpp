@@ -422,7 +422,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() != KioskState::operator_page) return;
   char lines[9][240];
   const double uptime = to_seconds(now - started_);
-  std::snprintf(lines[0], sizeof lines[0], "Operator — Mallet");
+  std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page");
   std::snprintf(lines[1], sizeof lines[1], "%s", input_line().c_str());
   std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
   std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,
