@@ -10,9 +10,43 @@ CalibrationScreen::CalibrationScreen(CalibrationSessionConfig config, std::optio
                                      std::string remote)
     : session_(config), save_to_(std::move(save_to)), remote_(std::move(remote)) {}
 
+void CalibrationScreen::tune_sensitivity(SensitivityTunerConfig config, std::string configured) {
+  tuner_.emplace(config);
+  configured_ = std::move(configured);
+  request_ = std::string(tuner_->preset());
+}
+
+std::optional<std::string> CalibrationScreen::sensitivity_request() {
+  std::optional<std::string> r;
+  r.swap(request_);
+  return r;
+}
+
+void CalibrationScreen::frame(const IrFrame& f) {
+  if (!tuning()) return;
+  switch (tuner_->observe(f)) {
+    case TunerStep::observing: return;
+    case TunerStep::next_preset: request_ = std::string(tuner_->preset()); return;
+    case TunerStep::chosen:
+      sensitivity_ = std::string(*tuner_->chosen());
+      tuner_note_ = "IR sensitivity: " + sensitivity_;
+      break;
+    case TunerStep::failed: {
+      sensitivity_ = configured_;
+      const auto& v = tuner_->verdicts();
+      tuner_note_ = "IR sensitivity: none gave one clean dot (" +
+                    (v.empty() ? std::string("?") : std::string(v.back().preset) + ": " + v.back().verdict.reason) +
+                    "); kept " + configured_;
+      break;
+    }
+  }
+  request_ = sensitivity_;
+  std::fprintf(stderr, "<6>calibration: %s\n", tuner_note_.c_str());
+}
+
 CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
   dot_seen_ = true;
-  if (outcome_ != Outcome::measuring) return CalibrationStep::ignored;
+  if (outcome_ != Outcome::measuring || tuning()) return CalibrationStep::ignored;
   const CalibrationStep step = session_.feed(t_ns, camera_px);
   if (step == CalibrationStep::target_measured || step == CalibrationStep::unstable ||
       step == CalibrationStep::round_rejected)
@@ -70,6 +104,18 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
   o.text(w / 2, h * 0.27f + px * 1.5f, "Hold the mallet's light still on the ring until it fills", {1, 1, 1, 0.8f},
          render::TextAlign::center);
 
+  if (tuning()) {
+    const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
+    const auto& verdicts = tuner_->verdicts();
+    o.text(w / 2, h * 0.27f + px * 3.0f, "First, hold the mallet's light up towards the camera", {1, 1, 1, 0.8f},
+           render::TextAlign::center);
+    o.progress_ring(cx, cy, r, 8.0f,
+                    static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
+    const std::string line = "Choosing the IR sensitivity: trying " + std::string(tuner_->preset()) +
+                             (dot_seen_ ? "   light seen" : "   no light seen");
+    o.text(w / 2, h * 0.70f, line, white, render::TextAlign::center);
+    return;
+  }
   const std::vector<Vec2>& targets = session_.targets();
   const std::optional<int> current = session_.current_target();
   const float r = std::max(10.0f, std::min(w, h) * 0.035f);
@@ -99,6 +145,8 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
          render::TextAlign::center);
   if (outcome_ == Outcome::measuring && !last_round_.empty())
     o.text(w / 2, h * 0.70f + px * 1.5f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
+  else if (outcome_ == Outcome::measuring && !tuner_note_.empty())
+    o.text(w / 2, h * 0.70f + px * 1.5f, tuner_note_, {1, 1, 1, 0.7f}, render::TextAlign::center);
 }
 
 }  // namespace mallet::app

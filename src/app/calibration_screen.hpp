@@ -8,11 +8,18 @@
 // stand-in for it (the mouse: the operator's test of the screen; then nothing is saved and
 // the remote's calibration is left alone). The previous calibration file stays until a new
 // one is accepted and written.
+//
+// With the remote, the screen first picks the IR camera's sensitivity (core's
+// SensitivityTuner: the least sensitive preset that shows the LED as one clean dot of a
+// sane size): the visitor holds the light up while presets are tried; the kiosk sets each
+// on the camera when sensitivity_request() says so. If none is clean, the configured one
+// is put back and the targets come anyway (the reason is shown).
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "core/calibration_session.hpp"
+#include "core/sensitivity_tuner.hpp"
 #include "render/overlay.hpp"
 
 namespace mallet::app {
@@ -30,7 +37,17 @@ class CalibrationScreen {
   CalibrationScreen(CalibrationSessionConfig config, std::optional<std::filesystem::path> save_to,
                     std::string remote);
 
-  //! One position of the dot (raw camera pixels) at t.
+  //! Starts with the sensitivity phase; `configured` is the preset to put back on failure.
+  void tune_sensitivity(SensitivityTunerConfig config, std::string configured);
+  bool tuning() const { return tuner_.has_value() && !tuner_->done(); }
+  //! One IR frame (every report) during the sensitivity phase.
+  void frame(const IrFrame& frame);
+  //! A preset the camera must switch to now (once per change), then nothing.
+  std::optional<std::string> sensitivity_request();
+  //! The preset the phase chose (or put back), once it is over.
+  const std::string& sensitivity() const { return sensitivity_; }
+
+  //! One position of the dot (raw camera pixels) at t; ignored while tuning.
   CalibrationStep feed(Nanos t_ns, Vec2 camera_px);
   //! The dot is lost (or the remote is): only shown.
   void dot_seen(bool seen) { dot_seen_ = seen; }
@@ -56,6 +73,9 @@ class CalibrationScreen {
   std::optional<Calibration> result_;
   std::string message_;
   std::string last_round_;  //!< the last rejected round's errors, shown while repeating
+  std::optional<SensitivityTuner> tuner_;
+  std::string configured_, sensitivity_, tuner_note_;
+  std::optional<std::string> request_;
   bool dot_seen_ = false;
 };
 

@@ -46,6 +46,7 @@ void RemotePointer::on_samples(std::span<const input::wiimote::LedSample> sample
     RemoteSample out;
     out.t_ns = s.t_ns;
     out.event = s.event;
+    if (s.has_frame) out.frame = s.frame;
     if (s.event == IrTrackerEvent::lost || s.event == IrTrackerEvent::jumped) {
       // The next dot starts a new stroke: no swept contact across the gap or the jump.
       loop_.reset();

@@ -41,6 +41,7 @@ struct RemoteSample {
   IrTrackerEvent event = IrTrackerEvent::none;
   std::optional<Vec2> camera_px;  //!< the LED, raw camera pixels
   std::optional<Vec2> screen;     //!< through the calibration, normalised; none without one
+  std::optional<IrFrame> frame;   //!< all the camera's slots (the device's every_frame)
 };
 
 class RemotePointer {

@@ -64,6 +64,7 @@ struct Stage {
   std::string input_why;             //!< how the source was chosen, for the operator page
   std::optional<Calibration> calibration;  //!< the remote's camera → screen map in use
   std::string calibration_status;
+  std::string calibration_status_sensitivity;  //!< what the last calibration's tuner chose
   // The Wii Remote: its reading thread feeds `remote`, which posts strikes to the engine.
   // The device is declared last so that it (and its thread) goes first.
   std::unique_ptr<RemotePointer> remote;
@@ -231,8 +232,9 @@ void WindowKiosk::choose_input(Stage& stage) {
   }
   stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine);
   stage.remote->set_calibration(stage.calibration);
-  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(finder_, clock_,
-                                                                  input::wiimote::device_config(stage.config));
+  input::wiimote::WiimoteDeviceConfig dc = input::wiimote::device_config(stage.config);
+  dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
+  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(finder_, clock_, dc);
   Stage* s = &stage;
   // The reading thread: strikes go from there to the engine (RemotePointer); this only
   // logs them and pulses the rumble when configured.
@@ -283,15 +285,24 @@ void WindowKiosk::poll_remote(Nanos now) {
   for (const RemoteSample& r : s.remote->take()) {
     if (r.event == IrTrackerEvent::lost) states_->tracking_lost(r.t_ns);
     if (r.event == IrTrackerEvent::regained) states_->tracking_regained(r.t_ns);
+    if (calibration_ && r.frame) calibration_->frame(*r.frame);
     if (calibration_ && r.camera_px) calibration_->feed(r.t_ns, *r.camera_px);
     if (r.screen) states_->pointer(r.t_ns, *r.screen);
   }
-  if (calibration_) calibration_->dot_seen(s.remote->tracking());
+  if (calibration_) {
+    calibration_->dot_seen(s.remote->tracking());
+    if (const std::optional<std::string> preset = calibration_->sensitivity_request())
+      s.device->request_sensitivity(*preset);
+  }
 }
 
 void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen) {
   if (states_->state() != KioskState::calibration) {
-    calibration_.reset();  // abandoned (the operator chord): the previous calibration stays
+    // Abandoned (the operator chord): the previous calibration stays, and so does the
+    // configured sensitivity if the tuner was trying another.
+    if (calibration_ && calibration_->tuning() && stage_->device)
+      stage_->device->request_sensitivity(stage_->config.wiimote.sensitivity);
+    calibration_.reset();
     return;
   }
   if (!calibration_) {
@@ -301,12 +312,15 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     calibration_ = std::make_unique<CalibrationScreen>(
         cc, remote ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
         remote ? remote_identity(stage_->device->state().device) : std::string("mouse"));
+    if (remote) calibration_->tune_sensitivity({}, stage_->config.wiimote.sensitivity);
   }
   // The mouse stands in for the IR dot while it is the input.
   if (stage_->source == InputSource::mouse && mouse_screen) {
     calibration_->feed(now, mouse_as_camera_px(*mouse_screen));
   }
   if (calibration_->outcome() == CalibrationScreen::Outcome::measuring) return;
+  if (!calibration_->sensitivity().empty())
+    stage_->calibration_status_sensitivity = "IR sensitivity " + calibration_->sensitivity();
   notice_ = calibration_->message();
   notice_until_ = now + 6 * kNanosPerSecond;
   std::fprintf(stderr, "<5>%s\n", notice_.c_str());
@@ -432,7 +446,9 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   std::snprintf(lines[6], sizeof lines[6], "R recalibrate    Q quit    Esc close");
   std::snprintf(lines[7], sizeof lines[7], "scene: %s", stage_->scene.file.c_str());
   std::snprintf(lines[8], sizeof lines[8], "%s",
-                stage_->source == InputSource::wiimote ? stage_->calibration_status.c_str()
+                stage_->source == InputSource::wiimote
+                    ? (stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
+                       stage_->calibration_status_sensitivity).c_str()
                                                        : "calibration: R runs the screen with the mouse (not saved)");
   const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 34), ph = line * 10;
   const float x0 = (w - pw) / 2, y0 = (h - ph) / 2;

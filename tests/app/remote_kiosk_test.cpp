@@ -45,6 +45,12 @@ std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
+input::wiimote::WiimoteDeviceConfig device_config(bool every_frame) {
+  input::wiimote::WiimoteDeviceConfig c = input::wiimote::device_config(AppConfig{});
+  c.every_frame = every_frame;
+  return c;
+}
+
 struct Rig {
   fake::FakeClock clock;
   fake::FakeFinder finder{clock};
@@ -52,9 +58,9 @@ struct Rig {
   AppConfig config;
   AudioRig audio = make_audio_rig(test::percussion(), config, 48000);
   RemotePointer pointer{test::percussion(), config, *audio.engine};
-  WiimoteDevice device{finder, clock, input::wiimote::device_config(config)};
+  WiimoteDevice device;
 
-  Rig() {
+  explicit Rig(bool every_frame = false) : device(finder, clock, device_config(every_frame)) {
     device.set_sample_sink([this](std::span<const LedSample> s, Nanos now) { pointer.on_samples(s, now); });
     for (int i = 0; i < 100'000 && device.state().link != LinkState::running; ++i) device.step();
   }
@@ -99,6 +105,54 @@ TEST(RemoteKiosk, TheCalibrationScreenGoesFromIrReportsToASavedFile) {
     EXPECT_NEAR(s.y, screen_of(cam).y, 1e-6);
   }
   EXPECT_EQ(rig.pointer.strikes(), 0u);
+}
+
+TEST(RemoteKiosk, TheScreenFirstPicksTheSensitivityThatShowsOneCleanDot) {
+  Rig rig(/*every_frame=*/true);
+  const auto dir = scratch("tuning");
+  CalibrationScreen screen(session_config(), dir / "calibration.toml", "00:1f:32:aa:bb:cc");
+  screen.tune_sensitivity({}, "wii3");
+  ASSERT_TRUE(screen.tuning());
+  // The visitor holds the light up: one clean dot of size 3 whatever the preset (a fake
+  // camera), then the targets.
+  rig.hold({500, 380}, 150);
+  for (const Vec2 target : screen.session().targets()) rig.hold(camera_of(target), 150);
+  std::vector<std::string> requested;
+  for (int i = 0; i < 1'000'000 && !rig.remote->script.empty(); ++i) {
+    rig.device.step();
+    for (const RemoteSample& s : rig.pointer.take()) {
+      if (s.frame) screen.frame(*s.frame);
+      if (s.camera_px) screen.feed(s.t_ns, *s.camera_px);
+    }
+    if (auto preset = screen.sensitivity_request()) {
+      requested.push_back(*preset);
+      rig.device.request_sensitivity(*preset);
+    }
+  }
+  EXPECT_FALSE(screen.tuning());
+  EXPECT_EQ(screen.sensitivity(), "wii1");  // the least sensitive that is clean
+  EXPECT_EQ(requested, (std::vector<std::string>{"wii1", "wii1"}));  // tried, then kept
+  ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
+  EXPECT_EQ(load_calibration(dir / "calibration.toml").points, 9);
+}
+
+TEST(RemoteKiosk, WithTwoDotsNoSensitivityIsCleanAndTheConfiguredOneIsPutBack) {
+  CalibrationScreen screen(session_config(), std::nullopt, "r");
+  screen.tune_sensitivity({}, "wii3");
+  std::vector<std::string> requested;
+  for (int i = 0; i < 2000 && screen.tuning(); ++i) {
+    IrFrame f;
+    f.t_ns = (i + 1) * 10'000'000;
+    f.slots[0] = IrDot{500, 380, 3};
+    f.slots[1] = IrDot{100, 100, 2};  // a lamp
+    screen.frame(f);
+    if (auto p = screen.sensitivity_request()) requested.push_back(*p);
+  }
+  EXPECT_FALSE(screen.tuning());
+  EXPECT_EQ(screen.sensitivity(), "wii3");
+  ASSERT_FALSE(requested.empty());
+  EXPECT_EQ(requested.back(), "wii3");
+  EXPECT_EQ(requested.size(), kSensitivityPresets.size() + 1);
 }
 
 TEST(RemoteKiosk, ThePreviousCalibrationStaysUntilTheNewOneIsAccepted) {

@@ -50,6 +50,9 @@ struct WiimoteDeviceConfig {
   bool rumble_on_impact = false;   //!< on_impact() pulses only when set
   std::uint8_t leds = 0x01;        //!< player LEDs 1..4 (bits 0..3) lit while connected
   bool keep_raw_reports = false;   //!< queue every raw report for drain_raw() (`--record`)
+  //! A sample for every IR report, carrying its frame (all four slots), even with no LED
+  //! accepted: the sensitivity tuner counts dots and sizes. Off: samples only for the LED.
+  bool every_frame = false;
   std::size_t queue_capacity = 4096;  //!< samples (and raw reports) kept for the consumer
 };
 
@@ -92,6 +95,8 @@ struct LedSample {
   IrTrackerEvent event = IrTrackerEvent::none;  //!< regained, lost, jumped, or none
   bool has_point = false;
   IrPoint point{};  //!< raw camera coordinates when has_point
+  bool has_frame = false;  //!< every_frame only
+  IrFrame frame{};         //!< the report's IR slots when has_frame
 };
 
 //! One report exactly as received (for `--record`).
@@ -134,6 +139,10 @@ class WiimoteDevice {
   std::size_t drain_raw(std::vector<RawReport>& out);
   //! Asks for one rumble pulse of rumble_ns (another request while one runs extends it).
   void pulse_rumble() { rumble_request_.store(true, std::memory_order_release); }
+  //! Asks for the camera's sensitivity blocks of `preset` (a name from kSensitivityPresets;
+  //! others are ignored): the reading thread runs the IR start-up again with them, and keeps
+  //! them for every later reconnection. Returns whether the name is known.
+  bool request_sensitivity(std::string_view preset);
   //! A strike happened: pulse_rumble() when rumble_on_impact.
   void on_impact() {
     if (config_.rumble_on_impact) pulse_rumble();
@@ -151,6 +160,7 @@ class WiimoteDevice {
   bool send(const OutputReport& report, Nanos now);
   bool flush_startup(Nanos now);
   bool service_rumble(Nanos now);
+  bool service_sensitivity(Nanos now);
   void push_sample(const LedSample& sample);
   void publish(Nanos now);
 
@@ -182,6 +192,7 @@ class WiimoteDevice {
   std::vector<RawReport> raw_;
   std::uint64_t dropped_ = 0;
   std::atomic<bool> rumble_request_{false};
+  std::atomic<int> sensitivity_request_{-1};  //!< index in kSensitivityPresets, -1 none
 
   std::atomic<bool> stop_{false};
   std::thread thread_;
