@@ -77,7 +77,7 @@ void CalibrationScreen::accept() {
   message_ = buf;
   if (!save_to_) {
     outcome_ = Outcome::accepted;
-    message_ += " (mouse: not saved)";
+    message_ += remote_ == "mouse" ? " (mouse: not saved)" : " (not saved)";
     return;
   }
   try {

@@ -27,6 +27,7 @@
 #include "core/kiosk_states.hpp"
 #include "input/clock.hpp"
 #include "input/wiimote/hid_transport.hpp"
+#include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
@@ -65,8 +66,10 @@ struct Stage {
   std::optional<Calibration> calibration;  //!< the remote's camera → screen map in use
   std::string calibration_status;
   std::string calibration_status_sensitivity;  //!< what the last calibration's tuner chose
-  // The Wii Remote: its reading thread feeds `remote`, which posts strikes to the engine.
-  // The device is declared last so that it (and its thread) goes first.
+  // The Wii Remote (or a recording played as one): its reading thread feeds `remote`,
+  // which posts strikes to the engine. The device is declared last so that it (and its
+  // thread) goes first.
+  std::unique_ptr<input::wiimote::ReplayFinder> replay;
   std::unique_ptr<RemotePointer> remote;
   std::unique_ptr<input::wiimote::WiimoteDevice> device;
   bool link_up = false;
@@ -166,10 +169,10 @@ void WindowKiosk::build(KioskSetup setup) {
                                                             cache_->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
+  choose_input(*stage);  // a bad replay file throws here, before anything running is touched
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
-  choose_input(*stage);
   try {
     stage->output = std::make_unique<audio::PortAudioOutput>(*stage->rig.engine, c.audio);
     stage->output->start();
@@ -189,7 +192,7 @@ void WindowKiosk::build(KioskSetup setup) {
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
   states_->input_source(now, stage_->source);
   if (stage_->device) {
-    states_->remote_connected(now, false);  // until its link runs
+    states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
     stage_->device->start();
   }
   std::fprintf(stderr, "<6>%s\n", input_line().c_str());
@@ -203,7 +206,12 @@ void WindowKiosk::choose_input(Stage& stage) {
     stage.input_why = "the settings say mouse";
     return;
   }
-  if (want == "auto") {
+  if (want == "replay") {
+    stage.replay = std::make_unique<input::wiimote::ReplayFinder>(
+        input::wiimote::ReplayFinder::open_file(stage.config.input.replay_file, clock_));
+    stage.source = InputSource::replay;
+    stage.input_why = "replay of " + stage.config.input.replay_file;
+  } else if (want == "auto") {
     std::optional<input::wiimote::HidDeviceInfo> found;
     for (const auto& d : finder_.enumerate())
       if (input::wiimote::matches_device(d, stage.config.wiimote.device)) {
@@ -218,7 +226,7 @@ void WindowKiosk::choose_input(Stage& stage) {
   } else {
     stage.input_why = "the settings say wiimote";
   }
-  stage.source = InputSource::wiimote;
+  if (want != "replay") stage.source = InputSource::wiimote;
   try {
     stage.calibration = load_calibration(calibration_path());
     char buf[300];
@@ -230,11 +238,21 @@ void WindowKiosk::choose_input(Stage& stage) {
     if (std::filesystem::exists(calibration_path(), ec)) std::fprintf(stderr, "<4>%s; calibrating again\n", e.what());
     stage.calibration_status = "calibration: none yet";
   }
+  if (stage.source == InputSource::replay && !stage.calibration) {
+    // A recording without a calibration: the camera's view mirrored onto the whole screen
+    // (the camera faces the visitor), so a demo plays at once.
+    Calibration c;
+    c.camera_to_screen.h = {-1.0 / 1023.0, 0, 1, 0, 1.0 / 767.0, 0, 0, 0, 1};
+    stage.calibration = c;
+    stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
+  }
   stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine);
   stage.remote->set_calibration(stage.calibration);
   input::wiimote::WiimoteDeviceConfig dc = input::wiimote::device_config(stage.config);
   dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
-  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(finder_, clock_, dc);
+  if (stage.replay) dc.device.clear();  // the recording is the only device
+  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
+      stage.replay ? static_cast<input::wiimote::DeviceFinder&>(*stage.replay) : finder_, clock_, dc);
   Stage* s = &stage;
   // The reading thread: strikes go from there to the engine (RemotePointer); this only
   // logs them and pulses the rumble when configured.
@@ -250,7 +268,8 @@ std::string WindowKiosk::input_line() const {
   const Stage& s = *stage_;
   if (s.source == InputSource::mouse) return "input: mouse (" + s.input_why + ")";
   const input::wiimote::WiimoteState w = s.device->state();
-  std::string line = "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
+  std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
+                             : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
   if (w.link == input::wiimote::LinkState::running) {
     char buf[120];
     std::snprintf(buf, sizeof buf, ", %.0f reports/s%s", w.remote.ir_rate_hz, w.tracking ? ", LED seen" : ", no LED");
@@ -271,7 +290,7 @@ void WindowKiosk::poll_remote(Nanos now) {
     std::fprintf(stderr, up ? "<5>Wii Remote %s connected\n" : "<4>Wii Remote %s lost: %s\n",
                  remote_identity(w.device).c_str(), w.problem.c_str());
   }
-  if (up && !s.checked_calibration) {
+  if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
     // Start-up: no valid calibration, or one made with another remote → calibrate now.
     s.checked_calibration = true;
     const std::string id = remote_identity(w.device);
@@ -308,9 +327,11 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (!calibration_) {
     CalibrationSessionConfig cc;
     cc.screen = {static_cast<double>(window_->extent().width), static_cast<double>(window_->extent().height)};
-    const bool remote = stage_->source == InputSource::wiimote;
+    const bool remote = stage_->device != nullptr;
+    // A replay calibrates in memory only: the file belongs to the real remote.
+    const bool save = stage_->source == InputSource::wiimote;
     calibration_ = std::make_unique<CalibrationScreen>(
-        cc, remote ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
+        cc, save ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
         remote ? remote_identity(stage_->device->state().device) : std::string("mouse"));
     if (remote) calibration_->tune_sensitivity({}, stage_->config.wiimote.sensitivity);
   }
@@ -325,7 +346,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   notice_until_ = now + 6 * kNanosPerSecond;
   std::fprintf(stderr, "<5>%s\n", notice_.c_str());
   if (calibration_->outcome() == CalibrationScreen::Outcome::accepted) {
-    if (stage_->source == InputSource::wiimote) {
+    if (stage_->remote) {
       stage_->calibration = calibration_->result();
       stage_->remote->set_calibration(stage_->calibration);
       stage_->calibration_status = "calibration: " + calibration_path().string() + " (" + notice_ + ")";
@@ -446,7 +467,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   std::snprintf(lines[6], sizeof lines[6], "R recalibrate    Q quit    Esc close");
   std::snprintf(lines[7], sizeof lines[7], "scene: %s", stage_->scene.file.c_str());
   std::snprintf(lines[8], sizeof lines[8], "%s",
-                stage_->source == InputSource::wiimote
+                stage_->remote
                     ? (stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
                        stage_->calibration_status_sensitivity).c_str()
                                                        : "calibration: R runs the screen with the mouse (not saved)");

@@ -1,7 +1,8 @@
 #pragma once
 // The kiosk on a display: a GLFW window (fullscreen and borderless unless windowed), the
 // scene, the mallet driven by the Wii Remote or the mouse ([input] source: "auto" takes a
-// remote found at start-up, else the mouse, and says so on screen), sound and actuator
+// remote found at start-up, else the mouse, and says so on screen; "replay" plays a
+// recording through the same device path as a remote), sound and actuator
 // signal on the PortAudio device, and the kiosk's states (src/core/kiosk_states.hpp):
 // Attract (the ghost player and the invitation), Play, Calibration and the operator page
 // behind the chord Ctrl+Alt+O.

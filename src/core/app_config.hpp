@@ -59,8 +59,10 @@ struct WiimoteConfig {
 struct InputConfig {
   //! "auto": the Wii Remote when one is found at start-up, else the mouse (said on screen);
   //! "wiimote": the Wii Remote only (none found: the attract mode and a hint, looked for
-  //! forever); "mouse": the mouse only (a test bench, or no remote at all).
+  //! forever); "mouse": the mouse only (a test bench, or no remote at all); "replay":
+  //! replay_file, a `mallet wiimote monitor --record` file, played as a live remote (looping).
   std::string source = "auto";
+  std::string replay_file;  //!< for "replay"; relative to the settings file's folder
 };
 
 //! [attract]: the attract mode that plays when nobody is there.

@@ -16,6 +16,7 @@
 #include "app/remote_pointer.hpp"
 #include "core/homography.hpp"
 #include "input/wiimote/fake_remote.hpp"
+#include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 #include "test_paths.hpp"
 
@@ -263,6 +264,47 @@ TEST(RemoteKiosk, TrackingFollowsTheRemotesLostAndRegainedEvents) {
   ASSERT_FALSE(seen.empty());
   EXPECT_EQ(seen.front().event, IrTrackerEvent::regained);
   EXPECT_EQ(seen.back().event, IrTrackerEvent::lost);
+}
+
+TEST(RemoteKiosk, ARecordingPlaysAsALiveRemoteThroughTheSameDeviceAndLoops) {
+  // A recording as `mallet wiimote monitor --record` writes it: the recorder's host's acks
+  // and status among the IR reports (they are skipped; the replay answers this host).
+  input::wiimote::Recording rec;
+  rec.reports.push_back({5'000'000'000, fake::ack_report(0x16)});
+  for (int i = 0; i < 20; ++i) rec.reports.push_back({6'000'000'000 + i * 10'000'000, fake::ir_report({{400 + i, 300, 3}})});
+  rec.reports.push_back({6'300'000'000, fake::status_report()});
+  fake::FakeClock clock;
+  input::wiimote::ReplayFinder finder(rec, "visit.replay", clock);
+  EXPECT_EQ(finder.enumerate().size(), 1u);
+  EXPECT_EQ(finder.device().path, "replay:visit.replay");
+  WiimoteDevice device(finder, clock);
+  std::vector<LedSample> got;
+  device.set_sample_sink([&](std::span<const LedSample> s, Nanos) { got.insert(got.end(), s.begin(), s.end()); });
+  for (int i = 0; i < 100'000 && got.size() < 45; ++i) device.step();
+  EXPECT_EQ(device.state().link, LinkState::running);  // the start-up got its acks
+  ASSERT_GE(got.size(), 45u);
+  std::vector<LedSample> points;
+  for (const LedSample& s : got)
+    if (s.has_point) points.push_back(s);
+  ASSERT_GE(points.size(), 41u);
+  EXPECT_EQ(points[0].point.x, 400.0);
+  EXPECT_EQ(points[19].point.x, 419.0);
+  EXPECT_EQ(points[20].point.x, 400.0);  // looped
+  for (std::size_t i = 1; i < 20; ++i) EXPECT_EQ(points[i].t_ns - points[i - 1].t_ns, 10'000'000) << i;
+  EXPECT_EQ(points[20].t_ns - points[19].t_ns, 10'000'000);  // one report period between loops
+}
+
+TEST(RemoteKiosk, ARecordingWithoutIrReportsIsRefusedWithItsName) {
+  input::wiimote::Recording rec;
+  rec.reports.push_back({1, fake::status_report()});
+  fake::FakeClock clock;
+  try {
+    input::wiimote::ReplayFinder finder(rec, "empty.replay", clock);
+    FAIL() << "accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("empty.replay"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no data (IR) report"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RemoteKiosk, TheStateDirFollowsItsOverridesInOrder) {
