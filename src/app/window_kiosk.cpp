@@ -349,7 +349,9 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     if (stage_->remote) {
       stage_->calibration = calibration_->result();
       stage_->remote->set_calibration(stage_->calibration);
-      stage_->calibration_status = "calibration: " + calibration_path().string() + " (" + notice_ + ")";
+      stage_->calibration_status = stage_->source == InputSource::wiimote
+                                       ? "calibration: " + calibration_path().string() + " (" + notice_ + ")"
+                                       : "calibration: in memory (" + notice_ + ")";
     }
     states_->calibration_accepted(now);
   } else {
