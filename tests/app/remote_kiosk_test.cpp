@@ -143,7 +143,7 @@ TEST(RemoteKiosk, WithTwoDotsNoSensitivityIsCleanAndTheConfiguredOneIsPutBack) {
   std::vector<std::string> requested;
   for (int i = 0; i < 2000 && screen.tuning(); ++i) {
     IrFrame f;
-    f.t_ns = (i + 1) * 10'000'000;
+    f.t_ns = Nanos{i + 1} * 10'000'000;
     f.slots[0] = IrDot{500, 380, 3};
     f.slots[1] = IrDot{100, 100, 2};  // a lamp
     screen.frame(f);
