@@ -11,6 +11,12 @@
 // (/etc/mallet for /usr/bin/mallet, ROOT/etc/mallet in an unpacked root) when that folder
 // exists; in every other case <data>/config — so the source tree and $MALLET_DATA_DIR
 // (the tests) behave as before.
+//
+// state_dir() (what the kiosk writes and keeps: calibration.toml): $MALLET_STATE_DIR (tests);
+// else $STATE_DIRECTORY, which systemd sets from the unit's StateDirectory=mallet
+// (/var/lib/mallet); else /var/lib/mallet for an installed binary when that folder exists;
+// else $XDG_STATE_HOME/mallet, else ~/.local/state/mallet. It may not exist yet: writers
+// create it.
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -78,5 +84,27 @@ inline std::optional<std::filesystem::path> default_settings() {
   if (std::filesystem::exists(file, ec)) return file;
   return std::nullopt;
 }
+
+//! Where the kiosk keeps its own state (see the top of this file).
+inline std::filesystem::path state_dir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (const char* env = std::getenv("MALLET_STATE_DIR"); env && *env) return env;
+  // systemd may list several folders, separated by ':'; ours is the only one.
+  if (const char* env = std::getenv("STATE_DIRECTORY"); env && *env) {
+    const std::string dirs = env;
+    return dirs.substr(0, dirs.find(':'));
+  }
+  if (const fs::path prefix = executable_prefix();
+      !prefix.empty() && fs::exists(prefix / "share" / "mallet" / "config" / "materials.toml", ec) &&
+      fs::is_directory("/var/lib/mallet", ec))
+    return "/var/lib/mallet";
+  if (const char* env = std::getenv("XDG_STATE_HOME"); env && *env) return fs::path(env) / "mallet";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".local" / "state" / "mallet";
+  return fs::temp_directory_path(ec) / "mallet-state";
+}
+
+//! The kiosk's camera → screen calibration (written by its calibration screen).
+inline std::filesystem::path calibration_path() { return state_dir() / "calibration.toml"; }
 
 }  // namespace mallet::app

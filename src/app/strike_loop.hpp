@@ -36,6 +36,18 @@ class StrikeLoop {
   Vec2 displayed(Nanos t_present) const;
   //! Eq. 1's visual displacement alone (metres along the normal) at `t_present`.
   double visual_offset_m(Nanos t_present) const { return vibration_.offset_m(t_present); }
+
+  //! What a frame needs of the loop, as a value another thread may hold: where the head
+  //! is held for a given hand (e.g. the 1€-filtered one), and the latest strike's bounce.
+  struct View {
+    Vec2 shown{0.0, 0.3};
+    VisualVibration vibration;
+    Vec2 displayed(Nanos t_present) const { return {shown.x, shown.y + vibration.offset_m(t_present)}; }
+  };
+  //! In a texture scene the head is the Speed technique's cursor (from the unfiltered hand).
+  View view(Vec2 hand) const {
+    return {texture_ ? texture_->cursor() : mallet_.displayed_centre(hand), vibration_};
+  }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
   //! The Speed technique's gain of the last displacement (1 outside texture scenes).
   double gain() const { return texture_ ? texture_->gain() : 1.0; }
@@ -44,6 +56,9 @@ class StrikeLoop {
   //! Scene::wall_materials; -1 / nothing in scenes without a wall.
   int wall_material() const;
   void next_wall_material();
+  void set_wall_material(int material) {
+    if (scene_.kind == SceneKind::wall) mallet_.set_material(0, material);
+  }
   //! Attract mode: the wall's material moves on after every strike.
   void set_cycle_materials(bool on) { cycle_materials_ = on; }
 

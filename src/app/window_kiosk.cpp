@@ -12,8 +12,10 @@
 #include <GLFW/glfw3.h>
 
 #include "app/audio_setup.hpp"
+#include "app/calibration_screen.hpp"
 #include "app/data_paths.hpp"
 #include "app/kiosk_text.hpp"
+#include "app/remote_pointer.hpp"
 #include "app/render_setup.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
@@ -23,6 +25,10 @@
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
+#include "input/clock.hpp"
+#include "input/wiimote/hid_transport.hpp"
+#include "input/wiimote/replay_transport.hpp"
+#include "input/wiimote/wiimote_device.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
@@ -54,8 +60,24 @@ struct Stage {
   std::unique_ptr<audio::PortAudioOutput> output;
   std::string audio_status;
   std::unique_ptr<render::SceneRenderer> renderer;
-  std::unique_ptr<StrikeLoop> loop;
+  std::unique_ptr<StrikeLoop> loop;  //!< the mouse and the ghost (main thread)
+  InputSource source = InputSource::mouse;
+  std::string input_why;             //!< how the source was chosen, for the operator page
+  std::optional<Calibration> calibration;  //!< the remote's camera → screen map in use
+  std::string calibration_status;
+  std::string calibration_status_sensitivity;  //!< what the last calibration's tuner chose
+  // The Wii Remote (or a recording played as one): its reading thread feeds `remote`,
+  // which posts strikes to the engine. The device is declared last so that it (and its
+  // thread) goes first.
+  std::unique_ptr<input::wiimote::ReplayFinder> replay;
+  std::unique_ptr<RemotePointer> remote;
+  std::unique_ptr<input::wiimote::WiimoteDevice> device;
+  bool link_up = false;
+  bool checked_calibration = false;  //!< against the first connected remote's identity
 };
+
+//! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
+std::string remote_identity(const input::wiimote::HidDeviceInfo& d) { return d.serial.empty() ? d.path : d.serial; }
 
 class WindowKiosk {
  public:
@@ -67,10 +89,17 @@ class WindowKiosk {
   void on_key(int key, int mods);
   void handle_keys(Nanos now);
   void reload();
+  void next_wall_material();  //!< operator page M: the wall's next material
+  void next_scene();          //!< operator page S: the next of [scenes] choices
+  void post_motion(audio::Producer from);  //!< the texture scene's cursor motion, to the stripes
   void draw_overlay(Nanos now, double frame_ms);
   void strike(const Impact& impact);
   void apply_volume();
   void heartbeat(Nanos now);
+  void choose_input(Stage& stage);
+  void poll_remote(Nanos now);
+  void calibration_frame(Nanos now, std::optional<Vec2> mouse_screen);
+  std::string input_line() const;
 
   KioskOptions options_;
   render::WindowSystem glfw_;
@@ -83,6 +112,11 @@ class WindowKiosk {
   std::unique_ptr<Stage> stage_;
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
+  input::wiimote::HidDeviceFinder finder_;
+  input::SteadyClock clock_;
+  std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
+  std::string notice_;                             //!< the last calibration's outcome ...
+  Nanos notice_until_ = 0;                         //!< ... shown until then
   std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
   Nanos started_ = 0;
@@ -138,8 +172,10 @@ void WindowKiosk::build(KioskSetup setup) {
                                                             cache_->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
-  // The old output must stop before the new one opens the device.
+  choose_input(*stage);  // a bad replay file throws here, before anything running is touched
+  // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
+  if (stage_ && stage_->device) stage_->device->stop();
   try {
     stage->output = std::make_unique<audio::PortAudioOutput>(*stage->rig.engine, c.audio);
     stage->output->start();
@@ -154,10 +190,177 @@ void WindowKiosk::build(KioskSetup setup) {
   }
   const Nanos now = monotonic_now();
   ghost_.reset();
+  calibration_.reset();
   stage_ = std::move(stage);
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
-  states_->input_source(now, InputSource::mouse);  // the Wii Remote is not wired into the kiosk yet
+  states_->input_source(now, stage_->source);
+  if (stage_->device) {
+    states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
+    stage_->device->start();
+  }
+  std::fprintf(stderr, "<6>%s\n", input_line().c_str());
   apply_volume();
+}
+
+void WindowKiosk::choose_input(Stage& stage) {
+  const std::string& want = stage.config.input.source;
+  stage.source = InputSource::mouse;
+  if (want == "mouse") {
+    stage.input_why = "the settings say mouse";
+    return;
+  }
+  if (want == "replay") {
+    stage.replay = std::make_unique<input::wiimote::ReplayFinder>(
+        input::wiimote::ReplayFinder::open_file(stage.config.input.replay_file, clock_));
+    stage.source = InputSource::replay;
+    stage.input_why = "replay of " + stage.config.input.replay_file;
+  } else if (want == "auto") {
+    std::optional<input::wiimote::HidDeviceInfo> found;
+    for (const auto& d : finder_.enumerate())
+      if (input::wiimote::matches_device(d, stage.config.wiimote.device)) {
+        found = d;
+        break;
+      }
+    if (!found) {
+      stage.input_why = "no Wii Remote found at start-up";
+      return;
+    }
+    stage.input_why = "found " + remote_identity(*found);
+  } else {
+    stage.input_why = "the settings say wiimote";
+  }
+  if (want != "replay") stage.source = InputSource::wiimote;
+  try {
+    stage.calibration = load_calibration(calibration_path());
+    char buf[300];
+    std::snprintf(buf, sizeof buf, "calibration: %s (%s, max error %.1f px)", calibration_path().c_str(),
+                  stage.calibration->created_utc.c_str(), stage.calibration->max_error_screen_px);
+    stage.calibration_status = buf;
+  } catch (const std::exception& e) {  // missing or bad: the calibration screen comes at start-up
+    std::error_code ec;
+    if (std::filesystem::exists(calibration_path(), ec)) std::fprintf(stderr, "<4>%s; calibrating again\n", e.what());
+    stage.calibration_status = "calibration: none yet";
+  }
+  if (stage.source == InputSource::replay && !stage.calibration) {
+    // A recording without a calibration: the camera's view mirrored onto the whole screen
+    // (the camera faces the visitor), so a demo plays at once.
+    Calibration c;
+    c.camera_to_screen.h = {-1.0 / 1023.0, 0, 1, 0, 1.0 / 767.0, 0, 0, 0, 1};
+    stage.calibration = c;
+    stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
+  }
+  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine);
+  stage.remote->set_calibration(stage.calibration);
+  input::wiimote::WiimoteDeviceConfig dc = input::wiimote::device_config(stage.config);
+  dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
+  if (stage.replay) dc.device.clear();  // the recording is the only device
+  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
+      stage.replay ? static_cast<input::wiimote::DeviceFinder&>(*stage.replay) : finder_, clock_, dc);
+  Stage* s = &stage;
+  // The reading thread: strikes go from there to the engine (RemotePointer); this only
+  // logs them and pulses the rumble when configured.
+  stage.remote->on_strike = [s](const Impact& impact) {
+    s->device->on_impact();
+    std::fprintf(stderr, "<6>%s\n", strike_line(s->scene, impact).c_str());
+  };
+  stage.device->set_sample_sink(
+      [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
+}
+
+std::string WindowKiosk::input_line() const {
+  const Stage& s = *stage_;
+  if (s.source == InputSource::mouse) return "input: mouse (" + s.input_why + ")";
+  const input::wiimote::WiimoteState w = s.device->state();
+  std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
+                             : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
+  if (w.link == input::wiimote::LinkState::running) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, ", %.0f reports/s%s", w.remote.ir_rate_hz, w.tracking ? ", LED seen" : ", no LED");
+    line += buf;
+  } else if (!w.problem.empty()) {
+    line += " (" + w.problem + ")";
+  }
+  return line;
+}
+
+void WindowKiosk::poll_remote(Nanos now) {
+  Stage& s = *stage_;
+  const input::wiimote::WiimoteState w = s.device->state();
+  const bool up = w.link == input::wiimote::LinkState::running;
+  if (up != s.link_up) {
+    s.link_up = up;
+    states_->remote_connected(now, up);
+    std::fprintf(stderr, up ? "<5>Wii Remote %s connected\n" : "<4>Wii Remote %s lost: %s\n",
+                 remote_identity(w.device).c_str(), w.problem.c_str());
+  }
+  if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
+    // Start-up: no valid calibration, or one made with another remote → calibrate now.
+    s.checked_calibration = true;
+    const std::string id = remote_identity(w.device);
+    if (!s.calibration || (!s.calibration->remote.empty() && s.calibration->remote != id)) {
+      std::fprintf(stderr, "<5>calibration needed: %s\n",
+                   s.calibration ? ("it was made with " + s.calibration->remote + ", this remote is " + id).c_str()
+                                 : "none valid");
+      states_->calibration_needed(now);
+    }
+  }
+  for (const RemoteSample& r : s.remote->take()) {
+    if (r.event == IrTrackerEvent::lost) states_->tracking_lost(r.t_ns);
+    if (r.event == IrTrackerEvent::regained) states_->tracking_regained(r.t_ns);
+    if (calibration_ && r.frame) calibration_->frame(*r.frame);
+    if (calibration_ && r.camera_px) calibration_->feed(r.t_ns, *r.camera_px);
+    if (r.screen) states_->pointer(r.t_ns, *r.screen);
+  }
+  if (calibration_) {
+    calibration_->dot_seen(s.remote->tracking());
+    if (const std::optional<std::string> preset = calibration_->sensitivity_request())
+      s.device->request_sensitivity(*preset);
+  }
+}
+
+void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen) {
+  if (states_->state() != KioskState::calibration) {
+    // Abandoned (the operator chord): the previous calibration stays, and so does the
+    // configured sensitivity if the tuner was trying another.
+    if (calibration_ && calibration_->tuning() && stage_->device)
+      stage_->device->request_sensitivity(stage_->config.wiimote.sensitivity);
+    calibration_.reset();
+    return;
+  }
+  if (!calibration_) {
+    CalibrationSessionConfig cc;
+    cc.screen = {static_cast<double>(window_->extent().width), static_cast<double>(window_->extent().height)};
+    const bool remote = stage_->device != nullptr;
+    // A replay calibrates in memory only: the file belongs to the real remote.
+    const bool save = stage_->source == InputSource::wiimote;
+    calibration_ = std::make_unique<CalibrationScreen>(
+        cc, save ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
+        remote ? remote_identity(stage_->device->state().device) : std::string("mouse"));
+    if (remote) calibration_->tune_sensitivity({}, stage_->config.wiimote.sensitivity);
+  }
+  // The mouse stands in for the IR dot while it is the input.
+  if (stage_->source == InputSource::mouse && mouse_screen) {
+    calibration_->feed(now, mouse_as_camera_px(*mouse_screen));
+  }
+  if (calibration_->outcome() == CalibrationScreen::Outcome::measuring) return;
+  if (!calibration_->sensitivity().empty())
+    stage_->calibration_status_sensitivity = "IR sensitivity " + calibration_->sensitivity();
+  notice_ = calibration_->message();
+  notice_until_ = now + 6 * kNanosPerSecond;
+  std::fprintf(stderr, "<5>%s\n", notice_.c_str());
+  if (calibration_->outcome() == CalibrationScreen::Outcome::accepted) {
+    if (stage_->remote) {
+      stage_->calibration = calibration_->result();
+      stage_->remote->set_calibration(stage_->calibration);
+      stage_->calibration_status = stage_->source == InputSource::wiimote
+                                       ? "calibration: " + calibration_path().string() + " (" + notice_ + ")"
+                                       : "calibration: in memory (" + notice_ + ")";
+    }
+    states_->calibration_accepted(now);
+  } else {
+    states_->calibration_cancelled(now);
+  }
+  calibration_.reset();
 }
 
 void WindowKiosk::apply_volume() {
@@ -179,15 +382,43 @@ void WindowKiosk::handle_keys(Nanos now) {
     switch (key) {
       case GLFW_KEY_ESCAPE: states_->operator_page_closed(now); break;
       case GLFW_KEY_Q: states_->quit_requested(now); break;
-      case GLFW_KEY_R: states_->recalibrate(now); break;
+      case GLFW_KEY_R: states_->recalibrate(now); break;  // the screen itself starts in the frame
       case GLFW_KEY_UP: volume_ = std::min(1.0, volume_ + 0.05); break;
       case GLFW_KEY_DOWN: volume_ = std::max(0.0, volume_ - 0.05); break;
       case GLFW_KEY_RIGHT: gain_ = std::min(1.0, gain_ + 0.02); break;
       case GLFW_KEY_LEFT: gain_ = std::max(0.0, gain_ - 0.02); break;
+      case GLFW_KEY_M: next_wall_material(); break;
+      case GLFW_KEY_S: next_scene(); break;
       default: break;
     }
   }
   keys_.clear();
+}
+
+void WindowKiosk::next_wall_material() {
+  if (stage_->scene.kind != SceneKind::wall) return;
+  stage_->loop->next_wall_material();
+  const int m = stage_->loop->wall_material();
+  if (stage_->remote) stage_->remote->set_wall_material(m);
+  std::fprintf(stderr, "<5>wall material: %s\n", stage_->scene.materials[static_cast<std::size_t>(m)].name.c_str());
+}
+
+void WindowKiosk::next_scene() {
+  const std::vector<std::string>& choices = stage_->config.scenes.choices;
+  if (choices.empty()) return;
+  // The next choice after the running scene's file (the first if it is not one of them).
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < choices.size(); ++i)
+    if (scene_file(options_.config, choices[i]) == std::filesystem::path(stage_->scene.file)) next = (i + 1) % choices.size();
+  const std::filesystem::path previous = options_.scene;
+  options_.scene = scene_file(options_.config, choices[next]);
+  std::fprintf(stderr, "<5>switching to the scene %s\n", options_.scene.c_str());
+  reload();
+  if (std::filesystem::path(stage_->scene.file) != options_.scene) options_.scene = previous;  // refused: stays
+}
+
+void WindowKiosk::post_motion(audio::Producer from) {
+  if (stage_->loop->motion()) stage_->rig.engine->post_motion(*stage_->loop->motion(), from);
 }
 
 void WindowKiosk::reload() {
@@ -219,6 +450,8 @@ void WindowKiosk::heartbeat(Nanos now) {
   const bool audio_alive =
       !stage_->output || a.callbacks > callbacks_at_beat_ || !stage_->output->device_ok();
   const bool render_alive = frames_ > frames_at_beat_;
+  // A remote that is gone is survived (attract, hint, reconnect): the main loop's polls
+  // stand for input; the reading thread never blocks for long by design.
   const bool input_alive = polls_ > polls_at_beat_;
   if (beat_due) {
     if (audio_alive && render_alive && input_alive) notifier_.watchdog();
@@ -227,7 +460,7 @@ void WindowKiosk::heartbeat(Nanos now) {
   if (log_due) {
     std::fprintf(stderr, "<6>heartbeat: %s, frames %llu, strikes %llu, audio callbacks %llu, xruns %llu%s\n",
                  to_string(states_->state()), static_cast<unsigned long long>(frames_),
-                 static_cast<unsigned long long>(strikes_), static_cast<unsigned long long>(a.callbacks),
+                 static_cast<unsigned long long>(strikes_ + (stage_->remote ? stage_->remote->strikes() : 0)), static_cast<unsigned long long>(a.callbacks),
                  static_cast<unsigned long long>(a.xruns), stage_->output && !stage_->output->device_ok()
                                                                ? ", audio device lost (retrying)" : "");
     next_log_ = now + 60 * kNanosPerSecond;
@@ -248,26 +481,38 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   o.clear();
   const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
   const float px = font_->pixel_height();
+  if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
   if (const KioskHint hint = states_->hint(); hint != KioskHint::none) draw_banner(o, hint_text(hint), w, h);
+  else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
   if (states_->overlay().mouse_notice)
-    o.text(px, h - px, "Mouse", {1.0f, 1.0f, 1.0f, 0.35f});
+    o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",
+           {1.0f, 1.0f, 1.0f, 0.35f});
   if (states_->state() != KioskState::operator_page) return;
-  char lines[8][160];
+  char lines[9][240];
   const double uptime = to_seconds(now - started_);
-  std::snprintf(lines[0], sizeof lines[0], "Operator — Mallet");
-  std::snprintf(lines[1], sizeof lines[1], "input: mouse (Wii Remote not wired yet)");
+  std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page");
+  std::snprintf(lines[1], sizeof lines[1], "%s", input_line().c_str());
   std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
   std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,
                 std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
   std::snprintf(lines[4], sizeof lines[4], "volume %.0f %%  (Up / Down)", volume_ * 100);
   std::snprintf(lines[5], sizeof lines[5], "actuator gain %.2f  (Left / Right)", gain_);
   std::snprintf(lines[6], sizeof lines[6], "R recalibrate    Q quit    Esc close");
-  std::snprintf(lines[7], sizeof lines[7], "scene: %s", stage_->scene.file.c_str());
-  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 28), ph = line * 9;
+  const int wall = stage_->loop->wall_material();
+  std::snprintf(lines[7], sizeof lines[7], "scene: %s  (S next)%s%s%s",
+                std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "",
+                wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "",
+                wall >= 0 ? "  (M next)" : "");
+  std::snprintf(lines[8], sizeof lines[8], "%s",
+                stage_->remote
+                    ? (stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
+                       stage_->calibration_status_sensitivity).c_str()
+                                                       : "calibration: R runs the screen with the mouse (not saved)");
+  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 34), ph = line * 10;
   const float x0 = (w - pw) / 2, y0 = (h - ph) / 2;
   o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  for (int i = 0; i < 8; ++i)
+  for (int i = 0; i < 9; ++i)
     o.text(x0 + px, y0 + line * static_cast<float>(i + 1), lines[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
 }
 
@@ -304,31 +549,46 @@ int WindowKiosk::run() {
     last_x = x;
     last_y = y;
     const Vec2 screen{x / std::max(w, 1), y / std::max(h, 1)};
-    if (moved) states_->pointer(now, screen);
+    const bool mouse = stage_->source == InputSource::mouse;
+    if (mouse && moved) states_->pointer(now, screen);
+    if (stage_->device) poll_remote(now);
     states_->tick(now);
+    const bool inside = screen.x >= 0 && screen.x <= 1 && screen.y >= 0 && screen.y <= 1;
+    calibration_frame(now, mouse && inside && last_x >= 0 ? std::optional<Vec2>(screen) : std::nullopt);
+    if (stage_->remote) stage_->remote->set_playing(states_->visitor_plays());
     apply_volume();
 
-    if (states_->visitor_plays() && moved) {
+    if (!mouse && states_->visitor_plays()) {
+      ghost_.reset();  // the remote's strikes go from its reading thread to the engine
+    } else if (states_->visitor_plays() && moved) {
       if (ghost_) {  // a visitor takes over from the ghost within this frame
         ghost_.reset();
         stage_->loop->reset();
+        stage_->loop->set_cycle_materials(false);
       }
       if (auto impact = stage_->loop->feed(now, stage_->scene.screen_to_world.map(screen.x, screen.y)))
         strike(*impact);
+      post_motion(audio::Producer::main);
     } else if (states_->ghost_plays()) {
       if (!ghost_) {
         ghost_.emplace(stage_->scene, now);
         stage_->loop->reset();
+        stage_->loop->set_cycle_materials(true);  // the wall shows each of its materials in turn
       }
-      for (const PointerSample& s : ghost_->samples_until(now))
+      for (const PointerSample& s : ghost_->samples_until(now)) {
         if (auto impact = stage_->loop->feed(s.t_ns, {s.x, s.y})) strike(*impact);
+        post_motion(audio::Producer::main);
+      }
     } else {
+      if (ghost_) stage_->loop->set_cycle_materials(false);
       ghost_.reset();
     }
 
     draw_overlay(now, frame_ms);
     render::FrameState state;
-    state.mallet_centre = stage_->loop->displayed(window_->predicted_present(now));
+    const Nanos present = window_->predicted_present(now);
+    state.mallet_centre = !mouse && states_->visitor_plays() ? stage_->remote->view().displayed(present)
+                                                             : stage_->loop->displayed(present);
     state.overlay = overlay_.get();
     if (window_->draw(*stage_->renderer, state)) ++frames_;
     if (frames_ == 1) notifier_.ready();
@@ -338,6 +598,7 @@ int WindowKiosk::run() {
   std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
                static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes_));
   vkDeviceWaitIdle(ctx_->device());
+  if (stage_->device) stage_->device->stop();
   if (stage_->output) stage_->output->stop();
   if (ctx_->validation_messages() > 0) {
     std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",

@@ -1,8 +1,23 @@
 #pragma once
 // The kiosk on a display: a GLFW window (fullscreen and borderless unless windowed), the
-// scene, the mouse as the mallet, sound and actuator signal on the PortAudio device, and
-// the kiosk's states (src/core/kiosk_states.hpp): Attract (the ghost player and the
-// invitation), Play, and the operator page behind the chord Ctrl+Alt+O.
+// scene, the mallet driven by the Wii Remote or the mouse ([input] source: "auto" takes a
+// remote found at start-up, else the mouse, and says so on screen; "replay" plays a
+// recording through the same device path as a remote), sound and actuator
+// signal on the PortAudio device, and the kiosk's states (src/core/kiosk_states.hpp):
+// Attract (the ghost player and the invitation), Play, Calibration and the operator page
+// behind the chord Ctrl+Alt+O.
+//
+// Threads: the mouse and the ghost are read and struck on this (main, render) thread; the
+// Wii Remote's samples are struck on the remote's own reading thread (RemotePointer, the
+// device's sample sink), which posts to the audio engine's second ring, so an impact never
+// waits for a frame. The main thread takes the remote's samples once a frame for the states
+// (movement, tracking lost) and the calibration screen.
+//
+// Calibration (app/calibration_screen.hpp): entered by R on the operator page, or at
+// start-up once the remote's link runs, when no valid calibration file is in state_dir()
+// or it names another remote. Accepted → saved atomically and used at once; abandoned or
+// failed → the previous one stays. With the mouse as input the screen runs with the mouse
+// as the dot and saves nothing.
 //
 // The operator page: input, audio device and latency, frame time, uptime, the volume and
 // the actuator gain (the paper's amplifier knob, in software), recalibrate, quit. Keys on
@@ -12,7 +27,8 @@
 // SIGHUP reloads the settings and the scene; an invalid new file is refused with its
 // reason on stderr and the running configuration stays.
 //
-// Faults: a lost audio device is survived (silent, retried by PortAudioOutput); an
+// Faults: a Wii Remote that is gone → Attract with the remote-missing hint, reconnected by
+// WiimoteDevice (it never gives up); a lost audio device is survived (silent, retried by PortAudioOutput); an
 // out-of-date swapchain is recreated (WindowTarget). A lost GPU device
 // (VK_ERROR_DEVICE_LOST) is not recovered in-process: the RenderError ends the run with
 // exit status 1, and systemd (Restart=always, RestartSec=2) starts a fresh kiosk.

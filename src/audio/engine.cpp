@@ -44,7 +44,7 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
   }
   for (const Material& m : scene.materials) material_actuator_.push_back(m.actuator);
   if (scene.texture) stripes_.emplace(scene.texture->stripes, settings_.sample_rate_hz);
-  pending_motions_.reserve(kRingCapacity);
+  pending_motions_.reserve(2 * kRingCapacity);
   voices_.resize(static_cast<std::size_t>(settings_.max_voices));
   pending_.reserve(kMaxPending);
   acoustic_bus_.resize(kMaxBlock);
@@ -52,21 +52,21 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
   ahead_ns_ = static_cast<Nanos>(std::llround(settings_.schedule_ahead_ms * 1e6));
 }
 
-bool AudioEngine::post(const Impact& impact) {
-  if (ring_.push(impact)) return true;
+bool AudioEngine::post(const Impact& impact, Producer from) {
+  if ((from == Producer::main ? ring_ : input_ring_).push(impact)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;
 }
 
-bool AudioEngine::post_motion(const StripeMotion& motion) {
+bool AudioEngine::post_motion(const StripeMotion& motion, Producer from) {
   if (!stripes_) return true;
-  if (motion_ring_.push(motion)) return true;
+  if ((from == Producer::main ? motion_ring_ : input_motion_ring_).push(motion)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;
 }
 
 void AudioEngine::schedule_motion(const StripeMotion& motion, std::int64_t block_start) {
-  if (pending_motions_.size() == kRingCapacity) {  // cannot happen: the ring holds no more
+  if (pending_motions_.size() == 2 * kRingCapacity) {  // cannot happen: the rings hold no more
     dropped_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
@@ -163,7 +163,9 @@ void AudioEngine::process(float* out, int frames) {
     const int n = std::min(frames - done, kMaxBlock);
     const std::int64_t block_start = position_;
     while (auto impact = ring_.pop()) schedule(*impact, block_start);
+    while (auto impact = input_ring_.pop()) schedule(*impact, block_start);
     while (auto motion = motion_ring_.pop()) schedule_motion(*motion, block_start);
+    while (auto motion = input_motion_ring_.pop()) schedule_motion(*motion, block_start);
 
     std::fill_n(acoustic_bus_.begin(), n, 0.0);
     std::fill_n(actuator_bus_.begin(), n, 0.0);

@@ -4,8 +4,10 @@
 //
 // THE CALLBACK CONTRACT. process() runs on the audio thread and never locks,
 // allocates, logs, throws or waits. Everything it touches is preallocated by the
-// constructor: the event ring, the voice pool, the per-target tables. Impacts arrive
-// only through post() (one producer thread) over a lock-free SPSC ring. Counters are
+// constructor: the event rings, the voice pool, the per-target tables. Impacts arrive
+// only through post() over lock-free SPSC rings, one per producer thread (the kiosk's
+// main thread plays the mouse and the attract mode's ghost; the Wii Remote's reading
+// thread posts the visitor's strikes itself, so they never wait for a frame). Counters are
 // relaxed atomics that other threads may read.
 //
 // Sample-accurate scheduling: an impact at time t (ns, monotonic clock) starts on
@@ -68,21 +70,24 @@ struct EngineCounters {
   int active_voices = 0;
 };
 
+//! Which thread posts: each has its own single-producer ring.
+enum class Producer { main, input };
+
 class AudioEngine {
  public:
   static constexpr std::size_t kRingCapacity = 1024;
-  static constexpr std::size_t kMaxPending = kRingCapacity;  //!< all the ring can deliver at once
+  static constexpr std::size_t kMaxPending = 2 * kRingCapacity;  //!< all the rings can deliver at once
 
   //! `presets[i]` is the acoustic preset of scene.instruments[i]. Throws (before any
   //! audio runs) if they do not match or a setting is out of range.
   AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, EngineSettings settings);
 
-  //! Producer side (one thread): queue an impact. False if the ring is full.
-  bool post(const Impact& impact);
-  //! Producer side (the same thread): the texture scene's cursor motion for the
+  //! Producer side (one thread per Producer): queue an impact. False if the ring is full.
+  bool post(const Impact& impact, Producer from = Producer::main);
+  //! Producer side (the same threads): the texture scene's cursor motion for the
   //! vibrotactile stripes, scheduled on its own sample like an impact. Ignored (true) in
   //! scenes without a texture; false if the ring is full.
-  bool post_motion(const StripeMotion& motion);
+  bool post_motion(const StripeMotion& motion, Producer from = Producer::main);
 
   //! The monotonic-clock time of frame 0. Set before the stream starts.
   void set_origin(Nanos origin_ns) { origin_ns_ = origin_ns; }
@@ -136,9 +141,11 @@ class AudioEngine {
   std::vector<ModalPreset> presets_;
   std::vector<TargetTable> targets_;
   std::vector<VibrationParams> material_actuator_;  //!< per Scene::materials, for Impact::material
-  SpscRing<Impact, kRingCapacity> ring_;
-  SpscRing<StripeMotion, kRingCapacity> motion_ring_;
-  std::vector<PendingMotion> pending_motions_;  //!< in arrival order; capacity kRingCapacity
+  SpscRing<Impact, kRingCapacity> ring_;        //!< Producer::main
+  SpscRing<Impact, kRingCapacity> input_ring_;  //!< Producer::input
+  SpscRing<StripeMotion, kRingCapacity> motion_ring_;        //!< Producer::main
+  SpscRing<StripeMotion, kRingCapacity> input_motion_ring_;  //!< Producer::input
+  std::vector<PendingMotion> pending_motions_;  //!< in arrival order; capacity 2 × kRingCapacity
   std::optional<StripeSignal> stripes_;          //!< texture scenes only
   std::vector<Voice> voices_;
   std::vector<Pending> pending_;  //!< capacity kMaxPending, never grows in process()

@@ -56,6 +56,16 @@ struct WiimoteConfig {
   double reconnect_max_ms = 5000;    //!< ... up to this
 };
 
+//! [input]: where the mallet's position comes from.
+struct InputConfig {
+  //! "auto": the Wii Remote when one is found at start-up, else the mouse (said on screen);
+  //! "wiimote": the Wii Remote only (none found: the attract mode and a hint, looked for
+  //! forever); "mouse": the mouse only (a test bench, or no remote at all); "replay":
+  //! replay_file, a `mallet wiimote monitor --record` file, played as a live remote (looping).
+  std::string source = "auto";
+  std::string replay_file;  //!< for "replay"; relative to the settings file's folder
+};
+
 //! [attract]: the attract mode that plays when nobody is there.
 struct AttractConfig {
   double idle_after_s = 45.0;  //!< no real movement for this long → the ghost player plays
@@ -84,6 +94,7 @@ struct AppConfig {
   AudioConfig audio;
   OneEuroConfig pointer;     //!< [pointer]: the 1€ filter of the displayed cursor
   IrTrackerConfig tracking;  //!< [tracking]: which IR dot is the stick's LED
+  InputConfig input;
   WiimoteConfig wiimote;
   RenderConfig render;
   AttractConfig attract;

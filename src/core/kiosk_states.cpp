@@ -38,6 +38,7 @@ std::string_view hint_text(KioskHint hint) {
     case KioskHint::invitation: return "Pick up the mallet and strike a bar";
     case KioskHint::point_at_screen: return "Point the mallet at the screen";
     case KioskHint::close_needs_chord: return "This kiosk closes from the operator page only";
+    case KioskHint::remote_missing: return "The mallet is resting: please ask a member of staff";
   }
   return "";
 }
@@ -120,6 +121,20 @@ bool KioskStates::input_source(Nanos t_ns, InputSource source) {
   return state_ != before;
 }
 
+bool KioskStates::remote_connected(Nanos t_ns, bool connected) {
+  const KioskState before = state_;
+  const Nanos t = advance(t_ns);
+  remote_connected_ = connected;
+  if (!connected && source_ == InputSource::wiimote) {
+    if (tracking_) {
+      tracking_ = false;
+      lost_since_ = t;
+    }
+    if (state_ == KioskState::play) enter(KioskState::attract, t);
+  }
+  return state_ != before;
+}
+
 bool KioskStates::operator_chord(Nanos t_ns) {
   const Nanos t = advance(t_ns);
   if (state_ == KioskState::operator_page) return false;
@@ -128,7 +143,7 @@ bool KioskStates::operator_chord(Nanos t_ns) {
 
 bool KioskStates::recalibrate(Nanos t_ns) {
   const Nanos t = advance(t_ns);
-  if (state_ != KioskState::operator_page || source_ == InputSource::mouse) return false;
+  if (state_ != KioskState::operator_page) return false;
   calibration_from_operator_ = true;
   calibration_pending_ = false;
   return enter(KioskState::calibration, t);
@@ -195,12 +210,15 @@ KioskOverlay KioskStates::overlay() const {
   o.point_at_screen = state_ == KioskState::play && !tracking_ && now_ - lost_since_ >= lost_hint_ns_;
   o.mouse_notice = (state_ == KioskState::attract || state_ == KioskState::play) && source_ == InputSource::mouse;
   o.close_needs_chord = close_refused_ && now_ - close_refused_at_ < close_notice_ns_;
+  o.remote_missing = (state_ == KioskState::attract || state_ == KioskState::play) &&
+                     source_ == InputSource::wiimote && !remote_connected_;
   return o;
 }
 
 KioskHint KioskStates::hint() const {
   const KioskOverlay o = overlay();
   if (o.close_needs_chord) return KioskHint::close_needs_chord;
+  if (o.remote_missing) return KioskHint::remote_missing;
   if (o.point_at_screen) return KioskHint::point_at_screen;
   if (o.invitation) return KioskHint::invitation;
   return KioskHint::none;

@@ -14,7 +14,7 @@
 // | Play        | time ≥ last real movement + idle_after  | Attract     | exactly at the boundary (≥), at that tick     |
 // | Attract/Play| operator chord                          | Operator    |                                               |
 // | Attract/Play| calibration needed                      | Calibration | ignored with the mouse as input (no IR)       |
-// | Operator    | recalibrate                             | Calibration | ignored with the mouse as input               |
+// | Operator    | recalibrate                             | Calibration | with the mouse too: it stands in for the dot  |
 // | Operator    | calibration needed                      | Operator    | remembered: closing the page calibrates       |
 // | Operator    | page closed                             | Play        | Calibration instead if one was remembered     |
 // | Operator    | quit requested / window close           | Operator    | accepted: should_quit() becomes true          |
@@ -24,12 +24,16 @@
 // | Calibration | operator chord                          | Operator    | the calibration is abandoned (old one stays)  |
 // | Calibration | calibration needed                      | Calibration | no-op                                         |
 // | not Operator| window close / quit requested           | (unchanged) | refused; the close notice shows for a while   |
+// | Play        | remote disconnected                     | Attract     | at once, with the remote-missing hint         |
+// | any other   | remote disconnected / connected         | (unchanged) | flags only (the remote-missing hint)          |
 // | any         | tracking lost / regained, input source  | (unchanged) | flags only (hint, mouse notice)               |
 // | any         | accepted / cancelled / recalibrate / page closed outside their state | (unchanged) | ignored |
 //
 // Losing the stick does not end Play at once (a visitor may dip it out of view); with no
 // real movement the idle rule brings Attract, as the style guide's "remote lost → attract
-// mode with an on-screen hint" asks. Entering Play from Operator or Calibration restarts
+// mode with an on-screen hint" asks. A remote that is gone altogether (unplugged, out of
+// battery, out of range) ends Play at once: nobody can play, and the attract screen then
+// says so instead of inviting people to pick up the mallet. Entering Play from Operator or Calibration restarts
 // the idle timer there. Times earlier than the latest event are taken as the latest (the
 // clock is monotonic; visitor input is never asserted on).
 #include <string>
@@ -64,10 +68,12 @@ struct KioskOverlay {
   bool point_at_screen = false;    //!< Play, tracking lost ≥ lost_hint_after_s
   bool mouse_notice = false;       //!< Attract or Play with the mouse fallback as input
   bool close_needs_chord = false;  //!< a window close was refused less than close_notice_s ago
+  bool remote_missing = false;     //!< Attract or Play with the Wii Remote as input and not connected
 };
 
-//! The one line to show, most urgent first: close notice, point-at-screen, invitation.
-enum class KioskHint { none, invitation, point_at_screen, close_needs_chord };
+//! The one line to show, most urgent first: close notice, remote missing, point-at-screen,
+//! invitation.
+enum class KioskHint { none, invitation, point_at_screen, close_needs_chord, remote_missing };
 std::string_view hint_text(KioskHint hint);  //!< "" for none
 
 class KioskStates {
@@ -81,6 +87,9 @@ class KioskStates {
   bool tracking_lost(Nanos t_ns);
   bool tracking_regained(Nanos t_ns);  //!< also implied by any pointer sample
   bool input_source(Nanos t_ns, InputSource source);  //!< the mouse never loses tracking
+  //! The Wii Remote's link came up (true) or went down (false); meaningless for the mouse.
+  //! At construction the remote counts as connected: say so when it is not.
+  bool remote_connected(Nanos t_ns, bool connected);
   bool operator_chord(Nanos t_ns);
   bool recalibrate(Nanos t_ns);         //!< the operator page's "recalibrate"
   bool calibration_needed(Nanos t_ns);  //!< start-up: no valid calibration, or the remote changed
@@ -101,6 +110,7 @@ class KioskStates {
   bool attract_volume() const { return state_ == KioskState::attract; }  //!< audio at the attract volume
   bool visitor_plays() const { return state_ == KioskState::play; }      //!< the pointer drives the mallet
   bool tracking() const { return tracking_; }
+  bool remote_present() const { return remote_connected_; }
   InputSource source() const { return source_; }
   bool calibration_pending() const { return calibration_pending_; }
   //! When the last real movement happened (or Play was last entered; construction at first).
@@ -129,6 +139,7 @@ class KioskStates {
   InputSource source_ = InputSource::wiimote;
   bool calibration_from_operator_ = false;
   bool calibration_pending_ = false;
+  bool remote_connected_ = true;
   bool quit_ = false;
   bool close_refused_ = false;
   Nanos close_refused_at_ = 0;

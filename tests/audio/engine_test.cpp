@@ -106,6 +106,24 @@ TEST(AudioEngine, ImpactInsideABlockStartsOnItsOwnSampleOnBothChannels) {
   }
 }
 
+TEST(AudioEngine, BothProducersRingsAreRenderedAlikeInOneCallback) {
+  // The main thread (mouse, ghost) and the Wii Remote's reading thread each own a ring;
+  // an impact sounds the same whichever ring brought it.
+  const Nanos t = 96 * kNanosPerSecond / 48000 + 7'000;
+  AudioEngine a(percussion(), simple_presets(), EngineSettings{});
+  AudioEngine b(percussion(), simple_presets(), EngineSettings{});
+  a.post(strike(3, t, 1.0), Producer::main);
+  a.post(strike(12, t + 1'000'000, 0.5), Producer::main);
+  b.post(strike(3, t, 1.0), Producer::input);
+  b.post(strike(12, t + 1'000'000, 0.5), Producer::main);
+  std::vector<float> out_a(2 * 4800), out_b(2 * 4800);
+  a.process(out_a.data(), 4800);
+  b.process(out_b.data(), 4800);
+  EXPECT_EQ(out_a, out_b);
+  EXPECT_EQ(b.counters().impacts, 2u);
+  EXPECT_EQ(b.counters().dropped, 0u);
+}
+
 TEST(AudioEngine, ActuatorChannelEqualsExactEquationOneForAnyBlockSize) {
   std::vector<Impact> impacts;
   for (int k = 0; k < 30; ++k) impacts.push_back(strike(k % 16, 2'000'000 + k * 13'131'313, 0.3 + 0.05 * k));

@@ -182,6 +182,8 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.render.msaa, defaults.render.msaa);
   EXPECT_EQ(shipped.render.device, defaults.render.device);
   EXPECT_EQ(shipped.render.monitor, defaults.render.monitor);
+  EXPECT_EQ(shipped.input.source, defaults.input.source);
+  EXPECT_EQ(shipped.input.replay_file, defaults.input.replay_file);
   EXPECT_EQ(shipped.wiimote.device, defaults.wiimote.device);
   EXPECT_EQ(shipped.wiimote.ir_mode, defaults.wiimote.ir_mode);
   EXPECT_EQ(shipped.wiimote.sensitivity, defaults.wiimote.sensitivity);
@@ -220,8 +222,11 @@ TEST(AppConfig, InputSectionsAreRead) {
       "[pointer]\nmin_cutoff_hz = 2.5\nbeta_per_m = 100\nd_cutoff_hz = 0.5\nderivative_from_raw = true\n"
       "[tracking]\nmax_speed_px_per_s = 5000\njump_slack_px = 0\nreacquire_after_frames = 5\nlost_after_ms = 80\n"
       "[wiimote]\ndevice = \"00:1f:32\"\nir_mode = \"basic\"\nsensitivity = \"max\"\nrumble_on_impact = true\n"
-      "rumble_ms = 25\nsilence_timeout_ms = 1500\nreconnect_min_ms = 250\nreconnect_max_ms = 2000\n",
-      "c.toml");
+      "rumble_ms = 25\nsilence_timeout_ms = 1500\nreconnect_min_ms = 250\nreconnect_max_ms = 2000\n"
+      "[input]\nsource = \"replay\"\nreplay_file = \"visit.replay\"\n",
+      "/etc/mallet/c.toml");
+  EXPECT_EQ(c.input.source, "replay");
+  EXPECT_EQ(c.input.replay_file, "/etc/mallet/visit.replay");
   EXPECT_EQ(c.pointer.min_cutoff_hz, 2.5);
   EXPECT_EQ(c.pointer.beta_per_m, 100.0);
   EXPECT_EQ(c.pointer.d_cutoff_hz, 0.5);
@@ -267,6 +272,9 @@ TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
       {"[wiimote]\nreconnect_min_ms = 1000\nreconnect_max_ms = 900\n", 3,
        "wiimote.reconnect_max_ms: must be in [1000, 600000], got 900"},
       {"[wiimote]\nrumble_on_impact = \"yes\"\n", 2, "wiimote.rumble_on_impact: expected true or false"},
+      {"[input]\nsource = \"joystick\"\n", 2,
+       "input.source: expected \"auto\", \"wiimote\", \"mouse\" or \"replay\", got \"joystick\""},
+      {"[input]\nsource = \"replay\"\n", 2, "input.source: \"replay\" needs replay_file"},
       {"[render]\npresent_mode = \"vsync\"\n", 2,
        "render.present_mode: expected \"fifo\", \"mailbox\" or \"immediate\", got \"vsync\""},
       {"[render]\nmsaa = \"3\"\n", 2, "render.msaa: expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"3\""},

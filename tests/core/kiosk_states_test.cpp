@@ -304,11 +304,17 @@ TEST(KioskStates, TheMouseFallbackIsSaidOnScreenAndNeverLosesTracking) {
   EXPECT_FALSE(k.overlay().point_at_screen);
   k.operator_chord(kStart + 3 * kNanosPerSecond);
   EXPECT_FALSE(k.overlay().mouse_notice);  // the operator page says the input itself
-  // The mouse has no IR camera to calibrate.
-  EXPECT_FALSE(k.recalibrate(kStart + 4 * kNanosPerSecond));
+  // Start-up never asks the mouse to calibrate (it has no IR camera) ...
+  k.operator_page_closed(kStart + 4 * kNanosPerSecond);
+  EXPECT_FALSE(k.calibration_needed(kStart + 5 * kNanosPerSecond));
+  EXPECT_EQ(k.state(), S::play);
+  // ... but the operator may run the screen with the mouse standing in for the IR dot.
+  k.operator_chord(kStart + 5 * kNanosPerSecond);
+  EXPECT_TRUE(k.recalibrate(kStart + 5 * kNanosPerSecond));
+  EXPECT_EQ(k.state(), S::calibration);
+  EXPECT_TRUE(k.calibration_cancelled(kStart + 6 * kNanosPerSecond));
   EXPECT_EQ(k.state(), S::operator_page);
-  k.operator_page_closed(kStart + 5 * kNanosPerSecond);
-  EXPECT_FALSE(k.calibration_needed(kStart + 6 * kNanosPerSecond));
+  k.operator_page_closed(kStart + 6 * kNanosPerSecond);
   EXPECT_EQ(k.state(), S::play);
   // Back on the remote: no notice.
   k.input_source(kStart + 7 * kNanosPerSecond, InputSource::wiimote);
@@ -383,6 +389,41 @@ TEST(KioskStates, ABadConfigIsRefusedWithItsKey) {
   c.close_notice_s = 1e300;
   EXPECT_NE(validate(c).find("close_notice_s"), std::string::npos);
   EXPECT_STREQ(to_string(S::operator_page), "operator");
+}
+
+TEST(KioskStates, ALostRemoteEndsPlayAtOnceAndSaysSoUntilItIsBack) {
+  KioskStates k({}, kStart);
+  k.input_source(kStart, InputSource::wiimote);
+  k.pointer(kStart + kMs, {0.5, 0.5});
+  k.pointer(kStart + 2 * kMs, {0.6, 0.5});
+  ASSERT_EQ(k.state(), S::play);
+  EXPECT_TRUE(k.remote_connected(kStart + 3 * kMs, false));
+  EXPECT_EQ(k.state(), S::attract);
+  EXPECT_FALSE(k.tracking());
+  EXPECT_TRUE(k.overlay().remote_missing);
+  EXPECT_EQ(k.hint(), KioskHint::remote_missing);
+  EXPECT_EQ(hint_text(KioskHint::remote_missing), "The mallet is resting: please ask a member of staff");
+  // The operator page says the link itself; the hint comes back with Attract.
+  k.operator_chord(kStart + 4 * kMs);
+  EXPECT_FALSE(k.overlay().remote_missing);
+  k.operator_page_closed(kStart + 5 * kMs);
+  EXPECT_EQ(k.state(), S::play);
+  EXPECT_TRUE(k.overlay().remote_missing);
+  // Back: the invitation again once Attract returns, no Play without movement.
+  EXPECT_FALSE(k.remote_connected(kStart + 6 * kMs, true));
+  EXPECT_FALSE(k.overlay().remote_missing);
+  k.tick(kStart + 6 * kMs + 45 * kNanosPerSecond);
+  EXPECT_EQ(k.hint(), KioskHint::invitation);
+}
+
+TEST(KioskStates, TheMouseHasNoRemoteToMiss) {
+  KioskStates k({}, kStart);
+  k.input_source(kStart, InputSource::mouse);
+  k.pointer(kStart + kMs, {0.5, 0.5});
+  k.pointer(kStart + 2 * kMs, {0.6, 0.5});
+  EXPECT_FALSE(k.remote_connected(kStart + 3 * kMs, false));
+  EXPECT_EQ(k.state(), S::play);
+  EXPECT_FALSE(k.overlay().remote_missing);
 }
 
 }  // namespace

@@ -112,6 +112,18 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
+  if (auto t = top.optional_table("input")) {
+    InputConfig& i = c.input;
+    i.source = t->string_or("source", i.source);
+    if (i.source != "auto" && i.source != "wiimote" && i.source != "mouse" && i.source != "replay")
+      t->fail("source", "expected \"auto\", \"wiimote\", \"mouse\" or \"replay\", got \"" + i.source + "\"");
+    i.replay_file = t->string_or("replay_file", i.replay_file);
+    if (i.source == "replay" && i.replay_file.empty())
+      t->fail("source", "\"replay\" needs replay_file (a `mallet wiimote monitor --record` file)");
+    if (!i.replay_file.empty() && std::filesystem::path(i.replay_file).is_relative())
+      i.replay_file = (std::filesystem::path(file).parent_path() / i.replay_file).string();
+    t->finish();
+  }
   if (auto t = top.optional_table("attract")) {
     AttractConfig& a = c.attract;
     a.idle_after_s = t->number_or("idle_after_s", a.idle_after_s);

@@ -85,6 +85,7 @@ void WiimoteDevice::step() {
       return;
     }
     if (!service_rumble(clock_.now())) return;
+    if (!service_sensitivity(clock_.now())) return;
 
     std::array<std::uint8_t, kMaxRecordedReportSize> buffer{};
     const int n = transport_->read(buffer, config_.read_timeout_ms);
@@ -220,6 +221,30 @@ bool WiimoteDevice::service_rumble(Nanos now) {
   return send(set_leds(config_.leds, r), now);
 }
 
+bool WiimoteDevice::request_sensitivity(std::string_view preset) {
+  for (std::size_t i = 0; i < kSensitivityPresets.size(); ++i)
+    if (kSensitivityPresets[i].name == preset) {
+      sensitivity_request_.store(static_cast<int>(i), std::memory_order_release);
+      return true;
+    }
+  return false;
+}
+
+bool WiimoteDevice::service_sensitivity(Nanos now) {
+  const int index = sensitivity_request_.exchange(-1, std::memory_order_acq_rel);
+  if (index < 0) return true;
+  IrStartupConfig c = startup_.config();
+  c.sensitivity = kSensitivityPresets[static_cast<std::size_t>(index)];
+  // The whole start-up again (the Linux driver's order): the camera takes new blocks only
+  // while it is not sending. The link stays up; IR reports resume with the new blocks.
+  startup_ = IrStartup(c);
+  if (link_ != LinkState::searching) {
+    startup_.start(now);
+    return flush_startup(now);
+  }
+  return true;
+}
+
 void WiimoteDevice::on_report(Nanos t, std::span<const std::uint8_t> report) {
   last_rx_ns_ = t;
   if (config_.keep_raw_reports) {
@@ -243,8 +268,10 @@ void WiimoteDevice::on_report(Nanos t, std::span<const std::uint8_t> report) {
   if (reports_.poll(t) == IrTrackerEvent::lost) push_sample({t, IrTrackerEvent::lost, false, {}});
   const ReportOutcome outcome = reports_.feed(t, report);
   if (outcome.kind != ReportOutcome::Kind::ir) return;
-  if (outcome.update.point || outcome.update.event != IrTrackerEvent::none) {
+  if (outcome.update.point || outcome.update.event != IrTrackerEvent::none || config_.every_frame) {
     LedSample s;
+    s.has_frame = outcome.frame.has_value();
+    if (s.has_frame) s.frame = *outcome.frame;
     s.t_ns = t;
     s.event = outcome.update.event;
     s.has_point = outcome.update.point.has_value();
@@ -274,6 +301,10 @@ void WiimoteDevice::publish(Nanos now) {
   s.mode_resets = mode_resets_;
   s.rumble_pulses = rumble_pulses_;
 
+  if (sink_) {
+    sink_(pending_, now);
+    pending_.clear();
+  }
   std::lock_guard lock(mutex_);
   for (const LedSample& sample : pending_) {
     if (samples_.size() < config_.queue_capacity) samples_.push_back(sample);

@@ -20,6 +20,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -49,6 +50,9 @@ struct WiimoteDeviceConfig {
   bool rumble_on_impact = false;   //!< on_impact() pulses only when set
   std::uint8_t leds = 0x01;        //!< player LEDs 1..4 (bits 0..3) lit while connected
   bool keep_raw_reports = false;   //!< queue every raw report for drain_raw() (`--record`)
+  //! A sample for every IR report, carrying its frame (all four slots), even with no LED
+  //! accepted: the sensitivity tuner counts dots and sizes. Off: samples only for the LED.
+  bool every_frame = false;
   std::size_t queue_capacity = 4096;  //!< samples (and raw reports) kept for the consumer
 };
 
@@ -91,6 +95,8 @@ struct LedSample {
   IrTrackerEvent event = IrTrackerEvent::none;  //!< regained, lost, jumped, or none
   bool has_point = false;
   IrPoint point{};  //!< raw camera coordinates when has_point
+  bool has_frame = false;  //!< every_frame only
+  IrFrame frame{};         //!< the report's IR slots when has_frame
 };
 
 //! One report exactly as received (for `--record`).
@@ -122,10 +128,21 @@ class WiimoteDevice {
   WiimoteState state() const;
   //! Replaces `out` with the samples since the last drain; returns how many.
   std::size_t drain(std::vector<LedSample>& out);
+  //! The samples' consumer on the reading thread itself: after every step, `sink` gets that
+  //! step's samples (often none) and the step's time. The kiosk's input path runs there,
+  //! so a strike reaches the audio engine without waiting for a frame or a second thread.
+  //! The samples then bypass drain(). The sink must not block for long (it delays the next
+  //! read) and must not throw. Set it before start().
+  using SampleSink = std::function<void(std::span<const LedSample> samples, Nanos now)>;
+  void set_sample_sink(SampleSink sink) { sink_ = std::move(sink); }
   //! Replaces `out` with the raw reports since the last drain (keep_raw_reports only).
   std::size_t drain_raw(std::vector<RawReport>& out);
   //! Asks for one rumble pulse of rumble_ns (another request while one runs extends it).
   void pulse_rumble() { rumble_request_.store(true, std::memory_order_release); }
+  //! Asks for the camera's sensitivity blocks of `preset` (a name from kSensitivityPresets;
+  //! others are ignored): the reading thread runs the IR start-up again with them, and keeps
+  //! them for every later reconnection. Returns whether the name is known.
+  bool request_sensitivity(std::string_view preset);
   //! A strike happened: pulse_rumble() when rumble_on_impact.
   void on_impact() {
     if (config_.rumble_on_impact) pulse_rumble();
@@ -143,6 +160,7 @@ class WiimoteDevice {
   bool send(const OutputReport& report, Nanos now);
   bool flush_startup(Nanos now);
   bool service_rumble(Nanos now);
+  bool service_sensitivity(Nanos now);
   void push_sample(const LedSample& sample);
   void publish(Nanos now);
 
@@ -165,6 +183,7 @@ class WiimoteDevice {
   std::uint64_t connects_ = 0, disconnects_ = 0, failed_attempts_ = 0, mode_resets_ = 0, rumble_pulses_ = 0;
   std::vector<LedSample> pending_;   //!< this step's samples, handed over in publish()
   std::vector<RawReport> pending_raw_;
+  SampleSink sink_;
 
   // Shared with the consumer.
   mutable std::mutex mutex_;
@@ -173,6 +192,7 @@ class WiimoteDevice {
   std::vector<RawReport> raw_;
   std::uint64_t dropped_ = 0;
   std::atomic<bool> rumble_request_{false};
+  std::atomic<int> sensitivity_request_{-1};  //!< index in kSensitivityPresets, -1 none
 
   std::atomic<bool> stop_{false};
   std::thread thread_;

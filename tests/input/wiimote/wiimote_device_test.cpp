@@ -75,6 +75,83 @@ TEST(WiimoteDevice, ConnectsRunsTheIrStartupAndPublishesTheLedStampedAtReception
   EXPECT_EQ(device.drain(samples), 0u);  // drained once
 }
 
+TEST(WiimoteDevice, ASampleSinkGetsEverySampleOnTheReadingThreadInsteadOfTheQueue) {
+  Rig rig;
+  WiimoteDevice device(rig.finder, rig.clock);
+  std::vector<LedSample> sunk;
+  int calls = 0;
+  Nanos last_now = 0;
+  device.set_sample_sink([&](std::span<const LedSample> samples, Nanos now) {
+    ++calls;
+    EXPECT_GE(now, last_now);
+    last_now = now;
+    sunk.insert(sunk.end(), samples.begin(), samples.end());
+  });
+  ASSERT_TRUE(step_until(device, [&] { return running(device); }));
+  rig.remote->send_ir(20, 500, 300, 2, 0);
+  ASSERT_TRUE(step_until(device, [&] { return rig.remote->script.empty(); }));
+  ASSERT_EQ(sunk.size(), 20u);
+  EXPECT_EQ(sunk[0].event, IrTrackerEvent::regained);
+  EXPECT_EQ(sunk[19].point.x, 538.0);
+  EXPECT_GT(calls, 20);  // every step, with or without samples: the sink's clock
+  std::vector<LedSample> queued;
+  EXPECT_EQ(device.drain(queued), 0u);
+  // The remote vanishes: the sink hears `lost` from the step that dropped it.
+  rig.remote->gone = true;
+  ASSERT_TRUE(step_until(device, [&] { return device.state().link == LinkState::searching; }));
+  EXPECT_EQ(sunk.back().event, IrTrackerEvent::lost);
+}
+
+//! Whether a register write (0x16) of `block` at 0xB00000 was sent.
+bool wrote_block1(const FakeRemote& remote, const std::array<std::uint8_t, 9>& block) {
+  for (const Bytes& b : remote.written)
+    if (b.size() >= 15 && b[0] == 0x16 && b[2] == 0xb0 && b[3] == 0x00 && b[4] == 0x00 &&
+        std::equal(block.begin(), block.end(), b.begin() + 6))
+      return true;
+  return false;
+}
+
+TEST(WiimoteDevice, ASensitivityRequestRerunsTheStartupWithItsBlocksAndKeepsThem) {
+  Rig rig;
+  WiimoteDevice device(rig.finder, rig.clock);
+  ASSERT_TRUE(step_until(device, [&] { return running(device); }));
+  const auto max = *find_sensitivity("max");
+  EXPECT_FALSE(wrote_block1(*rig.remote, max.block1));
+  EXPECT_FALSE(device.request_sensitivity("brightest"));
+  ASSERT_TRUE(device.request_sensitivity("max"));
+  device.step();
+  ASSERT_TRUE(step_until(device, [&] { return device.state().startup == IrStartupStep::running; }));
+  EXPECT_TRUE(wrote_block1(*rig.remote, max.block1));
+  EXPECT_EQ(device.state().link, LinkState::running);  // the link stayed up
+  EXPECT_EQ(device.state().connects, 1u);
+  // A reconnection keeps the new blocks.
+  rig.remote->written.clear();
+  rig.remote->gone = true;
+  ASSERT_TRUE(step_until(device, [&] { return !running(device); }));
+  rig.remote->gone = false;
+  ASSERT_TRUE(step_until(device, [&] { return running(device); }));
+  EXPECT_TRUE(wrote_block1(*rig.remote, max.block1));
+}
+
+TEST(WiimoteDevice, EveryFrameGivesASampleWithTheSlotsEvenWithoutADot) {
+  Rig rig;
+  WiimoteDeviceConfig config;
+  config.every_frame = true;
+  WiimoteDevice device(rig.finder, rig.clock, config);
+  ASSERT_TRUE(step_until(device, [&] { return running(device); }));
+  rig.remote->send(ir_report({}));
+  rig.remote->send(ir_report({{500, 300, 3}, {100, 100, 2}}));
+  ASSERT_TRUE(step_until(device, [&] { return rig.remote->script.empty(); }));
+  std::vector<LedSample> samples;
+  ASSERT_EQ(device.drain(samples), 2u);
+  EXPECT_TRUE(samples[0].has_frame);
+  EXPECT_FALSE(samples[0].has_point);
+  ASSERT_TRUE(samples[1].has_frame);
+  EXPECT_TRUE(samples[1].has_point);
+  ASSERT_TRUE(samples[1].frame.slots[1].has_value());
+  EXPECT_EQ(samples[1].frame.slots[1]->x, 100);
+}
+
 TEST(WiimoteDevice, SilenceDropsTheRemoteThenItReconnectsAndRerunsTheStartup) {
   Rig rig;
   WiimoteDevice device(rig.finder, rig.clock);

@@ -1,0 +1,108 @@
+#include "app/remote_pointer.hpp"
+
+#include <cmath>
+
+namespace mallet::app {
+
+RemotePointer::RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine)
+    : scene_(scene), engine_(engine), loop_(scene, config), filter_(config.pointer) {
+  pending_.reserve(256);
+}
+
+void RemotePointer::feed_point(Nanos t, Vec2 camera, RemoteSample& out) {
+  std::optional<Homography> h;
+  {
+    std::lock_guard lock(mutex_);
+    h = camera_to_screen_;
+  }
+  if (!h) return;
+  const std::optional<Vec2> screen = h->try_map(camera);
+  if (!screen || !std::isfinite(screen->x) || !std::isfinite(screen->y)) return;  // off the map: no position
+  out.screen = screen;
+  const Vec2 hand = scene_.screen_to_world.map(screen->x, screen->y);
+  const bool playing = playing_.load(std::memory_order_acquire);
+  const std::uint64_t generation = generation_.load(std::memory_order_acquire);
+  if (generation != seen_generation_) {  // Play (re)started, or a new calibration: a new stroke
+    seen_generation_ = generation;
+    loop_.reset();
+    filter_.reset();
+  }
+  if (!playing) return;
+  // Strikes from the raw samples (the filter's lag would delay them); the filter only
+  // smooths what is shown.
+  if (const int m = wall_material_.exchange(-1, std::memory_order_acq_rel); m >= 0) loop_.set_wall_material(m);
+  if (const std::optional<Impact> impact = loop_.feed(t, hand)) {
+    engine_.post(*impact, audio::Producer::input);
+    strikes_.fetch_add(1, std::memory_order_relaxed);
+    if (on_strike) on_strike(*impact);
+  }
+  if (loop_.motion()) engine_.post_motion(*loop_.motion(), audio::Producer::input);
+  const Vec2 shown = filter_.update(t, hand).value_or(hand);
+  const StrikeLoop::View view = loop_.view(shown);
+  std::lock_guard lock(mutex_);
+  view_ = view;
+}
+
+void RemotePointer::on_samples(std::span<const input::wiimote::LedSample> samples, Nanos) {
+  for (const input::wiimote::LedSample& s : samples) {
+    RemoteSample out;
+    out.t_ns = s.t_ns;
+    out.event = s.event;
+    if (s.has_frame) out.frame = s.frame;
+    if (s.event == IrTrackerEvent::lost || s.event == IrTrackerEvent::jumped) {
+      // The next dot starts a new stroke: no swept contact across the gap or the jump.
+      loop_.reset();
+      filter_.reset();
+    }
+    if (s.has_point) {
+      out.camera_px = Vec2{s.point.x, s.point.y};
+      feed_point(s.t_ns, *out.camera_px, out);
+    }
+    std::lock_guard lock(mutex_);
+    if (s.event == IrTrackerEvent::lost) tracking_ = false;
+    else if (s.has_point) tracking_ = true;
+    if (pending_.size() >= kMaxPending) {
+      pending_.erase(pending_.begin());
+      ++dropped_;
+    }
+    pending_.push_back(out);
+  }
+}
+
+void RemotePointer::set_calibration(std::optional<Calibration> calibration) {
+  {
+    std::lock_guard lock(mutex_);
+    camera_to_screen_ = calibration ? std::optional<Homography>(calibration->camera_to_screen) : std::nullopt;
+  }
+  generation_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+void RemotePointer::set_playing(bool playing) {
+  if (playing_.exchange(playing, std::memory_order_acq_rel) != playing && playing)
+    generation_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+std::vector<RemoteSample> RemotePointer::take() {
+  std::vector<RemoteSample> out;
+  out.reserve(256);
+  std::lock_guard lock(mutex_);
+  out.swap(pending_);
+  return out;
+}
+
+StrikeLoop::View RemotePointer::view() const {
+  std::lock_guard lock(mutex_);
+  return view_;
+}
+
+bool RemotePointer::tracking() const {
+  std::lock_guard lock(mutex_);
+  return tracking_;
+}
+
+std::uint64_t RemotePointer::dropped() const {
+  std::lock_guard lock(mutex_);
+  return dropped_;
+}
+
+}  // namespace mallet::app
