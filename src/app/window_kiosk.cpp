@@ -134,6 +134,7 @@ void WindowKiosk::build(KioskSetup setup) {
   render::RenderSettings rs;
   rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
                                        : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
+  rs.shadow = c.render.shadow;
   stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(), rs,
                                                             cache_->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
