@@ -24,7 +24,7 @@ QualityKnobs quality_knobs(Quality q) {
       break;
     case Quality::exact:
       k.msaa = "4";
-      k.schedule_ahead_ms = 5.0;
+      k.schedule_ahead_ms = 12.0;
       break;
   }
   return k;

@@ -18,8 +18,14 @@
 //   audio.frames_per_buffer      128         64          64          half the callbacks; worst impact→sample
 //                                                                    2.7 ms, still under the ≈5 ms that tapping
 //                                                                    notices
-//   audio.schedule_ahead_ms      0           0           5           exact: every strike delayed by exactly 5 ms
-//                                                                    (jitter one sample instead of one block)
+//   audio.schedule_ahead_ms      0           0           12          exact: every strike sounds exactly 12 ms
+//                                                                    after its contact (jitter one sample, not
+//                                                                    one block). It counts from the contact,
+//                                                                    which the 100 Hz camera reveals up to 10 ms
+//                                                                    later: with 5 ms about half the strikes were
+//                                                                    late (bench report's latency budget); 12 =
+//                                                                    10 ms + a 64-frame block + margin. Still
+//                                                                    earlier than any frame shows the bounce.
 //   audio.max_modes              3           8           8           modes sounding per bar (the strike law's
 //                                                                    sums still see all of them, so the modes
 //                                                                    kept sound exactly as in "exact"); 3 drops
@@ -40,7 +46,8 @@
 //   acoustic note vs all modes in long double          fast ≤ kFastNoteErrorBound; balanced,
 //                                                      exact ≤ 1e-9
 //   strike → its first sample, 64/128-frame blocks     fast ≤ 128 frames late, balanced ≤ 64,
-//                                                      exact exactly 5 ms (± one sample)
+//                                                      exact exactly 12 ms after the contact (± one
+//                                                      sample) when the block is shorter than that
 #include <optional>
 #include <string>
 #include <string_view>

@@ -264,6 +264,7 @@ TEST(QualityExtremes, BlockSizesFromSixteenToTwoThousandFortyEightFrames) {
         EXPECT_LE(first - due, 1) << "exact: the constant latency, ± one sample";
       else
         EXPECT_LE(first - due, block) << "as soon as possible: within one block";
+      EXPECT_EQ(rig.engine->counters().late, 0u) << to_string(q) << " " << block;
     }
   }
 }

@@ -32,7 +32,7 @@ TEST(QualityConfig, APresetSetsItsKnobs) {
   EXPECT_EQ(fast.audio.max_modes, 3);
   const AppConfig exact = config::parse_app_config("quality = \"exact\"\n", "c.toml");
   EXPECT_EQ(exact.render.msaa, "4");
-  EXPECT_EQ(exact.audio.schedule_ahead_ms, 5.0);
+  EXPECT_EQ(exact.audio.schedule_ahead_ms, 12.0);
   EXPECT_EQ(exact.audio.frames_per_buffer, 64);
 }
 
