@@ -23,6 +23,7 @@
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
+#include "core/quality.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
@@ -255,7 +256,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() != KioskState::operator_page) return;
   char lines[8][160];
   const double uptime = to_seconds(now - started_);
-  std::snprintf(lines[0], sizeof lines[0], "Operator — Mallet");
+  std::snprintf(lines[0], sizeof lines[0], "Operator — Mallet   quality: %s", to_string(stage_->config.quality));
   std::snprintf(lines[1], sizeof lines[1], "input: mouse (Wii Remote not wired yet)");
   std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
   std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,
