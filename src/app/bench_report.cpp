@@ -17,7 +17,7 @@ void measure_pointer(const Scene& scene, const ReportOptions& o, ReportSections&
   for (double beta : {0.0, 20.0, 100.0, 200.0, 500.0, 1000.0}) configs.push_back({1.0, beta, 1.0, false});
   const std::vector<PointerTradeRow> rows =
       measure_pointer_trade(scene, 20120505, o.quick ? 2 : 40, o.quick ? 2 : 12, configs);
-  TradeTable t{"pointer", "Pointer filter (1€, min_cutoff 1 Hz): lag in strikes against still-cursor jitter",
+  TradeTable t{"pointer", "Pointer filter (1€, min_cutoff 1 Hz, beta in 1/m): lag in strikes against still-cursor jitter",
                "lag in strikes, ms", "still jitter, mm", false, {}, ""};
   TextTable impacts{"Strikes found on the same tracks (speed and time error against the scripted truth)",
                     {"source", "speed |error| %", "time max |error| ms", "missed", "extra"}, {}, ""};
@@ -27,7 +27,10 @@ void measure_pointer(const Scene& scene, const ReportOptions& o, ReportSections&
                            r.cfg.min_cutoff_hz == preset.min_cutoff_hz;
     char b[64];
     std::snprintf(b, sizeof b, "aiming lag %.1f ms", r.slow_lag_ms);
-    t.points.push_back({r.label, std::max(0.0, r.lag_ms), r.jitter_mm, is_preset ? "fast balanced exact" : "", b});
+    char label[32];
+    std::snprintf(label, sizeof label, "beta %g", r.cfg.beta_per_m);
+    t.points.push_back({r.label == "raw" ? "raw" : label, std::max(0.01, r.lag_ms), r.jitter_mm,
+                        is_preset ? "fast balanced exact" : "", b});
     char s[32], tm[32];
     std::snprintf(s, sizeof s, "%.1f", r.speed_abs_pct);
     std::snprintf(tm, sizeof tm, "%.2f", r.time_max_ms);
@@ -36,6 +39,7 @@ void measure_pointer(const Scene& scene, const ReportOptions& o, ReportSections&
   }
   t.note = "Camera model of `mallet bench input` (0.82 mm/px, σ 0.5 px, 100 Hz). Strikes are detected on the raw "
            "samples in every preset, so the filter changes only what is shown.";
+  t.log_time = true;
   out.trades.push_back(t);
   out.tables.push_back(impacts);
 }

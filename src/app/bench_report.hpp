@@ -32,6 +32,7 @@ struct TradeTable {
   bool log_error = false;
   std::vector<TradePoint> points;
   std::string note;  //!< what was measured, how (printed under the table)
+  bool log_time = false;
 };
 
 //! Marks the points no other point beats in both time and error.

@@ -51,13 +51,13 @@ void write_plot(const TradeTable& t, const std::filesystem::path& dir) {
     for (const TradePoint& p : front) f << p.time << ' ' << p.error << '\n';
   }
   std::ofstream gp(dir / (t.id + ".gp"));
-  gp << "set terminal pngcairo size 640,400 font 'DejaVu Sans,9'\n"
+  gp << "set terminal pngcairo size 640,400 font 'DejaVu Sans,9' noenhanced\n"
      << "set output '" << t.id << ".png'\n"
      << "set title \"" << t.title << "\" noenhanced\n"
      << "set xlabel \"" << t.time_label << " (faster ←)\" noenhanced\n"
      << "set ylabel \"" << t.error_label << " (more exact ↓)\" noenhanced\n"
      << "set key top right noenhanced\nset grid\nset offsets graph 0.08, graph 0.25, graph 0.1, graph 0.1\n"
-     << (t.log_error ? "set logscale y\nset format y '%.0e'\n" : "")
+     << (t.log_error ? "set logscale y\nset format y '%.0e'\n" : "") << (t.log_time ? "set logscale x\n" : "")
      << "plot '" << t.id << ".front.dat' using 1:2 with lines lw 2 lc rgb '#999999' title 'Pareto front', \\\n"
      << "     '" << t.id << ".dat' using 1:2 with points pt 7 ps 1.2 lc rgb '#1f77b4' title 'settings', \\\n"
      << "     '' using 1:2:5 with labels offset 0,-1 font ',7' notitle, \\\n"

