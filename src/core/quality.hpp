@@ -18,17 +18,17 @@
 //                                                           refresh; at lavapipe's ≈11 ms per 1080p frame its worst
 //                                                           case is longer than fifo's (bench report: frame model)
 //   audio.frames_per_buffer   64        64        64        the engine's cost per frame stops falling at 64 (16:
-//                                                           2x, 128 and up: the same), while the wait for the next
+//                                                           1.3–2x it, 128 and up: the same within noise), while the wait for the next
 //                                                           callback doubles with every step: 64 is the knee
 //   audio.schedule_ahead_ms   0         0         12        exact: every strike sounds exactly 12 ms after its
 //                                                           contact (jitter one sample instead of one block). It
 //                                                           counts from the contact, which the 100 Hz camera
-//                                                           reveals up to 10 ms later: with 5 ms about half the
+//                                                           reveals up to 10 ms later: with 5 ms, 238 of 400
 //                                                           strikes came late; 12 = 10 ms + one 64-frame block +
 //                                                           margin, and still sooner than any frame shows the bounce
-//   audio.max_modes           8         8         8         a mode costs ≈0.15 ns per sample (the modes run side by
-//                                                           side): dropping the glockenspiel's 4th saves nothing
-//                                                           measurable and costs up to 12 % of full scale; the knob
+//   audio.max_modes           8         8         8         1 to 4 modes cost 3.9–4.6 ns per sample, within the
+//                                                           noise (the modes run side by side): dropping the
+//                                                           glockenspiel's 4th saves nothing measurable and costs up to 12 % of full scale; the knob
 //                                                           stays for instruments with many modes
 //   pointer (1€ filter)       the same in all three         the filter costs ~nothing; its point on the jitter/lag
 //                                                           front (bench input) suits every preset
@@ -41,7 +41,7 @@
 // the 4x MSAA. What a preset never changes: which strikes happen, when and
 // how hard (the contact solver works on unfiltered samples and none of its settings is a
 // quality knob), the actuator's Eq. 1 signal (the re-seeded double rotator is within 1e-14
-// of the formula at ≈2.5 ns per sample, 10x cheaper than exp + sin per sample: no cheaper
+// of the formula at ≈2.6 ns per sample, 10x cheaper than exp + sin per sample: no cheaper
 // method comes near it, so it is not a knob) and the visual vibration (Eq. 1 in double per frame).
 //
 // Error bounds, asserted by tests/app/quality_extremes_test.cpp (full scale 1):
