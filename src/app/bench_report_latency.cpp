@@ -127,18 +127,29 @@ void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSe
                    "≤ 5 ms?"},
                   {}, ""};
   const int strikes = o.quick ? 4 : 400;
+  struct Row {
+    std::string name;
+    AppConfig config;
+  };
+  std::vector<Row> rows;
   for (Quality q : {Quality::fast, Quality::balanced, Quality::exact}) {
     AppConfig c;
     apply_quality(q, c);
+    rows.push_back({to_string(q), c});
+  }
+  rows.push_back({"not a preset", rows.back().config});
+  rows.back().config.audio.schedule_ahead_ms = 5.0;  // shorter than a camera frame: what exact would be without it
+  for (const Row& row : rows) {
+    const AppConfig& c = row.config;
     const Measured m = measure(scene, c, strikes);
     const double total = maximum(m.path_ms) + maximum(m.stream_ms) + maximum(m.process_ms);
     char head[96];
-    std::snprintf(head, sizeof head, "%s (%d, %g)", to_string(q), c.audio.frames_per_buffer, c.audio.schedule_ahead_ms);
+    std::snprintf(head, sizeof head, "%s (%d, %g)", row.name.c_str(), c.audio.frames_per_buffer, c.audio.schedule_ahead_ms);
     audio.rows.push_back({head, ms(median(m.path_ms)) + " / " + ms(maximum(m.path_ms)),
                           ms(median(m.stream_ms)) + " / " + ms(maximum(m.stream_ms)),
                           ms(median(m.process_ms)) + " / " + ms(maximum(m.process_ms)),
                           std::to_string(m.late) + " of " + std::to_string(m.stream_ms.size()), ms(total),
-                          total <= 5.0 ? "yes" : "no"});
+                          c.audio.schedule_ahead_ms > 0 ? "constant delay by design" : (total <= 5.0 ? "yes" : "no")});
   }
   audio.note =
       "Through the real code: report parser + IR tracker (ReportTracker), camera → world, the kiosk's StrikeLoop "

@@ -80,7 +80,7 @@ std::vector<std::string> write_report(const ReportSections& in, const ReportOpti
   const bool plots = have_gnuplot();
   std::ostringstream md;
   md << "# mallet bench report\n\n"
-     << "Made by `mallet bench report" << (o.quick ? " --quick" : "") << " --out " << o.out.filename().string()
+     << "Made by `mallet bench report" << (o.quick ? " --quick" : "") << " --out " << o.out.string()
      << "` in one process run on one machine. Times are medians on this machine (noisy when it is shared: "
         "read the ratios); errors are against exact references (long double, supersampled images, scripted strikes). "
         "Presets: `quality = \"fast\" | \"balanced\" | \"exact\"` (src/core/quality.hpp). ★ = on the Pareto front "
