@@ -22,6 +22,7 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
                                             scene.instruments_file + " (known: " + known + ")");
     }
     presets.push_back(*found);
+    presets.back().max_sounding_modes = config.audio.max_modes;
     programs.push_back(inst.midi_program);
   }
   audio::EngineSettings s;

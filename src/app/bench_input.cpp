@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_report.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "core/config/scene_config.hpp"
@@ -320,23 +321,40 @@ std::vector<std::vector<Found>> filtered_impacts(const Scene& scene, const std::
   return found;
 }
 
-void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed, int strikes_per_track) {
-  const Scene scene = config::load_scene(scene_path);
-  const Camera cam(scene.screen_to_world);
-  std::mt19937_64 rng(seed);
+//! The synthetic workload every measurement here runs on, in one fixed order of random
+//! draws (so the tables are deterministic for a seed).
+struct Workload {
+  explicit Workload(const Scene& scene) : cam(scene.screen_to_world) {}
+  Camera cam;
   TrackerTally tally;
-
-  // (a) A still hand: 12 places × 10 s.
   std::vector<Observed> still;
+  std::uint64_t resting_strikes = 0, resting_frames = 0;
+  std::vector<StrikeTrack> tracks;
+  std::vector<StrikeTrack> slow;
+};
+
+const double kStrikeSpeeds[] = {1.0, 2.0, 3.0, 4.0};
+
+Workload make_workload(const Scene& scene, std::uint64_t seed, int strikes_per_track, int still_tracks = 12) {
+  Workload w(scene);
+  const Camera& cam = w.cam;
+  std::mt19937_64 rng(seed);
+  TrackerTally& tally = w.tally;
+  std::vector<Observed>& still = w.still;
+  std::uint64_t& resting_strikes = w.resting_strikes;
+  std::uint64_t& resting_frames = w.resting_frames;
+  std::vector<StrikeTrack>& tracks = w.tracks;
+  std::vector<StrikeTrack>& slow = w.slow;
+  const double (&speeds)[4] = kStrikeSpeeds;
+  // (a) A still hand: 12 places × 10 s.
   std::uniform_real_distribution<double> ux(-0.3, 0.3), uy(0.05, 0.3);
-  for (int k = 0; k < 12; ++k) {
+  for (int k = 0; k < still_tracks; ++k) {
     const Vec2 p{ux(rng), uy(rng)};
     TruePath path{{{0, p.x, p.y}, {20 * kNanosPerSecond, p.x, p.y}}};
     still.push_back(observe(path, cam, 0, 10 * kNanosPerSecond, rng, tally));
   }
   // A still hand resting exactly on each bar's contact plane, 10 s each: the raw track's
   // noise must not make strikes (the solver's re-arm hysteresis is what prevents them).
-  std::uint64_t resting_strikes = 0, resting_frames = 0;
   for (const Target& bar : scene.targets) {
     const Vec2 p{0.5 * (bar.x_min + bar.x_max), bar.top_y + scene.mallet_radius_m};
     TruePath path{{{0, p.x, p.y}, {20 * kNanosPerSecond, p.x, p.y}}};
@@ -350,12 +368,10 @@ void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed
     }
   }
   // (b) Fast strikes: 4 tracks (1, 2, 3, 4 m/s ± 0.5) of random bars, 1.2 s apart.
-  std::vector<StrikeTrack> tracks;
   std::uniform_int_distribution<int> bar(0, int(scene.targets.size()) - 1);
   std::uniform_int_distribution<Nanos> phase(0, kFrame - 1);
   GhostPlayerStyle style;
   style.follow_through_m = kFollowThroughM;
-  const double speeds[] = {1.0, 2.0, 3.0, 4.0};
   for (double v0 : speeds) {
     std::uniform_real_distribution<double> uv(std::max(1.0, v0 - 0.5), std::min(4.0, v0 + 0.5));
     StrikeTrack tr;
@@ -371,7 +387,6 @@ void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed
   }
 
   // (c) Aiming: a hand circling slowly (radius 2 cm, 0.4 Hz ≈ 5 cm/s), 4 × 10 s.
-  std::vector<StrikeTrack> slow;
   for (int k = 0; k < 4; ++k) {
     const Vec2 c{ux(rng), uy(rng)};
     StrikeTrack tr;
@@ -384,6 +399,20 @@ void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed
       if (tr.obs.t[i] >= 2 * kNanosPerSecond) tr.moving.push_back(i);
     slow.push_back(std::move(tr));
   }
+
+  return w;
+}
+
+void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed, int strikes_per_track) {
+  const Scene scene = config::load_scene(scene_path);
+  Workload w = make_workload(scene, seed, strikes_per_track);
+  const Camera& cam = w.cam;
+  const TrackerTally& tally = w.tally;
+  const std::vector<Observed>& still = w.still;
+  const std::uint64_t resting_strikes = w.resting_strikes, resting_frames = w.resting_frames;
+  const std::vector<StrikeTrack>& tracks = w.tracks;
+  const std::vector<StrikeTrack>& slow = w.slow;
+  const double (&speeds)[4] = kStrikeSpeeds;
 
   std::printf("mallet bench input — seed %llu, scene %s\n", static_cast<unsigned long long>(seed), scene.name.c_str());
   std::printf("camera: 1024 px over %.3f m (%.2f mm/px), 100 Hz, noise σ = %.1f px per axis, quantised to 1 px\n",
@@ -512,6 +541,45 @@ void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed
 }
 
 }  // namespace
+
+std::vector<PointerTradeRow> measure_pointer_trade(const Scene& scene, std::uint64_t seed, int strikes_per_track,
+                                                   int still_tracks, const std::vector<OneEuroConfig>& configs) {
+  const Workload w = make_workload(scene, seed, strikes_per_track, still_tracks);
+  std::vector<PointerTradeRow> rows;
+  {
+    PointerTradeRow raw;
+    raw.label = "raw";
+    const ImpactScore sc = score(w.tracks, filtered_impacts(scene, w.tracks, nullptr));
+    std::vector<std::vector<Vec2>> raw_tracks, raw_slow;
+    for (const StrikeTrack& t : w.tracks) raw_tracks.push_back(t.obs.raw);
+    for (const StrikeTrack& t : w.slow) raw_slow.push_back(t.obs.raw);
+    raw.jitter_mm = jitter_mm(w.still, nullptr);
+    raw.lag_ms = lag_ms(w.tracks, raw_tracks);
+    raw.slow_lag_ms = lag_ms(w.slow, raw_slow);
+    raw.speed_abs_pct = sc.speed_abs_pct;
+    raw.time_max_ms = sc.time_max_abs_ms;
+    raw.missed = sc.missed;
+    raw.extra = sc.extra;
+    rows.push_back(raw);
+  }
+  for (const OneEuroConfig& cfg : configs) {
+    const Result r = evaluate(scene, w.still, w.slow, w.tracks, cfg);
+    PointerTradeRow row;
+    char label[64];
+    std::snprintf(label, sizeof label, "min_cutoff %g Hz, beta %g /m", cfg.min_cutoff_hz, cfg.beta_per_m);
+    row.label = label;
+    row.cfg = cfg;
+    row.jitter_mm = r.jitter_mm;
+    row.lag_ms = r.lag_ms;
+    row.slow_lag_ms = r.slow_lag_ms;
+    row.speed_abs_pct = r.segments.speed_abs_pct;
+    row.time_max_ms = r.segments.time_max_abs_ms;
+    row.missed = r.segments.missed;
+    row.extra = r.segments.extra;
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 void add_bench_input(CLI::App& bench) {
   auto scene = std::make_shared<std::filesystem::path>(default_scene());

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_report.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/render_setup.hpp"
@@ -22,6 +23,34 @@
 #include "render/vk_error.hpp"
 
 namespace mallet::app {
+
+//! The reference's box filter averages light, not sRGB codes, as an MSAA resolve into an
+//! sRGB image does: codes → linear, mean, → codes.
+render::Image downsample_linear_light(const render::Image& image, int factor) {
+  auto to_linear = [](std::uint8_t c) {
+    const double v = c / 255.0;
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  auto to_code = [](double v) {
+    const double s = v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(std::lround(std::clamp(s, 0.0, 1.0) * 255));
+  };
+  render::Image out(image.width / factor, image.height / factor);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) {
+            const std::uint8_t v = image.at(x * factor + dx, y * factor + dy)[c];
+            sum += c == 3 ? v / 255.0 : to_linear(v);
+          }
+        const double mean = sum / (factor * factor);
+        out.at(x, y)[c] = c == 3 ? static_cast<std::uint8_t>(std::lround(mean * 255)) : to_code(mean);
+      }
+  return out;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -54,33 +83,6 @@ Row time_frames(HeadlessRenderer& r, const render::FrameState& state, int frames
   }
   std::sort(ms.begin(), ms.end());
   return {what, ms[ms.size() / 2], ms[std::min(ms.size() - 1, ms.size() * 95 / 100)]};
-}
-
-//! The reference's box filter averages light, not sRGB codes, as an MSAA resolve into an
-//! sRGB image does: codes → linear, mean, → codes.
-render::Image downsample_linear_light(const render::Image& image, int factor) {
-  auto to_linear = [](std::uint8_t c) {
-    const double v = c / 255.0;
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-  };
-  auto to_code = [](double v) {
-    const double s = v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-    return static_cast<std::uint8_t>(std::lround(std::clamp(s, 0.0, 1.0) * 255));
-  };
-  render::Image out(image.width / factor, image.height / factor);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x)
-      for (int c = 0; c < 4; ++c) {
-        double sum = 0;
-        for (int dy = 0; dy < factor; ++dy)
-          for (int dx = 0; dx < factor; ++dx) {
-            const std::uint8_t v = image.at(x * factor + dx, y * factor + dy)[c];
-            sum += c == 3 ? v / 255.0 : to_linear(v);
-          }
-        const double mean = sum / (factor * factor);
-        out.at(x, y)[c] = c == 3 ? static_cast<std::uint8_t>(std::lround(mean * 255)) : to_code(mean);
-      }
-  return out;
 }
 
 VkSampleCountFlagBits samples_of(int n) {

@@ -8,6 +8,7 @@ void register_bench(CLI::App& app) {
   add_bench_audio(*bench);
   add_bench_input(*bench);
   add_bench_render(*bench);
+  add_bench_report(*bench);
 }
 
 }  // namespace mallet::app

@@ -26,5 +26,6 @@ void register_study(CLI::App& app);
 void add_bench_audio(CLI::App& bench);
 void add_bench_input(CLI::App& bench);
 void add_bench_render(CLI::App& bench);
+void add_bench_report(CLI::App& bench);
 
 }  // namespace mallet::app

@@ -29,6 +29,7 @@
 #include "input/wiimote/hid_transport.hpp"
 #include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
+#include "core/quality.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
@@ -168,6 +169,7 @@ void WindowKiosk::build(KioskSetup setup) {
   render::RenderSettings rs;
   rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
                                        : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
+  rs.shadow = c.render.shadow;
   stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(), rs,
                                                             cache_->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
@@ -490,7 +492,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() != KioskState::operator_page) return;
   char lines[9][240];
   const double uptime = to_seconds(now - started_);
-  std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page");
+  std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page   quality: %s", to_string(stage_->config.quality));
   std::snprintf(lines[1], sizeof lines[1], "%s", input_line().c_str());
   std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
   std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,

@@ -68,6 +68,7 @@ void ModalBarVoice::strike(const ModalPreset& preset, double fundamental_hz, dou
     const Mode& m = preset.modes[k];
     const double freq_hz = m.ratio * fundamental_hz;
     if (!(freq_hz < highest_hz) || weight[k] == 0.0) continue;
+    if (count_ >= preset.max_sounding_modes) break;
     modes_[static_cast<std::size_t>(count_)].start(amplitude * weight[k] / total,
                                                    std::max(0.0, m.decay_per_s), freq_hz, delay_s,
                                                    sample_rate_hz);

@@ -7,6 +7,7 @@
 #include "core/ir_camera_settings.hpp"
 #include "core/ir_tracker.hpp"
 #include "core/mallet.hpp"
+#include "core/modal_preset.hpp"
 #include "core/one_euro_filter.hpp"
 #include "core/visual_vibration.hpp"
 
@@ -37,6 +38,7 @@ struct AudioConfig {
   double suggested_latency_ms = 0;  //!< 0 = the device's default low latency
   double schedule_ahead_ms = 0;     //!< 0 = as soon as possible; > 0 = constant latency, no jitter
   int max_voices = 64;
+  int max_modes = kMaxModalModes;   //!< modes sounding per bar (a quality knob; see core/quality.hpp)
   double volume = 0.8;              //!< speaker channel gain (the operator's volume)
   AcousticRoute acoustic = AcousticRoute::modal;
   std::string soundfont = "/usr/share/sounds/sf2/TimGM6mb.sf2";  //!< for the midi route
@@ -76,6 +78,7 @@ struct AttractConfig {
 struct RenderConfig {
   std::string present_mode = "fifo";  //!< fifo (vsync), mailbox or immediate; fifo where not offered
   std::string msaa = "auto";          //!< auto (none on a CPU rasteriser, 4 on a GPU), 1, 2, 4 or 8
+  bool shadow = true;                 //!< the mallet's analytic cast shadow
   std::string device;                 //!< a part of the Vulkan device's name; empty = the best one
   int monitor = 0;                    //!< which monitor the fullscreen kiosk uses (GLFW's order)
 };
@@ -87,7 +90,15 @@ struct ScenesConfig {
   std::vector<std::string> choices{"percussion.toml", "texture.toml", "wall.toml"};
 };
 
+//! Where speed is traded for accuracy: a preset of knobs (core/quality.hpp).
+enum class Quality {
+  fast,      //!< frames first: an old mini-PC with software rendering
+  balanced,  //!< the shipped defaults
+  exact,     //!< stimuli first: a lab's perceptual study
+};
+
 struct AppConfig {
+  Quality quality = Quality::balanced;  //!< the preset the knobs below started from
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
   ActuatorConfig actuator;

@@ -41,6 +41,10 @@ struct ModalPreset {
   double loudness = 0.25;                //!< E at the reference speed, full scale = 1; in [0, 1]
   double reference_speed_m_per_s = 2.0;  //!< > 0
   double brightness = 1.0;               //!< in [0, 1]; 0 = the same timbre at every speed
+  //! How many of the modes sound (the lowest ones; a quality knob, audio.max_modes). The
+  //! strike law's sums still run over all modes, so the modes kept sound exactly as with
+  //! all of them and the note only loses the ones left out.
+  int max_sounding_modes = kMaxModalModes;
 };
 
 }  // namespace mallet

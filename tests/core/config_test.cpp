@@ -162,6 +162,9 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.audio.suggested_latency_ms, defaults.audio.suggested_latency_ms);
   EXPECT_EQ(shipped.audio.schedule_ahead_ms, defaults.audio.schedule_ahead_ms);
   EXPECT_EQ(shipped.audio.max_voices, defaults.audio.max_voices);
+  EXPECT_EQ(shipped.audio.max_modes, defaults.audio.max_modes);
+  EXPECT_EQ(shipped.quality, defaults.quality);
+  EXPECT_EQ(shipped.render.shadow, defaults.render.shadow);
   EXPECT_EQ(shipped.audio.volume, defaults.audio.volume);
   EXPECT_EQ(shipped.audio.acoustic, defaults.audio.acoustic);
   EXPECT_EQ(shipped.audio.soundfont, defaults.audio.soundfont);

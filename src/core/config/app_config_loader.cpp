@@ -1,6 +1,7 @@
 #include "core/config/app_config_loader.hpp"
 
 #include "core/config/toml_reader.hpp"
+#include "core/quality.hpp"
 
 namespace mallet::config {
 
@@ -9,6 +10,10 @@ namespace {
 AppConfig read(const toml::table& root, const std::string& file) {
   AppConfig c;
   TableReader top(root, file);
+  // The preset first: it only sets defaults, so every knob the file names overrides it.
+  const std::string quality = top.string_or("quality", to_string(c.quality));
+  if (const std::optional<Quality> q = parse_quality(quality)) apply_quality(*q, c);
+  else top.fail("quality", "expected \"fast\", \"balanced\" or \"exact\", got \"" + quality + "\"");
   if (auto t = top.optional_table("contact")) {
     c.contact.rearm_height_m = t->number_or("rearm_height_m", c.contact.rearm_height_m);
     t->require_non_negative("rearm_height_m", c.contact.rearm_height_m);
@@ -49,6 +54,8 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
     a.max_voices = static_cast<int>(t->integer_or("max_voices", a.max_voices));
     t->require_range("max_voices", a.max_voices, 1, 4096);
+    a.max_modes = static_cast<int>(t->integer_or("max_modes", a.max_modes));
+    t->require_range("max_modes", a.max_modes, 1, kMaxModalModes);
     a.volume = t->number_or("volume", a.volume);
     t->require_range("volume", a.volume, 0, 4);
     const std::string route = t->string_or("acoustic", "modal");
@@ -140,6 +147,7 @@ AppConfig read(const toml::table& root, const std::string& file) {
     r.msaa = t->string_or("msaa", r.msaa);
     if (r.msaa != "auto" && r.msaa != "1" && r.msaa != "2" && r.msaa != "4" && r.msaa != "8")
       t->fail("msaa", "expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"" + r.msaa + "\"");
+    r.shadow = t->boolean_or("shadow", r.shadow);
     r.device = t->string_or("device", r.device);
     r.monitor = static_cast<int>(t->integer_or("monitor", r.monitor));
     t->require_range("monitor", r.monitor, 0, 15);

@@ -1,0 +1,90 @@
+#pragma once
+// Quality presets: one config key (`quality = "fast" | "balanced" | "exact"`, top of
+// config/mallet.toml) that sets the knobs where speed is traded for accuracy. A preset
+// only sets defaults: any knob written in the file overrides it. `mallet bench report`
+// measures each knob's time against its error and marks the three presets on that front
+// (docs/bench-report/report.md); the values below were chosen from it.
+//
+//   knob                      fast      balanced  exact     why (numbers: docs/bench-report, lavapipe, 2 cores)
+//   render.msaa               "1"       "auto"    "4"       4x MSAA halves the image error against a supersampled
+//                                                           reference (RMS 1.77 → 0.85 /255 at 1080p) for 3.4x the
+//                                                           frame on a CPU rasteriser; "auto" = none on a CPU,
+//                                                           4x on a GPU, where it is cheap; fast never pays for it
+//   render.shadow             true      true      true      the mallet's analytic shadow: no extra pass; its cost
+//                                                           was within the run-to-run noise (32.6 vs 32.7 ms per
+//                                                           1080p frame; RMS error 2.16 without, 1.77 with) and
+//                                                           it is the only depth cue: off in no preset (the
+//                                                           knob stays)
+//   render.present_mode       "fifo"    "fifo"    "fifo"    mailbox only helps when a frame takes far less than a
+//                                                           refresh; at lavapipe's 11–33 ms per 1080p frame its
+//                                                           worst case is longer than fifo's (bench report: frame model)
+//   audio.frames_per_buffer   64        64        64        the engine's cost per frame stops falling at 64 (16
+//                                                           frames: 1.3–2x it; 128 and up: the same within the
+//                                                           noise), while the wait for the next callback doubles
+//                                                           with every step: 64 is the knee
+//   audio.schedule_ahead_ms   0         0         12        exact: every strike sounds exactly 12 ms after its
+//                                                           contact (jitter one sample instead of one block). It
+//                                                           counts from the contact, which the 100 Hz camera
+//                                                           reveals up to 10 ms later: with 5 ms, 238 of 400
+//                                                           strikes came late; 12 = 10 ms + one 64-frame block +
+//                                                           margin, and still sooner than any frame shows the bounce
+//   audio.max_modes           8         8         8         the modes run side by side: 3 of the glockenspiel's 4
+//                                                           cost 0.85 (one run) to 0.98 (another) of the full
+//                                                           voice: dropping the 4th saves ≤ 0.3 % of a core at
+//                                                           64 voices and costs up to 12 % of full scale; the
+//                                                           knob stays for instruments with many modes
+//   pointer (1€ filter)       the same in all three         the filter costs ~nothing; its point on the jitter/lag
+//                                                           front (bench input) suits every preset
+//
+// So on the machines measured the trade is the renderer's, and there it is antialiasing and
+// resolution: audio is cheap (64 voices ≈ 6 % of one core) and exact already. Rendering at
+// half scale and upscaling was the only big saving measured (3.8x fewer ms per frame, RMS
+// error 1.77 → 2.71), but the window path cannot render at a scale yet: when it can, it
+// belongs in "fast". On a CPU rasteriser "fast" is therefore "balanced"; on a GPU it drops
+// the 4x MSAA. What a preset never changes: which strikes happen, when and
+// how hard (the contact solver works on unfiltered samples and none of its settings is a
+// quality knob), the actuator's Eq. 1 signal (the re-seeded double rotator is within 1e-14
+// of the formula at ≈2.6 ns per sample, 10x cheaper than exp + sin per sample: no cheaper
+// method comes near it, so it is not a knob) and the visual vibration (Eq. 1 in double per frame).
+//
+// Error bounds, asserted by tests/app/quality_extremes_test.cpp (full scale 1):
+//   actuator oscillator vs Eq. 1 in long double       ≤ 1e-9 in every preset
+//   acoustic note vs all modes in long double          ≤ 1e-9 in every preset; with max_modes = 3
+//                                                      ≤ kThreeModeNoteErrorBound
+//   strike → its first sample                          fast, balanced: within one block;
+//                                                      exact: 12 ms after the contact ± one sample
+//                                                      when the block is shorter than that
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/app_config.hpp"
+
+namespace mallet {
+
+//! The knobs a preset sets (a subset of AppConfig).
+struct QualityKnobs {
+  std::string msaa;
+  bool shadow = true;
+  std::string present_mode;
+  int frames_per_buffer = 64;
+  double schedule_ahead_ms = 0;
+  int max_modes = kMaxModalModes;
+  OneEuroConfig pointer;
+};
+
+//! With audio.max_modes = 3 (no preset's choice), the modes left out (the 4th and above) of
+//! the shipped instruments carry at most this share of full scale at any strike speed
+//! (measured worst: 0.123, the glockenspiel struck at 100 m/s, i.e. at full loudness).
+inline constexpr double kThreeModeNoteErrorBound = 0.15;
+
+QualityKnobs quality_knobs(Quality q);
+
+//! Sets the preset's knobs in `config` (and config.quality).
+void apply_quality(Quality q, AppConfig& config);
+
+//! "fast", "balanced", "exact"; nothing for any other text.
+std::optional<Quality> parse_quality(std::string_view text);
+const char* to_string(Quality q);
+
+}  // namespace mallet
