@@ -1,5 +1,5 @@
 #!/bin/bash
-# Takes docs/screens/{attract,play,operator,calibration}.png from the real kiosk (a debug
+# Takes docs/screens/{attract,play,operator,calibration,texture,wall}.png from the real kiosk (a debug
 # build) under Xvfb, driving it as a person would: the mouse (no Wii Remote attached, so
 # `input.source = "auto"` falls back to it) and the operator's keys, injected with xdotool.
 #   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
@@ -31,3 +31,22 @@ done
 xdotool mousemove 128 360; sleep 0.8      # the fourth target, its ring part-filled
 shot calibration
 grep -v '^<6>strike' "$work/mallet.log" >&2 || true
+
+# The second paper's scenes, from the same binary: a visitor sweeps across the bump (the
+# cursor lags on the way up), then taps the wall.
+kill $pid 2>/dev/null || true; wait $pid 2>/dev/null || true
+scene_shot() {  # scene, then the mouse path as "x y" pairs, then the shot's name
+  local scene=$1 name=$2; shift 2
+  "$mallet" run --windowed --size 1280x720 --scene "$here/../../config/scenes/$scene.toml" >"$work/$name.log" 2>&1 &
+  pid=$!
+  for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
+  xdotool windowmove "$win" 0 0 windowfocus "$win"
+  sleep 2
+  while [ $# -ge 2 ]; do xdotool mousemove "$1" "$2"; sleep 0.03; shift 2; done
+  shot "$name"
+  kill $pid 2>/dev/null || true; wait $pid 2>/dev/null || true
+}
+path=(); for x in $(seq 300 12 560); do path+=("$x" 360); done
+scene_shot texture texture "${path[@]}"
+path=(); for y in $(seq 200 20 520); do path+=(700 "$y"); done
+scene_shot wall wall "${path[@]}"

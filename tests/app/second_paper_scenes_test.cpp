@@ -162,7 +162,7 @@ TEST(SecondPaperScenes, StripeFrequencyIsCursorSpeedOverWavelengthOnTheFlatSummi
   {
     std::ifstream in(test::texture_scene());
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    text.replace(text.find("height_m = 0.012"), 16, "height_m = 1e-9");
+    text.replace(text.find("height_m = 0.008"), 16, "height_m = 1e-9");
     text.replace(text.find("materials_file = \"../materials.toml\""), 36,
                  "materials_file = \"" + (test::config_dir() / "materials.toml").string() + "\"");
     std::ofstream(scene) << text;
