@@ -5,6 +5,7 @@
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/study_session.hpp"
+#include "app/study_window.hpp"
 #include "core/file_error.hpp"
 #include "core/study/results_csv.hpp"
 #include "core/study/study_summary.hpp"
@@ -41,25 +42,35 @@ void register_study(CLI::App& app) {
   auto o = std::make_shared<StudyOptions>();
   auto headless = std::make_shared<bool>(false);
   auto stop_after = std::make_shared<int>(0);
+  auto window = std::make_shared<StudyWindowOptions>();
   o->scene = default_scene();
   o->config = default_settings();
   CLI::App* cmd = app.add_subcommand("study", "Run a perception study protocol (2AFC harder / name the material)");
   cmd->require_subcommand(0, 1);
   cmd->footer(
+      "mallet study --protocol FILE.toml --participant ID [--windowed] [--out CSV]   (a participant)\n"
       "mallet study --protocol FILE.toml --participant ID --headless [--answers FILE] [--out CSV]\n"
       "mallet study summary --results CSV\n"
       "Runs a psychophysics protocol (config/study/example.toml documents one): every condition\n"
       "(visual_only, tactile_only, both, none) x pair or stimulus, `repetitions` times, in an order\n"
       "shuffled per participant (seeded by the protocol's seed and the ID: the same ID gets the same\n"
-      "order) with each 2AFC pair shown in both orders equally often. Headless, on a simulated clock,\n"
+      "order) with each 2AFC pair shown in both orders equally often.\n"
+      "With a display (and no --headless): fullscreen (--windowed: a window), in real time. Each trial's\n"
+      "taps are shown by the bounce on the screen and played on the actuator (and the note, if the\n"
+      "protocol has sound) through the audio device (silent if none); then a prompt asks \"Which tap\n"
+      "felt harder? Press 1 or 2\" or \"Which material? R rubber, W wood, ...\" (the first letters of\n"
+      "the protocol's materials, or 1-9 when two share one). Keys pressed during the taps are ignored;\n"
+      "the response time runs from the end of the last tap (rows marked source=keys). Esc, Q or\n"
+      "closing the window stops: answered trials are kept, and the same command resumes.\n"
+      "The actuator_peak column is the signal sent, rendered by the same engine offline.\n"
+      "--headless, or without a display: on a simulated clock,\n"
       "through the kiosk's own audio engine and bounce; answers come from --answers (one a line:\n"
       "1 or 2, or a material name, optionally followed by a response time in ms) or, without it, from\n"
       "a simulated observer (rows marked source=simulated). One CSV row per trial, fsync'd before the\n"
       "next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then\n"
       "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak.\n"
       "Run again with the same participant to resume: trials already in the CSV are skipped; an\n"
-      "incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.\n"
-      "The windowed, interactive mode is not built yet: --headless is required where a display is.");
+      "incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.");
   cmd->add_option("--protocol", o->protocol, "Protocol file (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--participant", o->participant, "Participant ID (letters, digits, _ - .)");
   cmd->add_option("--out", o->out, "Results CSV, appended to (default: the protocol's `output`)");
@@ -67,25 +78,31 @@ void register_study(CLI::App& app) {
   cmd->add_option("--audio", o->audio, "Also write this run's stimuli to a WAV file (channels as [audio.routing])");
   cmd->add_option("--scene", o->scene, "Scene file (its materials and bars)")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
-  cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (the only mode so far)");
+  cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (--answers or the simulated observer)");
+  cmd->add_flag("--windowed", window->windowed, "With a display: a window instead of fullscreen");
+  cmd->add_option("--size", window->size, "The window's size with --windowed")->capture_default_str();
+  cmd->add_option("--device", window->device, "Vulkan device (substring of its name; default: the settings')");
+  cmd->add_option("--quit-after", window->quit_after_s, "With a display: stop as Esc would after this many seconds (0 = never)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--stop-after", *stop_after, "Test hook: end the process abruptly after N rows, as a crash would")
       ->group("");
   add_summary(*cmd);
-  cmd->callback([cmd, o, headless, stop_after] {
+  cmd->callback([cmd, o, headless, stop_after, window] {
     if (cmd->get_subcommand("summary")->parsed()) return;
     if (o->protocol.empty()) throw CLI::RequiredError("--protocol");
     if (o->participant.empty()) throw CLI::RequiredError("--participant");
-    if (!*headless && render::WindowSystem::display_available())
-      throw FileError("--headless", 0, 0,
-                      "the windowed, interactive study is not built yet; run with --headless (answers from "
-                      "--answers FILE, or the simulated observer)");
+    const bool windowed = !*headless && render::WindowSystem::display_available();
+    if (windowed && o->answers)
+      throw FileError("--answers", 0, 0, "answers come from the keys in a window; add --headless to use a script");
+    if (windowed && o->audio) throw FileError("--audio", 0, 0, "a WAV of the stimuli is written only with --headless");
     if (*stop_after > 0)
       o->after_row = [n = *stop_after](int rows) {
         if (rows < n) return;
         std::fflush(stdout);
         std::_Exit(3);  // no destructors, no flushing: what a crash leaves behind
       };
-    const StudyRunResult r = run_study(*o);
+    bool validation_failed = false;
+    const StudyRunResult r = windowed ? run_study_window(*o, *window, validation_failed) : run_study(*o);
     for (const std::string& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::printf("participant %s: %d trials in the schedule\n", o->participant.c_str(), r.total);
     if (r.already_recorded)
@@ -95,7 +112,10 @@ void register_study(CLI::App& app) {
     std::printf("answered %d trial(s) in this run, %d correct; %d of %d recorded\n", r.answered, r.correct,
                 r.already_recorded + r.answered, r.total);
     if (r.answers_ran_out) std::printf("note: the answer script ran out; run again with more answers to continue\n");
+    if (windowed && r.stopped)
+      std::printf("stopped before the end (Esc, Q or the window closed); run the same command to resume\n");
     for (const auto& p : r.written) std::printf("wrote %s\n", p.c_str());
+    if (validation_failed) set_exit_status(1);
   });
 }
 

@@ -1,6 +1,8 @@
 #include "app/study_session.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <utility>
 #include <cmath>
 #include <ctime>
 #include <memory>
@@ -69,105 +71,218 @@ std::set<int> recorded_trials(const ResultsFile& file, const fs::path& csv, cons
 
 }  // namespace
 
-StudyRunResult run_study(const StudyOptions& o) {
+int StudyPlan::stimuli_per_trial() const { return protocol.task == StudyTask::two_afc_harder ? 2 : 1; }
+
+StudyPlan plan_study(const StudyOptions& o) {
   // --- everything that can be wrong with the input is found before a trial runs
   if (!is_plain_name(o.participant))
     throw FileError("--participant", 0, 0,
                     "\"" + o.participant + "\" must be 1-64 letters, digits, '_', '-' or '.'");
-  const AppConfig config = o.config ? config::load_app_config(*o.config) : AppConfig{};
-  const Scene base = config::load_scene(o.scene);
-  const StudyProtocol protocol = load_study_protocol(o.protocol, base.materials, base.targets.size());
-  const int rate = config.audio.sample_rate_hz;
-  for (const Stimulus& s : protocol.stimuli)
+  StudyPlan p;
+  p.participant = o.participant;
+  p.config = o.config ? config::load_app_config(*o.config) : AppConfig{};
+  p.base = config::load_scene(o.scene);
+  p.protocol = load_study_protocol(o.protocol, p.base.materials, p.base.targets.size());
+  const int rate = p.config.audio.sample_rate_hz;
+  for (const Stimulus& s : p.protocol.stimuli)
     if (auto problem = actuator_band_problem(s.material, rate))
-      throw FileError(protocol.file, 0, 0, "stimulus " + s.name + ": " + *problem);
-  const std::vector<ScheduledTrial> schedule = balanced_schedule(protocol, o.participant);
-  std::vector<ObserverAnswer> script;
-  if (o.answers) script = read_answer_script(*o.answers, protocol.answer_choices());
-  const SimulatedObserver observer(protocol, o.participant);
-
-  StudyRunResult result;
-  result.csv = o.out ? *o.out : fs::path(protocol.output);
-  result.total = static_cast<int>(schedule.size());
-  result.simulated = !o.answers;
-  const ResultsFile existing = read_results(result.csv);
-  if (existing.has_header && existing.header != kResultsHeader)
-    throw FileError(result.csv.string(), 1, 0,
+      throw FileError(p.protocol.file, 0, 0, "stimulus " + s.name + ": " + *problem);
+  p.schedule = balanced_schedule(p.protocol, o.participant);
+  p.csv = o.out ? *o.out : fs::path(p.protocol.output);
+  p.existing = read_results(p.csv);
+  if (p.existing.has_header && p.existing.header != kResultsHeader)
+    throw FileError(p.csv.string(), 1, 0,
                     "its columns are not the ones this version writes; use a new --out (expected " +
                         std::string(kResultsHeader) + ")");
-  result.warnings = existing.warnings;
-  const std::set<int> done = recorded_trials(existing, result.csv, protocol, o.participant, schedule);
-  result.already_recorded = static_cast<int>(done.size());
+  p.done = recorded_trials(p.existing, p.csv, p.protocol, o.participant, p.schedule);
+  return p;
+}
+
+std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, const ScheduledTrial& trial,
+                                   StudyStage& stage, AnswerSource& answers, Nanos start,
+                                   const std::string& session, Nanos& next_start) {
+  const StudyProtocol& protocol = plan.protocol;
+  const int stimuli = plan.stimuli_per_trial();
+  TrialTimeline timeline(protocol.timing, start, stimuli);
+  stage.trial_starts(trial);
+  if (!stage.wait_until(timeline.onset(0))) return std::nullopt;
+  stage.take_actuator_peak();
+  double visual_peak = 0;
+  const std::vector<int> shown = shown_stimuli(protocol, trial);
+  for (int k = 0; k < stimuli; ++k) {
+    stage.present(stimulus_impact(scene, protocol, shown[static_cast<std::size_t>(k)], trial.condition, timeline.onset(k)));
+    const Nanos end = timeline.onset(k) + protocol.timing.stimulus;
+    for (Nanos probe = timeline.onset(k); probe < end; probe += kVisualProbe)
+      visual_peak = std::max(visual_peak, std::fabs(stage.visual_offset_m(probe)));
+    if (!stage.wait_until(k + 1 < stimuli ? timeline.onset(k + 1) : timeline.answer_opens())) return std::nullopt;
+  }
+  const double actuator_peak = stage.take_actuator_peak();
+  const std::optional<TrialAnswer> given = answers.answer(trial, timeline.answer_opens());
+  if (!given) return std::nullopt;
+  // An answer from before the window opened cannot come from a source (it ignores those);
+  // clamp so that the timeline takes it whatever the clock did.
+  const Nanos response = *timeline.answer(std::max(given->at, timeline.answer_opens()));
+  if (!stage.wait_until(timeline.answer_opens() + response)) {
+    // The answer was given: it is kept even if the participant quits right after.
+  }
+
+  ResultRow row;
+  row.participant = plan.participant;
+  row.trial = trial.number;
+  row.condition = std::string(condition_name(trial.condition));
+  row.stimuli = stimuli_text(protocol, trial);
+  row.answer = given->answer;
+  row.correct = given->answer == correct_answer(protocol, trial);
+  row.response_time_ms = static_cast<double>(response) / 1e6;
+  row.protocol = protocol.name;
+  row.task = std::string(task_name(protocol.task));
+  row.difference_pct = difference_pct(protocol, trial);
+  row.source = answers.name();
+  row.session = session;
+  row.visual_peak_m = visual_peak;
+  row.actuator_peak = actuator_peak;
+  next_start = *timeline.next_start();
+  return row;
+}
+
+StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage& stage, AnswerSource& answers,
+                           const std::function<void(int)>& after_row) {
+  StudyRunResult result;
+  result.csv = plan.csv;
+  result.total = static_cast<int>(plan.schedule.size());
+  result.warnings = plan.existing.warnings;
+  result.already_recorded = static_cast<int>(plan.done.size());
   if (result.already_recorded == result.total) return result;
-
-  // --- the session
-  const Scene scene = make_study_scene(base, protocol);
-  HeadlessLoop loop(scene, config, HeadlessLoop::kNoAttract, protocol.sound);
-  std::unique_ptr<audio::WavWriter> wav;
-  if (o.audio) wav = std::make_unique<audio::WavWriter>(*o.audio, loop.channels(), rate);
-  const int channels = loop.channels();
-  const int actuator_channel = config.audio.routing.actuator;
-  double actuator_peak = 0;
-  loop.on_audio = [&](std::span<const float> block) {
-    if (wav) wav->write(block);
-    for (std::size_t i = static_cast<std::size_t>(actuator_channel); i < block.size(); i += static_cast<std::size_t>(channels))
-      actuator_peak = std::max(actuator_peak, static_cast<double>(std::fabs(block[i])));
-  };
-  ResultsWriter writer(result.csv, existing);
+  ResultsWriter writer(plan.csv, plan.existing);
   const std::string session = utc_now();
-  const int stimuli_per_trial = protocol.task == StudyTask::two_afc_harder ? 2 : 1;
-
-  Nanos t = 0;
-  std::size_t next_answer = 0;
-  for (const ScheduledTrial& trial : schedule) {
-    if (done.contains(trial.number)) continue;
-    if (o.answers && next_answer == script.size()) {
-      result.answers_ran_out = true;
+  Nanos t = stage.now();
+  for (const ScheduledTrial& trial : plan.schedule) {
+    if (plan.done.contains(trial.number)) continue;
+    if (!answers.has_more()) {
+      result.stopped = true;
       break;
     }
-    TrialTimeline timeline(protocol.timing, t, stimuli_per_trial);
-    loop.advance(timeline.onset(0));
-    actuator_peak = 0;
-    double visual_peak = 0;
-    const std::vector<int> shown = shown_stimuli(protocol, trial);
-    for (int k = 0; k < stimuli_per_trial; ++k) {
-      loop.present(stimulus_impact(scene, protocol, shown[static_cast<std::size_t>(k)], trial.condition, timeline.onset(k)));
-      const Nanos end = timeline.onset(k) + protocol.timing.stimulus;
-      for (Nanos probe = timeline.onset(k); probe < end; probe += kVisualProbe)
-        visual_peak = std::max(visual_peak, std::fabs(loop.visual_offset_m(probe)));
-      loop.advance(k + 1 < stimuli_per_trial ? timeline.onset(k + 1) : timeline.answer_opens());
+    Nanos next = t;
+    const std::optional<ResultRow> row = run_trial(plan, scene, trial, stage, answers, t, session, next);
+    if (!row) {
+      result.stopped = true;
+      break;
     }
-    const ObserverAnswer given = o.answers ? script[next_answer++] : observer.respond(trial);
-    const Nanos response = *timeline.answer(timeline.answer_opens() + given.response_time);
-    loop.advance(timeline.answer_opens() + response);
-
-    ResultRow row;
-    row.participant = o.participant;
-    row.trial = trial.number;
-    row.condition = std::string(condition_name(trial.condition));
-    row.stimuli = stimuli_text(protocol, trial);
-    row.answer = given.answer;
-    row.correct = given.answer == correct_answer(protocol, trial);
-    row.response_time_ms = static_cast<double>(response) / 1e6;
-    row.protocol = protocol.name;
-    row.task = std::string(task_name(protocol.task));
-    row.difference_pct = difference_pct(protocol, trial);
-    row.source = o.answers ? "file" : "simulated";
-    row.session = session;
-    row.visual_peak_m = visual_peak;
-    row.actuator_peak = actuator_peak;
-    writer.append(row);
+    writer.append(*row);
     ++result.answered;
-    result.correct += row.correct ? 1 : 0;
-    if (o.after_row) o.after_row(result.answered);
-    t = *timeline.next_start();
+    result.correct += row->correct ? 1 : 0;
+    if (after_row) after_row(result.answered);
+    t = next;
   }
-  loop.drain_audio(t + kNanosPerSecond);
-  if (wav) {
-    wav->close();
-    result.written.push_back(*o.audio);
+  result.written.push_back(plan.csv);
+  return result;
+}
+
+std::vector<AnswerKey> answer_keys(const StudyProtocol& protocol) {
+  const std::vector<std::string> choices = protocol.answer_choices();
+  std::vector<AnswerKey> keys;
+  std::set<char> used;
+  bool letters = true;
+  for (const std::string& c : choices) {
+    const char k = c.empty() ? '\0' : static_cast<char>(std::toupper(static_cast<unsigned char>(c[0])));
+    if (!std::isalnum(static_cast<unsigned char>(k)) || !used.insert(k).second) letters = false;
   }
-  result.written.insert(result.written.begin(), result.csv);
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    const char k = letters ? static_cast<char>(std::toupper(static_cast<unsigned char>(choices[i][0])))
+                           : static_cast<char>('1' + i);
+    if (!letters && i >= 9) break;  // more than 9 materials cannot be answered by a key
+    keys.push_back({k, choices[i]});
+  }
+  return keys;
+}
+
+std::string answer_prompt(const StudyProtocol& protocol) {
+  const std::vector<AnswerKey> keys = answer_keys(protocol);
+  if (protocol.task == StudyTask::two_afc_harder) return "Which tap felt harder? Press 1 or 2";
+  std::string text = "Which material?";
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    text += std::string(i ? ", " : " ") + keys[i].key + " " + keys[i].answer;
+  return text;
+}
+
+namespace {
+
+//! The simulated clock: the kiosk's loop without a window.
+class HeadlessStage final : public StudyStage {
+ public:
+  HeadlessStage(const Scene& scene, const StudyPlan& plan, const std::optional<fs::path>& wav_path)
+      : loop_(scene, plan.config, HeadlessLoop::kNoAttract, plan.protocol.sound),
+        actuator_channel_(plan.config.audio.routing.actuator) {
+    if (wav_path) wav_ = std::make_unique<audio::WavWriter>(*wav_path, loop_.channels(), plan.config.audio.sample_rate_hz);
+    const auto channels = static_cast<std::size_t>(loop_.channels());
+    loop_.on_audio = [this, channels](std::span<const float> block) {
+      if (wav_) wav_->write(block);
+      for (std::size_t i = static_cast<std::size_t>(actuator_channel_); i < block.size(); i += channels)
+        peak_ = std::max(peak_, static_cast<double>(std::fabs(block[i])));
+    };
+  }
+  Nanos now() override { return loop_.now(); }
+  bool wait_until(Nanos t) override {
+    loop_.advance(std::max(t, loop_.now()));
+    return true;
+  }
+  void present(const Impact& impact) override { loop_.present(impact); }
+  double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
+  double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
+  void finish() {
+    loop_.drain_audio(loop_.now() + kNanosPerSecond);
+    if (wav_) wav_->close();
+  }
+
+ private:
+  HeadlessLoop loop_;
+  int actuator_channel_;
+  std::unique_ptr<audio::WavWriter> wav_;
+  double peak_ = 0;
+};
+
+//! Answers given in advance (--answers) or by the simulated observer.
+class ScriptedAnswers final : public AnswerSource {
+ public:
+  ScriptedAnswers(const StudyPlan& plan, std::vector<ObserverAnswer> script, bool simulated)
+      : observer_(plan.protocol, plan.participant), script_(std::move(script)), simulated_(simulated) {}
+  bool has_more() const override { return simulated_ || next_ < script_.size(); }
+  std::optional<TrialAnswer> answer(const ScheduledTrial& trial, Nanos opens) override {
+    if (!has_more()) return std::nullopt;
+    const ObserverAnswer a = simulated_ ? observer_.respond(trial) : script_[next_++];
+    return TrialAnswer{a.answer, opens + a.response_time};
+  }
+  std::string name() const override { return simulated_ ? "simulated" : "file"; }
+
+ private:
+  SimulatedObserver observer_;
+  std::vector<ObserverAnswer> script_;
+  bool simulated_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+StudyRunResult run_study(const StudyOptions& o) {
+  const StudyPlan plan = plan_study(o);
+  std::vector<ObserverAnswer> script;
+  if (o.answers) script = read_answer_script(*o.answers, plan.protocol.answer_choices());
+  if (plan.done.size() == plan.schedule.size()) {  // nothing left: the file is not touched
+    StudyRunResult r;
+    r.csv = plan.csv;
+    r.total = r.already_recorded = static_cast<int>(plan.schedule.size());
+    r.warnings = plan.existing.warnings;
+    r.simulated = !o.answers;
+    return r;
+  }
+  const Scene scene = make_study_scene(plan.base, plan.protocol);
+  HeadlessStage stage(scene, plan, o.audio);
+  ScriptedAnswers answers(plan, std::move(script), !o.answers);
+  StudyRunResult result = run_session(plan, scene, stage, answers, o.after_row);
+  result.simulated = !o.answers;
+  result.answers_ran_out = o.answers && result.stopped;
+  stage.finish();
+  if (o.audio) result.written.push_back(*o.audio);
   return result;
 }
 

@@ -1,14 +1,28 @@
 #pragma once
-// `mallet study`: one participant's session of a protocol, headless on a simulated clock.
-// Trials are presented through the headless kiosk loop (study_stimuli.hpp); each answered
-// trial is appended to the results CSV and fsync'd before the next begins. Starting again
-// with the same participant resumes: the schedule is deterministic, so the trials already
-// in the file are skipped and the rest run in their original order.
+// `mallet study`: one participant's session of a protocol. Trials are presented through
+// the kiosk's own strike path (study_stimuli.hpp); each answered trial is appended to the
+// results CSV and fsync'd before the next begins. Starting again with the same
+// participant resumes: the schedule is deterministic, so the trials already in the file
+// are skipped and the rest run in their original order.
+//
+// The trial logic (present → answer → row) is shared by two ways of running it, which
+// differ only in their StudyStage (the clock, and where the stimuli go) and AnswerSource:
+//   headless: a simulated clock, the HeadlessLoop; answers from a script or the simulated
+//             observer (run_study);
+//   windowed: the monotonic clock, a real window, the audio device; answers from the
+//             participant's keys (study_window.hpp).
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
+
+#include "core/app_config.hpp"
+#include "core/scene.hpp"
+#include "core/study/balanced_schedule.hpp"
+#include "core/study/results_csv.hpp"
+#include "core/study/study_protocol.hpp"
 
 namespace mallet::app {
 
@@ -31,12 +45,88 @@ struct StudyRunResult {
   int correct = 0;           //!< in this run
   bool simulated = false;    //!< the simulated observer answered
   bool answers_ran_out = false;
+  bool stopped = false;      //!< the answer source stopped before the schedule's end (script, Esc)
   std::vector<std::string> warnings;  //!< FILE:LINE: ... (an incomplete last line ignored)
   std::vector<std::filesystem::path> written;
 };
 
-//! Bad protocol, scene, config, answers or CSV → FileError (exit 2); a failure to write →
-//! std::runtime_error (exit 1).
+//! Everything checked before a trial runs: the protocol against the scene and settings,
+//! the participant's schedule, and the trials already in the CSV.
+struct StudyPlan {
+  AppConfig config;
+  Scene base;
+  study::StudyProtocol protocol;
+  std::vector<study::ScheduledTrial> schedule;
+  std::filesystem::path csv;
+  study::ResultsFile existing;
+  std::set<int> done;  //!< trial numbers already recorded for this participant
+  std::string participant;
+  int stimuli_per_trial() const;
+};
+
+//! Bad protocol, scene, config or CSV → FileError (exit 2).
+StudyPlan plan_study(const StudyOptions& options);
+
+//! Where a trial is presented, on its own clock (int64 ns).
+class StudyStage {
+ public:
+  virtual ~StudyStage() = default;
+  virtual Nanos now() = 0;
+  //! Lets time run up to t (headless: renders up to it; windowed: draws frames until
+  //! then). False: the participant asked to stop.
+  virtual bool wait_until(Nanos t) = 0;
+  //! A stimulus tap (impact.t_ns = now()): the actuator, the sound and the bounce.
+  virtual void present(const Impact& impact) = 0;
+  //! Eq. 1's visual displacement of the latest tap at t (metres).
+  virtual double visual_offset_m(Nanos t) const = 0;
+  //! The largest |actuator sample| of the stimuli since the last call.
+  virtual double take_actuator_peak() = 0;
+  //! The question of the trial about to run (windowed: shown on the screen).
+  virtual void trial_starts(const study::ScheduledTrial&) {}
+};
+
+//! An answer, given at `at` on the stage's clock.
+struct TrialAnswer {
+  std::string answer;
+  Nanos at = 0;
+};
+
+class AnswerSource {
+ public:
+  virtual ~AnswerSource() = default;
+  //! False: no answer can come any more (a script ran out); the trial is not presented.
+  virtual bool has_more() const { return true; }
+  //! The answer to `trial`, whose answer window opened at `opens` (the end of the last
+  //! stimulus); nothing: stop here (the participant quit, or no answer is left).
+  virtual std::optional<TrialAnswer> answer(const study::ScheduledTrial& trial, Nanos opens) = 0;
+  //! The rows' `source` column: "file", "simulated", "keys".
+  virtual std::string name() const = 0;
+};
+
+//! One trial on `stage` from `start`: its stimuli, the answer, the row (not yet written).
+//! Nothing when the stage or the source stopped. `next_start`: when the next trial starts.
+std::optional<study::ResultRow> run_trial(const StudyPlan& plan, const Scene& study_scene,
+                                          const study::ScheduledTrial& trial, StudyStage& stage,
+                                          AnswerSource& answers, Nanos start, const std::string& session,
+                                          Nanos& next_start);
+
+//! The remaining trials of the plan through `stage` and `answers`, each row durable
+//! before the next trial. `study_scene` = make_study_scene(plan.base, plan.protocol).
+StudyRunResult run_session(const StudyPlan& plan, const Scene& study_scene, StudyStage& stage,
+                           AnswerSource& answers, const std::function<void(int)>& after_row = {});
+
+//! The keys a participant answers with: the first letters of the protocol's answers when
+//! they are distinct ("1"/"2"; R rubber, W wood, A aluminium), else the digits 1..9.
+struct AnswerKey {
+  char key;  //!< upper-case letter or digit
+  std::string answer;
+};
+std::vector<AnswerKey> answer_keys(const study::StudyProtocol& protocol);
+//! "Which tap felt harder? Press 1 or 2" / "Which material? R rubber, W wood, A aluminium".
+std::string answer_prompt(const study::StudyProtocol& protocol);
+
+//! Headless: bad protocol, scene, config, answers or CSV → FileError (exit 2); a failure to
+//! write → std::runtime_error (exit 1).
 StudyRunResult run_study(const StudyOptions& options);
 
 }  // namespace mallet::app

@@ -166,5 +166,41 @@ TEST(WindowSmoke, UnderSystemdTheKioskSaysReadyFeedsTheWatchdogAndSaysStopping) 
   EXPECT_GE(beats, 5) << slurp(dir / "log.txt");
 }
 
+//! `mallet study` with a display: the window opens on a 2-trial protocol, the first trial's
+//! taps are presented and its prompt shown; stopping it (SIGTERM, handled as Esc) leaves a
+//! valid results CSV with no row, exits 0 and says how to resume. The keys themselves are tested
+//! through the shared trial code (tests/app/study_session_test.cpp).
+TEST(WindowSmoke, TheStudyOpensItsWindowPromptsAndStopsLeavingAValidCsv) {
+  const auto dir = test::scratch_dir();
+  std::ofstream(dir / "tiny.toml") << "name = \"tiny\"\ntask = \"2afc_harder\"\nconditions = [\"both\"]\n"
+                                      "repetitions = 2\nseed = 1\noutput = \"tiny.csv\"\nreference_bar = 0\n"
+                                      "[timing]\nlead_s = 0.1\nstimulus_s = 0.2\nstimulus_interval_s = 0.3\n"
+                                      "inter_trial_s = 0.1\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n"
+                                      "[[stimulus]]\nname = \"wood_B130\"\nmaterial = \"wood\"\ndecay_scale = 1.30\n"
+                                      "[[pair]]\na = \"wood\"\nb = \"wood_B130\"\n";
+  const std::string launch = "(" + child_preload() + "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
+                             std::string(MALLET_TEST_BINARY) + " study --windowed --size 320x180 --quit-after 60" +
+                             " --device llvmpipe --protocol " + (dir / "tiny.toml").string() +
+                             " --participant W1 --out " + (dir / "r.csv").string() + " > " +
+                             (dir / "log.txt").string() + " 2>&1; echo exit=$? >> " + (dir / "log.txt").string() +
+                             ") &";
+  ASSERT_EQ(std::system(launch.c_str()), 0);
+  ASSERT_TRUE(wait_for(dir / "log.txt", "trial 1 of 2: Which tap felt harder? Press 1 or 2")) << slurp(dir / "log.txt");
+  // Nobody answers: it waits at the prompt. SIGTERM stops it as Esc, Q or the close button
+  // would (--quit-after 60 only guards against a hang).
+  const std::string stop = "pkill -f '^" + std::string(MALLET_TEST_BINARY) + " study .*" + (dir / "r.csv").string() + "'";
+  EXPECT_EQ(std::system(stop.c_str()), 0) << stop;
+  ASSERT_TRUE(wait_for(dir / "log.txt", "exit=")) << slurp(dir / "log.txt");
+  const std::string log = slurp(dir / "log.txt");
+  EXPECT_NE(log.find("320x180"), std::string::npos) << log;
+  EXPECT_EQ(log.find("validation"), std::string::npos) << log;
+  EXPECT_NE(log.find("stopped by the participant after 1 trial(s) shown"), std::string::npos) << log;
+  EXPECT_NE(log.find("run the same command to resume"), std::string::npos) << log;
+  EXPECT_NE(log.find("exit=0"), std::string::npos) << log;
+  const std::string csv = slurp(dir / "r.csv");
+  EXPECT_EQ(csv.rfind("participant,trial,condition", 0), 0u) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1) << "the header only: no trial was answered\n" << csv;
+}
+
 }  // namespace
 }  // namespace mallet::app

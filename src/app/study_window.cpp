@@ -1,0 +1,270 @@
+#include "app/study_window.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <memory>
+#include <utility>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include "app/audio_setup.hpp"
+#include "app/headless_loop.hpp"
+#include "app/kiosk_text.hpp"
+#include "app/render_setup.hpp"
+#include "app/strike_loop.hpp"
+#include "app/study_stimuli.hpp"
+#include "audio/portaudio_output.hpp"
+#include "render/font_atlas.hpp"
+#include "render/overlay.hpp"
+#include "render/pipeline_cache.hpp"
+#include "render/window_target.hpp"
+
+namespace mallet::app {
+namespace {
+
+using study::ScheduledTrial;
+
+//! SIGINT / SIGTERM (Ctrl-C in the experimenter's terminal, systemd): stop as Esc does.
+std::atomic<bool> g_stop{false};
+void on_stop_signal(int) { g_stop.store(true); }
+
+render::PresentMode present_mode_of(const RenderConfig& r) {
+  return r.present_mode == "mailbox"     ? render::PresentMode::mailbox
+         : r.present_mode == "immediate" ? render::PresentMode::immediate
+                                         : render::PresentMode::fifo;
+}
+
+//! A key as the answer keys name it: 'A'..'Z', '0'..'9' (the keypad's digits too); 0 otherwise.
+char key_char(int key) {
+  if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return static_cast<char>('A' + (key - GLFW_KEY_A));
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) return static_cast<char>('0' + (key - GLFW_KEY_0));
+  if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) return static_cast<char>('0' + (key - GLFW_KEY_KP_0));
+  return 0;
+}
+
+//! The window is both the stage (real time, real devices) and the answer source (keys).
+class StudyWindow final : public StudyStage, public AnswerSource {
+ public:
+  StudyWindow(const StudyPlan& plan, const Scene& scene, const StudyWindowOptions& o)
+      : plan_(plan), scene_(scene), loop_(scene, plan.config),
+        meter_(scene, plan.config, HeadlessLoop::kNoAttract, false), keys_(answer_keys(plan.protocol)),
+        prompt_(answer_prompt(plan.protocol)) {
+    const AppConfig& c = plan.config;
+    render::ContextOptions co;
+    co.validation = validation_from_env();
+    co.device_name = o.device.empty() ? c.render.device : o.device;
+    co.instance_extensions = render::WindowSystem::instance_extensions();
+    co.swapchain = true;
+    ctx_ = std::make_unique<render::Context>(co);
+    cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
+    render::WindowOptions wo;
+    const VkExtent2D size = parse_size(o.size, "--size");
+    wo.width = static_cast<int>(size.width);
+    wo.height = static_cast<int>(size.height);
+    wo.fullscreen = !o.windowed;
+    wo.hide_cursor = !o.windowed;
+    wo.monitor = c.render.monitor;
+    wo.present_mode = present_mode_of(c.render);
+    wo.title = "Mallet study";
+    window_ = std::make_unique<render::WindowTarget>(*ctx_, wo);
+    glfwSetWindowUserPointer(window_->window(), this);
+    glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int) {
+      if (action == GLFW_PRESS) static_cast<StudyWindow*>(glfwGetWindowUserPointer(w))->pressed_.push_back({key, monotonic_now()});
+    });
+    font_ = std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
+                                                std::max(14.0f, static_cast<float>(window_->extent().height) / 24.0f));
+    overlay_ = std::make_unique<render::Overlay>(*font_);
+    render::RenderSettings rs;
+    rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
+                                         : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
+    rs.shadow = c.render.shadow;
+    renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene_, models_dir(), window_->format(), rs, cache_->get());
+    rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz, plan.protocol.sound);
+    try {
+      output_ = std::make_unique<audio::PortAudioOutput>(*rig_.engine, c.audio);
+      output_->start();
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", output_->device().name.c_str(), output_->output_latency_s() * 1e3);
+      audio_status_ = buf;
+    } catch (const std::exception& e) {  // the study still shows its taps, silently
+      std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
+      output_.reset();
+      audio_status_ = "audio: none (running silent)";
+    }
+    rig_.engine->set_acoustic_volume(c.audio.volume);
+    rig_.engine->set_actuator_gain(c.actuator.gain);
+    const Target& bar = scene_.targets.at(0);
+    hand_ = {0.5 * (bar.x_min + bar.x_max), bar.top_y};
+    started_ = monotonic_now();
+    if (o.quit_after_s > 0) quit_at_ = started_ + static_cast<Nanos>(std::llround(o.quit_after_s * 1e9));
+    const int actuator = c.audio.routing.actuator;
+    const auto channels = static_cast<std::size_t>(meter_.channels());
+    meter_.on_audio = [this, actuator, channels](std::span<const float> block) {
+      for (std::size_t i = static_cast<std::size_t>(actuator); i < block.size(); i += channels)
+        peak_ = std::max(peak_, static_cast<double>(std::fabs(block[i])));
+    };
+    std::fprintf(stderr, "<6>mallet study: %s, %ux%u, %s\n", ctx_->device_name().c_str(), window_->extent().width,
+                 window_->extent().height, audio_status_.c_str());
+  }
+
+  ~StudyWindow() override {
+    vkDeviceWaitIdle(ctx_->device());
+    if (output_) output_->stop();
+  }
+
+  bool quit() const { return quit_; }
+  std::uint64_t validation_messages() const { return ctx_->validation_messages(); }
+
+  // --- StudyStage
+  Nanos now() override { return monotonic_now(); }
+  bool wait_until(Nanos t) override {
+    while (frame()) {
+      if (monotonic_now() >= t) return true;
+    }
+    return false;
+  }
+  void present(const Impact& impact) override {
+    ++tap_;
+    banner_ = plan_.stimuli_per_trial() > 1 ? "Tap " + std::to_string(tap_) : "Tap";
+    rig_.engine->post(impact);
+    loop_.show(impact);
+    // The actuator's signal, rendered offline by the same engine on its own clock: the
+    // device's output is not read back.
+    Impact m = impact;
+    m.t_ns = meter_.now();
+    meter_.present(m);
+    meter_.advance(m.t_ns + plan_.protocol.timing.stimulus);
+    std::fprintf(stderr, "<6>%s\n", strike_line(scene_, impact).c_str());
+  }
+  double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
+  double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
+  void trial_starts(const ScheduledTrial& trial) override {
+    ++trials_shown_;
+    tap_ = 0;
+    banner_.clear();
+    status_ = "Trial " + std::to_string(trial.number) + " of " + std::to_string(plan_.schedule.size());
+  }
+
+  // --- AnswerSource
+  std::optional<TrialAnswer> answer(const ScheduledTrial& trial, Nanos opens) override {
+    banner_ = prompt_;
+    std::fprintf(stderr, "<6>trial %d of %zu: %s\n", trial.number, plan_.schedule.size(), prompt_.c_str());
+    // A key pressed before the answer window opened is not an answer.
+    std::erase_if(pressed_, [opens](const Press& p) { return p.t < opens; });
+    for (;;) {
+      while (!pressed_.empty()) {
+        const Press p = pressed_.front();
+        pressed_.pop_front();
+        const char c = key_char(p.key);
+        for (const AnswerKey& k : keys_)
+          if (c != 0 && k.key == c) {
+            banner_.clear();
+            return TrialAnswer{k.answer, p.t};
+          }
+      }
+      if (!frame()) return std::nullopt;
+    }
+  }
+  std::string name() const override { return "keys"; }
+
+  //! "Thank you" until a key, the close button or --quit-after.
+  void thank_you() {
+    banner_ = "Thank you";
+    status_.clear();
+    pressed_.clear();
+    thanking_ = true;
+    std::fprintf(stderr, "<6>mallet study: Thank you (any key closes)\n");
+    while (frame() && pressed_.empty()) {
+    }
+  }
+
+ private:
+  struct Press {
+    int key;
+    Nanos t;
+  };
+
+  //! One frame; false once the participant (or --quit-after) asked to stop.
+  bool frame() {
+    if (quit_) return false;
+    glfwPollEvents();
+    const Nanos now = monotonic_now();
+    for (const Press& p : pressed_)
+      if (p.key == GLFW_KEY_ESCAPE || p.key == GLFW_KEY_Q) quit_ = true;
+    if (window_->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;
+    if (g_stop.load()) quit_ = true;
+    if (quit_) {
+      if (!thanking_)
+        std::fprintf(stderr, "<5>mallet study: stopped by the participant after %d trial(s) shown\n", trials_shown_);
+      return false;
+    }
+    render::Overlay& o = *overlay_;
+    o.clear();
+    const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
+    const float px = font_->pixel_height();
+    if (!banner_.empty()) draw_banner(o, banner_, w, h);
+    if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
+    render::FrameState state;
+    const Nanos present = window_->predicted_present(now);
+    state.mallet_centre = loop_.view(hand_).displayed(present);
+    state.overlay = overlay_.get();
+    window_->draw(*renderer_, state);
+    return true;
+  }
+
+  const StudyPlan& plan_;
+  const Scene& scene_;
+  StrikeLoop loop_;
+  HeadlessLoop meter_;
+  std::vector<AnswerKey> keys_;
+  std::string prompt_;
+  render::WindowSystem glfw_;
+  std::unique_ptr<render::Context> ctx_;
+  std::unique_ptr<render::PipelineCache> cache_;
+  std::unique_ptr<render::WindowTarget> window_;
+  std::unique_ptr<render::FontAtlas> font_;
+  std::unique_ptr<render::Overlay> overlay_;
+  std::unique_ptr<render::SceneRenderer> renderer_;
+  AudioRig rig_;
+  std::unique_ptr<audio::PortAudioOutput> output_;
+  std::string audio_status_, banner_, status_;
+  std::deque<Press> pressed_;
+  Vec2 hand_{0.0, 0.3};
+  Nanos started_ = 0, quit_at_ = 0;
+  double peak_ = 0;
+  int tap_ = 0, trials_shown_ = 0;
+  bool quit_ = false, thanking_ = false;
+};
+
+}  // namespace
+
+StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window,
+                                bool& validation_failed) {
+  validation_failed = false;
+  const StudyPlan plan = plan_study(options);
+  if (plan.done.size() == plan.schedule.size()) {  // nothing left: no window
+    StudyRunResult r;
+    r.csv = plan.csv;
+    r.total = r.already_recorded = static_cast<int>(plan.schedule.size());
+    r.warnings = plan.existing.warnings;
+    return r;
+  }
+  const Scene scene = make_study_scene(plan.base, plan.protocol);
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  StudyWindow w(plan, scene, window);
+  StudyRunResult result = run_session(plan, scene, w, w, options.after_row);
+  if (!w.quit()) w.thank_you();
+  if (w.validation_messages() > 0) validation_failed = true;
+  return result;
+}
+
+}  // namespace mallet::app
