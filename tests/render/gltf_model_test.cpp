@@ -105,7 +105,8 @@ TEST(GltfModel, TextureDiscIsAUnitWhiteDiscFacingTheViewer) {
   const PbrMaterial& white = only_material(model);
   EXPECT_EQ(white.metallic, 0.0f);
   EXPECT_EQ(white.base_color[0], white.base_color[2]);  // neutral
-  const PbrMaterial& green = only_material(load_gltf(shipped("cursor_head")));
+  const Model cursor = load_gltf(shipped("cursor_head"));
+  const PbrMaterial& green = only_material(cursor);
   EXPECT_GT(green.base_color[1], 4 * green.base_color[0]);  // the paper's green cursor
 }
 
