@@ -1,5 +1,9 @@
 #include "app/audio_setup.hpp"
 
+#include <cstdio>
+#include <exception>
+
+#include "audio/portaudio_output.hpp"
 #include "core/config/instruments_config.hpp"
 #include "core/file_error.hpp"
 
@@ -43,6 +47,22 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   }
   if (rig.midi) rig.engine->set_external_acoustic(rig.midi.get());
   return rig;
+}
+
+std::unique_ptr<audio::PortAudioOutput> start_output(audio::AudioEngine& engine, const AudioConfig& config,
+                                                     std::string& status) {
+  try {
+    auto output = std::make_unique<audio::PortAudioOutput>(engine, config);
+    output->start();
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", output->device().name.c_str(), output->output_latency_s() * 1e3);
+    status = buf;
+    return output;
+  } catch (const std::exception& e) {  // the screen still plays, silently
+    std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
+    status = "audio: none (running silent)";
+    return nullptr;
+  }
 }
 
 }  // namespace mallet::app

@@ -2,11 +2,16 @@
 // Builds the audio engine for a scene and a configuration, the same way for the kiosk,
 // `mallet simulate` (offline, into a WAV) and `mallet audio test`.
 #include <memory>
+#include <string>
 
 #include "audio/engine.hpp"
 #include "audio/fluidsynth_route.hpp"
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
+
+namespace mallet::audio {
+class PortAudioOutput;
+}
 
 namespace mallet::app {
 
@@ -20,5 +25,11 @@ struct AudioRig {
 //! a missing soundfont → std::runtime_error naming the Debian package.
 AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz,
                         bool acoustic_enabled = true);
+
+//! Opens and starts the configured audio device for `engine`. Without one (no sound card,
+//! a device that fails to open) it logs why on stderr and returns null: the caller runs
+//! silent. `status` becomes "audio: NAME, LATENCY ms" or "audio: none (running silent)".
+std::unique_ptr<audio::PortAudioOutput> start_output(audio::AudioEngine& engine, const AudioConfig& config,
+                                                     std::string& status);
 
 }  // namespace mallet::app

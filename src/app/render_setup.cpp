@@ -1,5 +1,6 @@
 #include "app/render_setup.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "app/data_paths.hpp"
@@ -33,6 +34,41 @@ VkExtent2D parse_size(const std::string& text, const std::string& option) {
 }
 
 std::filesystem::path models_dir() { return data_dir() / "models"; }
+
+std::unique_ptr<render::Context> make_window_context(const std::string& device) {
+  render::ContextOptions co;
+  co.validation = validation_from_env();
+  co.device_name = device;
+  co.instance_extensions = render::WindowSystem::instance_extensions();
+  co.swapchain = true;
+  return std::make_unique<render::Context>(co);
+}
+
+render::WindowOptions window_options(const RenderConfig& r, const std::string& size, bool windowed) {
+  render::WindowOptions wo;
+  const VkExtent2D extent = parse_size(size, "--size");
+  wo.width = static_cast<int>(extent.width);
+  wo.height = static_cast<int>(extent.height);
+  wo.fullscreen = !windowed;
+  wo.hide_cursor = !windowed;
+  wo.monitor = r.monitor;
+  wo.present_mode = r.present_mode == "mailbox"     ? render::PresentMode::mailbox
+                    : r.present_mode == "immediate" ? render::PresentMode::immediate
+                                                    : render::PresentMode::fifo;
+  return wo;
+}
+
+render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r) {
+  render::RenderSettings rs;
+  rs.samples = r.msaa == "auto" ? render::recommended_samples(ctx) : static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  rs.shadow = r.shadow;
+  return rs;
+}
+
+std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
+  return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
+                                             std::max(14.0f, static_cast<float>(extent.height) / 24.0f));
+}
 
 HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& options) {
   render::ContextOptions co;

@@ -1,16 +1,21 @@
 #pragma once
 // Everything a headless frame needs, in one owner: the Vulkan context, the persisted
 // pipeline cache, the scene renderer and an offscreen target. Used by `mallet render`,
-// `mallet bench render`, the golden tests and the headless kiosk.
+// `mallet bench render`, the golden tests and the headless kiosk. And the pieces every
+// full-screen window of the product (the kiosk, the study) builds the same way from the
+// [render] settings.
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "core/app_config.hpp"
 #include "core/scene.hpp"
+#include "render/font_atlas.hpp"
 #include "render/offscreen_target.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/vk_context.hpp"
+#include "render/window_target.hpp"
 
 namespace mallet::app {
 
@@ -52,5 +57,21 @@ class HeadlessRenderer {
 
 //! The shipped models: DATA/models.
 std::filesystem::path models_dir();
+
+// ---- a window on the display ----
+
+//! A Vulkan context that can present to a window (validation from the environment);
+//! `device`: a substring of the device's name, empty = the best one.
+std::unique_ptr<render::Context> make_window_context(const std::string& device);
+
+//! Fullscreen on [render] monitor with the OS cursor hidden, or a `size` window when
+//! `windowed`; [render] present_mode. `size` is "WIDTHxHEIGHT" (FileError naming --size).
+render::WindowOptions window_options(const RenderConfig& r, const std::string& size, bool windowed);
+
+//! [render] msaa ("auto": what the device is recommended) and shadow, as renderer settings.
+render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r);
+
+//! The overlay's font, sized for a window of this height (a 24th of it, at least 14 px).
+std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent);
 
 }  // namespace mallet::app

@@ -33,12 +33,6 @@ using study::ScheduledTrial;
 std::atomic<bool> g_stop{false};
 void on_stop_signal(int) { g_stop.store(true); }
 
-render::PresentMode present_mode_of(const RenderConfig& r) {
-  return r.present_mode == "mailbox"     ? render::PresentMode::mailbox
-         : r.present_mode == "immediate" ? render::PresentMode::immediate
-                                         : render::PresentMode::fifo;
-}
-
 //! A key as the answer keys name it: 'A'..'Z', '0'..'9' (the keypad's digits too); 0 otherwise.
 char key_char(int key) {
   if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return static_cast<char>('A' + (key - GLFW_KEY_A));
@@ -55,47 +49,21 @@ class StudyWindow final : public StudyStage, public AnswerSource {
         meter_(scene, plan.config, HeadlessLoop::kNoAttract, false), keys_(answer_keys(plan.protocol)),
         prompt_(answer_prompt(plan.protocol)) {
     const AppConfig& c = plan.config;
-    render::ContextOptions co;
-    co.validation = validation_from_env();
-    co.device_name = o.device.empty() ? c.render.device : o.device;
-    co.instance_extensions = render::WindowSystem::instance_extensions();
-    co.swapchain = true;
-    ctx_ = std::make_unique<render::Context>(co);
+    ctx_ = make_window_context(o.device.empty() ? c.render.device : o.device);
     cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
-    render::WindowOptions wo;
-    const VkExtent2D size = parse_size(o.size, "--size");
-    wo.width = static_cast<int>(size.width);
-    wo.height = static_cast<int>(size.height);
-    wo.fullscreen = !o.windowed;
-    wo.hide_cursor = !o.windowed;
-    wo.monitor = c.render.monitor;
-    wo.present_mode = present_mode_of(c.render);
+    render::WindowOptions wo = window_options(c.render, o.size, o.windowed);
     wo.title = "Mallet study";
     window_ = std::make_unique<render::WindowTarget>(*ctx_, wo);
     glfwSetWindowUserPointer(window_->window(), this);
     glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int) {
       if (action == GLFW_PRESS) static_cast<StudyWindow*>(glfwGetWindowUserPointer(w))->pressed_.push_back({key, monotonic_now()});
     });
-    font_ = std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
-                                                std::max(14.0f, static_cast<float>(window_->extent().height) / 24.0f));
+    font_ = overlay_font(window_->extent());
     overlay_ = std::make_unique<render::Overlay>(*font_);
-    render::RenderSettings rs;
-    rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
-                                         : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
-    rs.shadow = c.render.shadow;
-    renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene_, models_dir(), window_->format(), rs, cache_->get());
+    renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene_, models_dir(), window_->format(),
+                                                        render_settings(*ctx_, c.render), cache_->get());
     rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz, plan.protocol.sound);
-    try {
-      output_ = std::make_unique<audio::PortAudioOutput>(*rig_.engine, c.audio);
-      output_->start();
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", output_->device().name.c_str(), output_->output_latency_s() * 1e3);
-      audio_status_ = buf;
-    } catch (const std::exception& e) {  // the study still shows its taps, silently
-      std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
-      output_.reset();
-      audio_status_ = "audio: none (running silent)";
-    }
+    output_ = start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
     rig_.engine->set_acoustic_volume(c.audio.volume);
     rig_.engine->set_actuator_gain(c.actuator.gain);
     const Target& bar = scene_.targets.at(0);

@@ -41,12 +41,6 @@ namespace {
 std::atomic<bool> g_reload{false};
 void on_sighup(int) { g_reload.store(true); }
 
-render::PresentMode present_mode_of(const RenderConfig& r) {
-  return r.present_mode == "mailbox"     ? render::PresentMode::mailbox
-         : r.present_mode == "immediate" ? render::PresentMode::immediate
-                                         : render::PresentMode::fifo;
-}
-
 KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   KioskStatesConfig k;
   k.idle_after_s = o.idle_after_s.value_or(c.attract.idle_after_s);
@@ -129,29 +123,15 @@ class WindowKiosk {
 };
 
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup) : options_(o) {
-  render::ContextOptions co;
-  co.validation = validation_from_env();
-  co.device_name = o.device.empty() ? setup.config.render.device : o.device;
-  co.instance_extensions = render::WindowSystem::instance_extensions();
-  co.swapchain = true;
-  ctx_ = std::make_unique<render::Context>(co);
+  ctx_ = make_window_context(o.device.empty() ? setup.config.render.device : o.device);
   cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
-  render::WindowOptions wo;
-  const VkExtent2D size = parse_size(o.size, "--size");
-  wo.width = static_cast<int>(size.width);
-  wo.height = static_cast<int>(size.height);
-  wo.fullscreen = !o.windowed;
-  wo.hide_cursor = !o.windowed;
-  wo.monitor = setup.config.render.monitor;
-  wo.present_mode = present_mode_of(setup.config.render);
-  window_ = std::make_unique<render::WindowTarget>(*ctx_, wo);
+  window_ = std::make_unique<render::WindowTarget>(*ctx_, window_options(setup.config.render, o.size, o.windowed));
   glfwSetWindowUserPointer(window_->window(), this);
   glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
     if (action == GLFW_PRESS || action == GLFW_REPEAT)
       static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
   });
-  font_ = std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
-                                              std::max(14.0f, static_cast<float>(window_->extent().height) / 24.0f));
+  font_ = overlay_font(window_->extent());
   overlay_ = std::make_unique<render::Overlay>(*font_);
   started_ = monotonic_now();
   volume_ = setup.config.audio.volume;
@@ -166,30 +146,15 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->config = std::move(setup.config);
   stage->scene = std::move(setup.scene);
   const AppConfig& c = stage->config;
-  render::RenderSettings rs;
-  rs.samples = c.render.msaa == "auto" ? render::recommended_samples(*ctx_)
-                                       : static_cast<VkSampleCountFlagBits>(std::stoi(c.render.msaa));
-  rs.shadow = c.render.shadow;
-  stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(), rs,
-                                                            cache_->get());
+  stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(),
+                                                            render_settings(*ctx_, c.render), cache_->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
   choose_input(*stage);  // a bad replay file throws here, before anything running is touched
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
-  try {
-    stage->output = std::make_unique<audio::PortAudioOutput>(*stage->rig.engine, c.audio);
-    stage->output->start();
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", stage->output->device().name.c_str(),
-                  stage->output->output_latency_s() * 1e3);
-    stage->audio_status = buf;
-  } catch (const std::exception& e) {  // the scene still plays, silently
-    std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
-    stage->output.reset();
-    stage->audio_status = "audio: none (running silent)";
-  }
+  stage->output = start_output(*stage->rig.engine, c.audio, stage->audio_status);  // null: the scene plays silently
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();
