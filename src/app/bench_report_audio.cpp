@@ -14,6 +14,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/bench_report.hpp"
+#include "app/exact_reference.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/denormals.hpp"
 #include "audio/fluidsynth_route.hpp"
@@ -51,29 +52,11 @@ std::string fmt(const char* f, double v) {
   return b;
 }
 
-long double eq1_ld(long double a, long double b, long double f, long double t) {
-  return a * std::exp(-b * t) * std::sin(2.0L * std::numbers::pi_v<long double> * f * t);
-}
-
-//! The strike law (modal_preset.hpp) in long double over all modes: the note's reference.
+//! The note's reference over n samples at kFs (exact_reference.hpp).
 std::vector<long double> note_reference(const ModalPreset& p, double f0, double v, int n) {
-  const long double loud = p.loudness, s = v / p.reference_speed_m_per_s;
-  const long double e = s <= 1 ? loud * s : 1 - (1 - loud) * (1 - loud) / (1 - 2 * loud + loud * s);
-  const long double sigma = e / loud;
-  std::vector<long double> w;
-  long double total = 0;
-  for (const Mode& m : p.modes) {
-    const long double ex = p.brightness * (m.ratio - 1) / m.ratio;
-    w.push_back(m.gain * (ex == 0 ? 1.0L : std::min(4.0L, std::pow(sigma, ex))));
-    total += w.back();
-  }
-  std::vector<long double> y(static_cast<std::size_t>(n), 0.0L);
-  for (std::size_t k = 0; k < p.modes.size(); ++k) {
-    const long double f = p.modes[k].ratio * f0;
-    if (!(f < 0.45L * kFs)) continue;
-    for (int i = 0; i < n; ++i)
-      y[static_cast<std::size_t>(i)] += eq1_ld(e * w[k] / total, p.modes[k].decay_per_s, f, static_cast<long double>(i) / kFs);
-  }
+  const NoteReference note(p, f0, v, kFs);
+  std::vector<long double> y(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) y[static_cast<std::size_t>(i)] = note(static_cast<long double>(i) / kFs);
   return y;
 }
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "app/audio_setup.hpp"
+#include "app/exact_reference.hpp"
 #include "app/strike_loop.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/denormals.hpp"
@@ -26,6 +27,9 @@ namespace mallet {
 namespace {
 
 constexpr Quality kPresets[] = {Quality::fast, Quality::balanced, Quality::exact};
+using app::eq1_ld;
+using app::NoteReference;
+
 constexpr int kRate = 48000;
 
 AppConfig preset(Quality q) {
@@ -155,9 +159,6 @@ TEST(QualityExtremes, ThirtyDaysOfUptimeFindTheSameStrikesAsTheFirstSecond) {
 }
 
 //! Eq. 1 in long double: the reference of the actuator channel.
-long double eq1_ld(long double a, long double b, long double f, long double t) {
-  return a * std::exp(-b * t) * std::sin(2.0L * std::numbers::pi_v<long double> * f * t);
-}
 
 TEST(QualityExtremes, OscillatorFromUndampedToTenThousandPerSecondAndPastNyquistStaysExact) {
   // The actuator's oscillator is the same in every preset: ≤ 1e-9 of Eq. 1 everywhere.
@@ -188,25 +189,6 @@ TEST(QualityExtremes, OscillatorFromUndampedToTenThousandPerSecondAndPastNyquist
       }
 }
 
-//! The strike law in long double, all modes: the acoustic reference.
-long double note_ld(const ModalPreset& p, long double f0, long double v, long double t) {
-  const long double loud = p.loudness;
-  const long double s = v / p.reference_speed_m_per_s;
-  const long double e = s <= 1 ? loud * s : 1 - (1 - loud) * (1 - loud) / (1 - 2 * loud + loud * s);
-  const long double sigma = e / loud;
-  std::vector<long double> w;
-  long double total = 0;
-  for (const Mode& m : p.modes) {
-    const long double ex = p.brightness * (m.ratio - 1) / m.ratio;
-    const long double c = ex == 0 ? 1 : std::min(4.0L, std::pow(sigma, ex));
-    w.push_back(m.gain * c);
-    total += w.back();
-  }
-  long double y = 0;
-  for (std::size_t k = 0; k < p.modes.size(); ++k)
-    if (p.modes[k].ratio * f0 < 0.45L * kRate) y += eq1_ld(e * w[k] / total, p.modes[k].decay_per_s, p.modes[k].ratio * f0, t);
-  return y;
-}
 
 TEST(QualityExtremes, EachPresetsAcousticErrorIsWithinItsDocumentedBound) {
   const std::vector<ModalPreset> library = config::load_instruments(test::config_dir() / "instruments.toml");
@@ -223,11 +205,12 @@ TEST(QualityExtremes, EachPresetsAcousticErrorIsWithinItsDocumentedBound) {
         for (double f0 : {261.63, 4186.0}) {
           audio::ModalBarVoice voice;
           voice.strike(p, f0, v, 0.0, kRate);
+          const NoteReference note(p, f0, v, kRate);
           for (int n = 0; n < kRate / 10; ++n) {
             const double x = voice.tick();
             ASSERT_TRUE(normal_or_zero(x));
             ASSERT_LT(std::fabs(x), 1.0);
-            worst = std::max(worst, std::fabs(x - static_cast<double>(note_ld(p, f0, v, static_cast<long double>(n) / kRate))));
+            worst = std::max(worst, std::fabs(x - static_cast<double>(note(static_cast<long double>(n) / kRate))));
           }
         }
     }
