@@ -154,23 +154,22 @@ SimulateResult run_simulate(const SimulateOptions& options) {
       f << format_seconds(t) << ',' << g9(c.hand.x) << ',' << g9(c.hand.y) << ',' << g9(c.shown.x) << ','
         << g9(c.shown.y) << ',' << g9(c.offset);
       if (stripes) {
+        // Up to this row's sample: every motion update applied on its own sample, as the
+        // engine applies it, and the samples between them rendered.
         const std::int64_t at = std::max<std::int64_t>(0, align_to_sample(t, rate).index);
-        while (stripe_pos < at) {
-          std::int64_t until = at;
-          if (next_motion < texture_path.size())
-            until = std::min(until, std::max(stripe_pos, align_to_sample(texture_path[next_motion].t, rate).index));
-          if (until == stripe_pos) {
+        for (;;) {
+          while (next_motion < texture_path.size() &&
+                 align_to_sample(texture_path[next_motion].t, rate).index <= stripe_pos) {
             const StripeMotion& m = texture_path[next_motion++].motion;
             stripes->motion(m.speed_m_per_s, m.on_texture);
-            continue;
           }
+          if (stripe_pos >= at) break;
+          std::int64_t until = at;
+          if (next_motion < texture_path.size())
+            until = std::min(until, align_to_sample(texture_path[next_motion].t, rate).index);
           scratch.assign(static_cast<std::size_t>(until - stripe_pos), 0.0);
           stripes->add_to(scratch.data(), static_cast<int>(scratch.size()), 0.0);
           stripe_pos = until;
-        }
-        while (next_motion < texture_path.size() && align_to_sample(texture_path[next_motion].t, rate).index <= stripe_pos) {
-          const StripeMotion& m = texture_path[next_motion++].motion;
-          stripes->motion(m.speed_m_per_s, m.on_texture);
         }
         f << ',' << g9(c.gain) << ',' << g9(stripes->current_phase());
       }
