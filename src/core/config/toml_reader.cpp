@@ -116,41 +116,39 @@ bool TableReader::boolean_or(std::string_view key, bool fallback) {
   return node.as_boolean()->get();
 }
 
-std::vector<double> TableReader::numbers(std::string_view key) {
+template <typename T, typename Get>
+std::vector<T> TableReader::array_of(std::string_view key, const char* elements, const char* element, Get get) {
   const toml::node& node = required(key);
   const toml::array* array = node.as_array();
-  if (!array) fail_at(&node, key, "expected an array of numbers, got " + describe_value(node));
-  std::vector<double> out;
+  if (!array) fail_at(&node, key, std::string("expected an array of ") + elements + ", got " + describe_value(node));
+  std::vector<T> out;
   for (const toml::node& el : *array) {
-    if (!el.is_number() || !std::isfinite(*el.value<double>()))
-      fail_at(&el, key, "expected a finite number, got " + describe_value(el));
-    out.push_back(*el.value<double>());
+    std::optional<T> v = get(el);
+    if (!v) fail_at(&el, key, std::string("expected ") + element + ", got " + describe_value(el));
+    out.push_back(std::move(*v));
   }
   return out;
+}
+
+std::vector<double> TableReader::numbers(std::string_view key) {
+  return array_of<double>(key, "numbers", "a finite number", [](const toml::node& el) -> std::optional<double> {
+    if (!el.is_number() || !std::isfinite(*el.value<double>())) return std::nullopt;
+    return *el.value<double>();
+  });
 }
 
 std::vector<std::int64_t> TableReader::integers(std::string_view key) {
-  const toml::node& node = required(key);
-  const toml::array* array = node.as_array();
-  if (!array) fail_at(&node, key, "expected an array of integers, got " + describe_value(node));
-  std::vector<std::int64_t> out;
-  for (const toml::node& el : *array) {
-    if (!el.is_integer()) fail_at(&el, key, "expected an integer, got " + describe_value(el));
-    out.push_back(el.as_integer()->get());
-  }
-  return out;
+  return array_of<std::int64_t>(key, "integers", "an integer", [](const toml::node& el) -> std::optional<std::int64_t> {
+    if (!el.is_integer()) return std::nullopt;
+    return el.as_integer()->get();
+  });
 }
 
 std::vector<std::string> TableReader::strings(std::string_view key) {
-  const toml::node& node = required(key);
-  const toml::array* array = node.as_array();
-  if (!array) fail_at(&node, key, "expected an array of strings, got " + describe_value(node));
-  std::vector<std::string> out;
-  for (const toml::node& el : *array) {
-    if (!el.is_string()) fail_at(&el, key, "expected a string, got " + describe_value(el));
-    out.push_back(el.as_string()->get());
-  }
-  return out;
+  return array_of<std::string>(key, "strings", "a string", [](const toml::node& el) -> std::optional<std::string> {
+    if (!el.is_string()) return std::nullopt;
+    return el.as_string()->get();
+  });
 }
 
 TableReader TableReader::table(std::string_view key) {

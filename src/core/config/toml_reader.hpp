@@ -60,6 +60,9 @@ class TableReader {
 
  private:
   const toml::node& required(std::string_view key);
+  //! The array at `key`, each element read by `get` (nothing: refused as not `element`).
+  template <typename T, typename Get>
+  std::vector<T> array_of(std::string_view key, const char* elements, const char* element, Get get);
   [[noreturn]] void fail_at(const toml::node* node, std::string_view key,
                             const std::string& message) const;
 
