@@ -2,6 +2,7 @@
 // (audio, renderer, pointer filter, latency budget) and writes the report with its plots.
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "app/bench_report.hpp"
 #include "app/commands.hpp"
@@ -47,18 +48,16 @@ void measure_pointer(const Scene& scene, const ReportOptions& o, ReportSections&
 void run(const ReportOptions& o) {
   const Scene scene = config::load_scene(o.scene);
   ReportSections s;
-  std::printf("bench report: audio ...\n");
-  std::fflush(stdout);
-  measure_audio_trades(scene, o, s);
-  std::printf("bench report: renderer ...\n");
-  std::fflush(stdout);
-  measure_render_trades(scene, o, s);
-  std::printf("bench report: pointer filter ...\n");
-  std::fflush(stdout);
-  measure_pointer(scene, o, s);
-  std::printf("bench report: latency budget ...\n");
-  std::fflush(stdout);
-  measure_latency_budget(scene, o, s);
+  using Measure = void (*)(const Scene&, const ReportOptions&, ReportSections&);
+  const std::pair<const char*, Measure> parts[] = {{"audio", measure_audio_trades},
+                                                   {"renderer", measure_render_trades},
+                                                   {"pointer filter", measure_pointer},
+                                                   {"latency budget", measure_latency_budget}};
+  for (const auto& [name, measure] : parts) {
+    std::printf("bench report: %s ...\n", name);
+    std::fflush(stdout);
+    measure(scene, o, s);
+  }
   for (const std::string& line : write_report(s, o)) std::printf("%s\n", line.c_str());
 }
 
