@@ -10,7 +10,9 @@ OffscreenTarget::OffscreenTarget(const Context& ctx, VkExtent2D extent) : ctx_(c
   if (extent.width == 0 || extent.height == 0 || extent.width > 16384 || extent.height > 16384)
     throw RenderError("image size " + std::to_string(extent.width) + "x" + std::to_string(extent.height) +
                       " is out of range (1..16384)");
-  color_ = make_image(ctx, extent, kFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+  color_ = make_image(ctx, extent, kFormat,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                          VK_IMAGE_USAGE_TRANSFER_DST_BIT,  // the renderer's background is copied in
                       VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
   // The copy's rows start on the device's optimal copy alignment, so the pitch may be
   // wider than the row; read_back() honours it.
@@ -32,8 +34,10 @@ void OffscreenTarget::draw(SceneRenderer& renderer, const FrameState& state) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cmd_, &bi), "beginning a command buffer");
-  renderer.record(cmd_, color_.image.get(), color_.view.get(), extent_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, state, 0);
+  renderer.record(cmd_,
+                  {color_.image.get(), color_.view.get(), extent_, true, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+                  state, 0);
   VkBufferImageCopy region{};
   region.bufferRowLength = static_cast<std::uint32_t>(row_pitch_ / 4);
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};

@@ -152,6 +152,13 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   for (const std::string& name : names) load_model(models_dir / name, name);
+  for (const Instance& i : instruments_) {
+    const Box& b = models_.at(i.model).bounds;
+    if (b.empty()) continue;
+    for (int corner = 0; corner < 8; ++corner)
+      instruments_box_.add(glm::dvec3(i.transform * glm::vec4(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y,
+                                                              corner & 4 ? b.hi.z : b.lo.z, 1.0f)));
+  }
 
   build_pipelines(cache);
 }
@@ -190,6 +197,7 @@ void SceneRenderer::load_model(const std::filesystem::path& file, const std::str
     gp.vertex_offset = static_cast<std::int32_t>(vertices.size());
     gp.material = p.material;
     vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+    for (const Vertex& v : p.vertices) gpu.bounds.add({v.position[0], v.position[1], v.position[2]});
     indices.insert(indices.end(), p.indices.begin(), p.indices.end());
     gpu.primitives.push_back(gp);
   }
@@ -243,8 +251,11 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     overlay_pipeline_layout_ = vk::PipelineLayout(dev, raw);
   }
 
+  // How a pipeline uses depth: the overlay not at all; the whole scene tests and writes
+  // it; drawing over the cached background only tests against it (it stays the cache).
+  enum class Depth { none, test_and_write, test_only };
   auto build = [&](VkShaderModule vs, VkShaderModule fs, const VkPipelineVertexInputStateCreateInfo& input,
-                   bool depth, bool blend, VkPipelineLayout layout, const char* what) {
+                   Depth depth, bool blend, VkPipelineLayout layout, const char* what) {
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs,
                  "main", nullptr};
@@ -261,14 +272,16 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     // they stay counter-clockwise (the goldens are unchanged with culling on; with the
     // opposite winding they break). Culling back faces halves what lavapipe rasterises.
     // The overlay is drawn as given.
-    rs.cullMode = depth ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+    rs.cullMode = depth != Depth::none ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
     rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = settings_.samples;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    ds.depthTestEnable = ds.depthWriteEnable = depth ? VK_TRUE : VK_FALSE;
-    ds.depthCompareOp = VK_COMPARE_OP_LESS;
+    ds.depthTestEnable = depth != Depth::none ? VK_TRUE : VK_FALSE;
+    ds.depthWriteEnable = depth == Depth::test_and_write ? VK_TRUE : VK_FALSE;
+    // Redrawn instruments meet their own cached depth: equal passes, what they hid fails.
+    ds.depthCompareOp = depth == Depth::test_only ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
     VkPipelineColorBlendAttachmentState att{};
     att.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                          VK_COLOR_COMPONENT_A_BIT;
@@ -315,8 +328,10 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     const VertexInput input(sizeof(Vertex), {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                                              {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}});
-    scene_pipeline_ = build(vs.get(), fs.get(), input.info, true, false, scene_pipeline_layout_.get(),
-                            "creating the scene pipeline");
+    scene_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
+                            scene_pipeline_layout_.get(), "creating the scene pipeline");
+    over_background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_only, false,
+                                      scene_pipeline_layout_.get(), "creating the scene pipeline");
   }
   {
     vk::ShaderModule vs = make_shader(dev, overlay_vert_spv), fs = make_shader(dev, overlay_frag_spv);
@@ -324,7 +339,7 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
                             {{0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
                              {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
                              {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)}});
-    overlay_pipeline_ = build(vs.get(), fs.get(), input.info, false, true, overlay_pipeline_layout_.get(),
+    overlay_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::none, true, overlay_pipeline_layout_.get(),
                               "creating the overlay pipeline");
   }
 }
@@ -336,8 +351,19 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
                       VK_IMAGE_ASPECT_DEPTH_BIT);
   msaa_color_ = {};
   if (settings_.samples != VK_SAMPLE_COUNT_1_BIT)
-    msaa_color_ = make_image(ctx_, extent, color_format_, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, settings_.samples,
+    msaa_color_ = make_image(ctx_, extent, color_format_,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, settings_.samples,
                              VK_IMAGE_ASPECT_COLOR_BIT);
+  background_color_ = {};
+  background_depth_ = {};
+  if (settings_.background_cache) {
+    background_color_ = make_image(ctx_, extent, color_format_,
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                   settings_.samples, VK_IMAGE_ASPECT_COLOR_BIT);
+    background_depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                   settings_.samples, VK_IMAGE_ASPECT_DEPTH_BIT);
+  }
+  background_ready_ = false;
   attachment_extent_ = extent;
 }
 
@@ -405,9 +431,58 @@ void SceneRenderer::draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Sl
   vkCmdDrawIndexed(cmd, static_cast<std::uint32_t>(overlay.indices().size()), 1, 0, 0, 0);
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, VkImage target, VkImageView target_view, VkExtent2D extent,
-                           VkImageLayout final_layout, VkPipelineStageFlags2 final_stage, VkAccessFlags2 final_access,
-                           const FrameState& state, std::uint32_t slot_index) {
+void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot) {
+  const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  transition(cmd, background_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, color_stage,
+             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  transition(cmd, background_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
+             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = background_color_.view.get();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  color.clearValue.color = {{settings_.clear_color[0], settings_.clear_color[1], settings_.clear_color[2], 1.0f}};
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = background_depth_.view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, attachment_extent_};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport viewport{0, 0, static_cast<float>(attachment_extent_.width),
+                      static_cast<float>(attachment_extent_.height), 0, 1};
+  VkRect2D scissor{{0, 0}, attachment_extent_};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
+                          nullptr);
+  // Unshadowed: wherever the sphere darkens them, the frame redraws them.
+  for (const Instance& i : instruments_) draw_instance(cmd, i, false);
+  vkCmdEndRendering(cmd);
+  // Every later frame copies the colour and tests against the depth; neither changes again.
+  transition(cmd, background_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_stage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+             VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  transition(cmd, background_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+             VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+             depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& state,
+                           std::uint32_t slot_index) {
+  const VkExtent2D extent = target.extent;
   ensure_attachments(extent);
   if (state.overlay && !state.overlay->indices().empty()) ensure_atlas(state.overlay->atlas());
   Slot& slot = slots_.at(slot_index);
@@ -423,37 +498,68 @@ void SceneRenderer::record(VkCommandBuffer cmd, VkImage target, VkImageView targ
   std::memcpy(slot.frame_uniform.mapped, &u, sizeof(u));
 
   const bool msaa = settings_.samples != VK_SAMPLE_COUNT_1_BIT;
+  // Over the cached background when there is one and the frame can receive its copy.
+  const bool over_background =
+      settings_.background_cache && state.draw_instruments && (msaa || target.copy_destination);
+  if (over_background && !background_ready_) {
+    record_background(cmd, slot);
+    background_ready_ = true;
+    ++background_builds_;
+  }
+
   const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags2 color_write = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-  transition(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-             color_stage, VK_ACCESS_2_NONE, color_stage, color_write);
-  if (msaa)
-    transition(cmd, msaa_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage, color_write);
-  transition(cmd, depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-             VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-             VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  const VkImage attachment = msaa ? msaa_color_.image.get() : target.image;
+  if (over_background) {
+    transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kTargetFirstUse, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkImageCopy region{};
+    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.extent = {extent.width, extent.height, 1};
+    vkCmdCopyImage(cmd, background_color_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, attachment,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+               color_stage, VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | color_write);
+  } else {
+    transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kTargetFirstUse, VK_ACCESS_2_NONE, color_stage, color_write);
+    transition(cmd, depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  }
+  if (msaa)  // the resolve's destination
+    transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kTargetFirstUse, VK_ACCESS_2_NONE, color_stage, color_write);
 
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = msaa ? msaa_color_.view.get() : target_view;
+  color.imageView = msaa ? msaa_color_.view.get() : target.view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.loadOp = over_background ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
   color.clearValue.color = {{settings_.clear_color[0], settings_.clear_color[1], settings_.clear_color[2], 1.0f}};
   if (msaa) {
     color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
-    color.resolveImageView = target_view;
+    color.resolveImageView = target.view;
     color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   }
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = depth_.view.get();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.clearValue.depthStencil = {1.0f, 0};
+  if (over_background) {  // read only: it stays the cache
+    depth.imageView = background_depth_.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  } else {
+    depth.imageView = depth_.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+  }
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, extent};
   ri.layerCount = 1;
@@ -466,17 +572,35 @@ void SceneRenderer::record(VkCommandBuffer cmd, VkImage target, VkImageView targ
   VkRect2D scissor{{0, 0}, extent};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    over_background ? over_background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
-  if (state.draw_instruments)
+  if (over_background) {
+    // The instruments again, only where the sphere's shadow can fall.
+    const PixelRect shadow =
+        caster ? shadow_bounds(view_proj_, static_cast<int>(extent.width), static_cast<int>(extent.height),
+                               {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
+                                glm::dvec3(kToLight), kLightTanRadius},
+                               instruments_box_)
+               : PixelRect{};
+    if (!shadow.empty()) {
+      const VkRect2D r{{shadow.x0, shadow.y0},
+                       {static_cast<std::uint32_t>(shadow.x1 - shadow.x0),
+                        static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
+      vkCmdSetScissor(cmd, 0, 1, &r);
+      for (const Instance& i : instruments_) draw_instance(cmd, i, true);
+      vkCmdSetScissor(cmd, 0, 1, &scissor);
+    }
+  } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, true);
+  }
   if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), false);
   if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);
   vkCmdEndRendering(cmd);
 
-  transition(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, final_layout,
-             color_stage, color_write, final_stage, final_access);
+  transition(cmd, target.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+             target.final_layout, color_stage, color_write, target.final_stage, target.final_access);
 }
 
 }  // namespace mallet::render

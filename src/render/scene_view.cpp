@@ -1,5 +1,6 @@
 #include "render/scene_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -85,6 +86,54 @@ Instance mallet_instance(const Scene& scene, Vec2 centre) {
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), {centre.x, centre.y, 0.0});
   m = glm::scale(m, glm::dvec3(scene.mallet_radius_m));
   return {scene.mallet_model, glm::mat4(m), -1};
+}
+
+double sphere_visibility(const SphereShadow& s, glm::dvec3 p) {
+  if (s.radius <= 0) return 1;
+  const glm::dvec3 to_centre = s.centre - p;
+  const double along = glm::dot(to_centre, s.to_light);
+  if (along <= 0) return 1;
+  const double miss = glm::length(to_centre - along * s.to_light);
+  const double penumbra = std::max(along * s.tan_radius, 1e-5);
+  const double t = std::clamp((miss - (s.radius - penumbra)) / (2 * penumbra), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const SphereShadow& s,
+                        const Box& receivers) {
+  if (s.radius <= 0 || receivers.empty() || width <= 0 || height <= 0) return {};
+  // A shadowed point p lies `along` > 0 behind the centre, seen from the light, and
+  // within radius + penumbra(along) of the axis. Inside the box `along` is at most the
+  // largest over its corners, so every such point is within R of the segment from the
+  // centre to that depth: in the box around the segment's two ends grown by R.
+  double along_max = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 c{corner & 1 ? receivers.hi.x : receivers.lo.x, corner & 2 ? receivers.hi.y : receivers.lo.y,
+                       corner & 4 ? receivers.hi.z : receivers.lo.z};
+    along_max = std::max(along_max, glm::dot(s.centre - c, s.to_light));
+  }
+  if (along_max <= 0) return {};
+  const double reach = s.radius + std::max(along_max * s.tan_radius, 1e-5) + 1e-6;
+  const glm::dvec3 end = s.centre - along_max * s.to_light;
+  Box region;
+  region.lo = glm::max(glm::min(s.centre, end) - reach, receivers.lo);
+  region.hi = glm::min(glm::max(s.centre, end) + reach, receivers.hi);
+  if (region.empty()) return {};
+
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(corner & 1 ? region.hi.x : region.lo.x,
+                                                                corner & 2 ? region.hi.y : region.lo.y,
+                                                                corner & 4 ? region.hi.z : region.lo.z, 1.0);
+    if (clip.w <= 1e-9) return {0, 0, width, height};  // reaches behind the eye
+    const double x = (clip.x / clip.w + 1) / 2 * width, y = (clip.y / clip.w + 1) / 2 * height;
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  // Two pixels of margin: a fragment is shaded at its centre, and float rounding.
+  auto clamp_to = [](double v, int hi) { return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(hi))); };
+  PixelRect r{clamp_to(std::floor(x0) - 2, width), clamp_to(std::floor(y0) - 2, height),
+              clamp_to(std::ceil(x1) + 2, width), clamp_to(std::ceil(y1) + 2, height)};
+  return r.empty() ? PixelRect{} : r;
 }
 
 }  // namespace mallet::render

@@ -40,4 +40,40 @@ std::vector<Instance> instrument_instances(const Scene& scene);
 //! The mallet head (Scene::mallet_model): a unit sphere scaled to the scene's radius at `centre` (plane z = 0).
 Instance mallet_instance(const Scene& scene, Vec2 centre);
 
+//! An axis-aligned box in world metres; empty until a point is added.
+struct Box {
+  glm::dvec3 lo{1e300}, hi{-1e300};
+  void add(glm::dvec3 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+};
+
+//! The pixels [x0, x1) × [y0, y1) of an image.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+//! The sphere that casts the only shadow, and the disc light it blocks: the terms of the
+//! scene shader's sphere_visibility().
+struct SphereShadow {
+  glm::dvec3 centre{0.0};
+  double radius = 0;            //!< 0: no shadow
+  glm::dvec3 to_light{0, 1, 0}; //!< unit vector towards the light
+  double tan_radius = 0;        //!< tangent of the light's angular radius
+};
+
+//! A point's visibility of the light past the sphere (1 lit, 0 in the umbra), as the scene
+//! shader computes it in floats; here in doubles, for checks.
+double sphere_visibility(const SphereShadow& s, glm::dvec3 p);
+
+//! A screen rectangle (clamped to width × height) outside which the sphere darkens nothing
+//! inside `receivers`: every point of the box with visibility < 1 projects into it. Empty
+//! when the sphere shadows nothing there; the whole image when the region reaches behind
+//! the eye. The renderer redraws only these pixels over its cached background.
+PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const SphereShadow& s,
+                        const Box& receivers);
+
 }  // namespace mallet::render

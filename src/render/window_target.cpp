@@ -152,8 +152,11 @@ void WindowTarget::create_swapchain() {
   ci.imageColorSpace = chosen.colorSpace;
   ci.imageExtent = extent_;
   ci.imageArrayLayers = 1;
+  // TRANSFER_SRC for screenshots; TRANSFER_DST to copy the renderer's cached background in
+  // (without it every frame draws the whole scene).
   ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                  (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);  // screenshots
+                  (caps.supportedUsageFlags & (VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT));
+  copy_destination_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = caps.currentTransform;
   ci.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -216,8 +219,10 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   if (capture) {
     if (capture_buffer_.size < capture_bytes)
       capture_buffer_ = make_host_buffer(ctx_, capture_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    renderer.record(f.cmd, images_[index], views_[index].get(), extent_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, state, frame_);
+    renderer.record(f.cmd,
+                    {images_[index], views_[index].get(), extent_, copy_destination_,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+                    state, frame_);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {extent_.width, extent_.height, 1};
@@ -227,14 +232,16 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
                VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE);
   } else {
-    renderer.record(f.cmd, images_[index], views_[index].get(), extent_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, state, frame_);
+    renderer.record(f.cmd,
+                    {images_[index], views_[index].get(), extent_, copy_destination_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE},
+                    state, frame_);
   }
   check(vkEndCommandBuffer(f.cmd), "ending a command buffer");
 
   VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   wait.semaphore = f.acquired.get();
-  wait.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  wait.stageMask = kTargetFirstUse;
   VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
   signal.semaphore = rendered_[index].get();
   signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;

@@ -81,6 +81,7 @@ class WindowTarget {
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   vk::Swapchain swapchain_;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
+  bool copy_destination_ = false;  //!< the swapchain's images take TRANSFER_DST
   VkPresentModeKHR present_mode_ = VK_PRESENT_MODE_FIFO_KHR;
   VkExtent2D extent_{};
   std::vector<VkImage> images_;

@@ -1,0 +1,118 @@
+// The renderer's cached background (the instruments drawn once per image size; each frame
+// copies them in, redraws them only where the mallet's shadow can fall, and draws the
+// mallet over them) must give exactly the pixels of drawing the whole scene every frame.
+// Frames follow one another in one renderer, so a shadow left behind by the frame before
+// would show as a difference too.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/render_setup.hpp"
+#include "render/image.hpp"
+#include "render/offscreen_target.hpp"
+#include "render/pipeline_cache.hpp"
+#include "render/scene_renderer.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::render {
+namespace {
+
+std::unique_ptr<app::HeadlessRenderer> renderer(const Scene& scene, bool cache,
+                                                VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT) {
+  app::HeadlessOptions o;
+  o.size = {480, 270};
+  o.settings.background_cache = cache;
+  o.settings.samples = samples;
+  o.validation = Validation::required;
+  o.cache_dir = "";
+  o.device = "llvmpipe";
+  return std::make_unique<app::HeadlessRenderer>(scene, o);
+}
+
+//! Mallet centres that visit every kind of place: high above, resting on and straddling
+//! bars, between the instruments, below the bars' tops, at and beyond the screen's edges.
+std::vector<Vec2> places(const Scene& scene) {
+  std::vector<Vec2> out;
+  const ScreenToWorld& w = scene.screen_to_world;
+  for (double sx : {-0.05, 0.0, 0.13, 0.31, 0.5, 0.62, 0.77, 0.95, 1.04})
+    for (double sy : {0.05, 0.35, 0.62, 0.8, 0.97}) out.push_back(w.map(sx, sy));
+  for (const Target& t : scene.targets) {
+    out.push_back({(t.x_min + t.x_max) / 2, t.top_y + scene.mallet_radius_m});  // resting on it
+    out.push_back({t.x_max, t.top_y + 0.03});                                     // over its edge
+    out.push_back({t.x_min, t.top_y - 0.02});                                     // beside it, lower
+  }
+  return out;
+}
+
+void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples) {
+  auto cached = renderer(scene, true, samples);
+  auto whole = renderer(scene, false, samples);
+  int frames = 0;
+  for (const Vec2 c : places(scene)) {
+    for (bool shadow_on_frame : {true, false}) {
+      FrameState s;
+      s.mallet_centre = c;
+      s.draw_mallet = shadow_on_frame;  // a frame without the mallet: no shadow may remain
+      const ImageDiff d = compare_images(cached->render(s), whole->render(s), 0);
+      ASSERT_TRUE(d.same_size);
+      EXPECT_EQ(d.max_channel_delta, 0) << "mallet at (" << c.x << ", " << c.y << "), drawn " << shadow_on_frame
+                                        << ": " << d.differing_pixels << " pixels differ";
+      ++frames;
+    }
+  }
+  EXPECT_GT(frames, 60);
+  // The frames really were drawn over the cache, built once for the one size.
+  EXPECT_EQ(cached->renderer().background_builds(), 1u);
+  EXPECT_EQ(whole->renderer().background_builds(), 0u);
+  EXPECT_EQ(cached->context().validation_messages(), 0u) << cached->context().first_validation_message();
+}
+
+TEST(BackgroundCache, PercussionFramesAreTheWholeScenesPixels) {
+  expect_same_frames(test::percussion(), VK_SAMPLE_COUNT_1_BIT);
+}
+
+TEST(BackgroundCache, TextureAndWallFramesAreTheWholeScenesPixels) {
+  expect_same_frames(test::texture(), VK_SAMPLE_COUNT_1_BIT);
+  expect_same_frames(test::wall(), VK_SAMPLE_COUNT_1_BIT);
+}
+
+TEST(BackgroundCache, WithMultisamplingTooTheFramesAreTheWholeScenesPixels) {
+  auto probe = renderer(test::percussion(), true);
+  if (!supports_samples(probe->context(), VK_SAMPLE_COUNT_4_BIT)) GTEST_SKIP() << "no 4x MSAA on this device";
+  expect_same_frames(test::percussion(), VK_SAMPLE_COUNT_4_BIT);
+}
+
+TEST(BackgroundCache, IsRedrawnWhenTheImageSizeChanges) {
+  // One renderer, targets of three sizes in turn (a window being resized): each frame
+  // equals the whole scene drawn at its size.
+  ContextOptions co;
+  co.validation = Validation::required;
+  co.device_name = "llvmpipe";
+  Context ctx(co);
+  PipelineCache cache(ctx, "");
+  RenderSettings cached_settings, whole_settings;
+  whole_settings.background_cache = false;
+  SceneRenderer cached(ctx, test::percussion(), app::models_dir(), OffscreenTarget::kFormat, cached_settings,
+                       cache.get());
+  SceneRenderer whole(ctx, test::percussion(), app::models_dir(), OffscreenTarget::kFormat, whole_settings,
+                      cache.get());
+  const Target& bar = test::percussion().targets.at(5);
+  FrameState s;
+  s.mallet_centre = {(bar.x_min + bar.x_max) / 2, bar.top_y + 0.02};
+  for (VkExtent2D size : {VkExtent2D{320, 180}, VkExtent2D{500, 400}, VkExtent2D{320, 180}}) {
+    OffscreenTarget target(ctx, size);
+    const Image a = target.render(cached, s);
+    const Image b = target.render(whole, s);
+    const ImageDiff d = compare_images(a, b, 0);
+    ASSERT_TRUE(d.same_size);
+    EXPECT_EQ(a.width, static_cast<int>(size.width));
+    EXPECT_EQ(d.max_channel_delta, 0) << size.width << "x" << size.height << ": " << d.differing_pixels;
+  }
+  EXPECT_EQ(cached.background_builds(), 3u);
+  EXPECT_EQ(ctx.validation_messages(), 0u) << ctx.first_validation_message();
+}
+
+}  // namespace
+}  // namespace mallet::render
