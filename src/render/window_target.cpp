@@ -93,7 +93,15 @@ WindowTarget::~WindowTarget() {
 
 bool WindowTarget::close_requested() const { return glfwWindowShouldClose(window_); }
 
+std::pair<int, int> WindowTarget::framebuffer_size() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return {w, h};
+}
+
 bool WindowTarget::framebuffer_visible() const {
+  // Minimised: iconified, or on X11 unmapped (hidden); elsewhere a 0×0 framebuffer.
+  if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED) || !glfwGetWindowAttrib(window_, GLFW_VISIBLE)) return false;
   int w = 0, h = 0;
   glfwGetFramebufferSize(window_, &w, &h);
   return w > 0 && h > 0;
@@ -108,6 +116,7 @@ Nanos WindowTarget::predicted_present(Nanos now) const {
 
 void WindowTarget::create_swapchain() {
   VkPhysicalDevice pd = ctx_.physical_device();
+  built_for_ = framebuffer_size();
   VkSurfaceCapabilitiesKHR caps;
   check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, surface_, &caps), "querying the window surface");
   std::uint32_t n = 0;
@@ -189,8 +198,20 @@ void WindowTarget::create_swapchain() {
 }
 
 bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image* capture) {
-  if (!framebuffer_visible()) return false;  // minimised: nothing to draw into
+  if (!framebuffer_visible()) {
+    // Minimised: nothing to draw into. Waiting up to a refresh for the window's events keeps
+    // the callers' loops from spinning a core until it comes back.
+    glfwWaitEventsTimeout(1.0 / refresh_hz_);
+    return false;
+  }
   VkDevice dev = ctx_.device();
+  // Not every driver says OUT_OF_DATE when the window changes size (lavapipe on X11 goes
+  // on presenting the old size, measured): the window's own size is checked too.
+  if (framebuffer_size() != built_for_) {
+    vkDeviceWaitIdle(dev);
+    create_swapchain();
+    ++recreations_;
+  }
   FrameSync& f = frames_[frame_];
   VkFence fence = f.done.get();
   check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");

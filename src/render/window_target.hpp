@@ -1,12 +1,13 @@
 #pragma once
 // Rendering into a GLFW window through a Vulkan swapchain: the kiosk's screen.
-// Resizes, minimising (a 0×0 framebuffer: frames are skipped, nothing is recreated until
-// it comes back) and VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR (the swapchain is
+// Resizes, minimising (an iconified or hidden window, or a 0×0 framebuffer: frames are
+// skipped, nothing is recreated until it comes back) and VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR (the swapchain is
 // recreated and the frame retried) are handled here; the caller only calls draw().
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -62,7 +63,8 @@ class WindowTarget {
   //! there, not at the time the frame is recorded.
   Nanos predicted_present(Nanos now) const;
 
-  //! Draws and presents one frame; false when nothing was drawn (minimised). With
+  //! Draws and presents one frame; false when nothing was drawn (minimised: it then waits
+  //! up to one refresh for window events, so a loop around it does not spin). With
   //! `capture`, the presented pixels are also copied out (RGBA) for a screenshot.
   bool draw(SceneRenderer& renderer, const FrameState& state, Image* capture = nullptr);
 
@@ -74,6 +76,7 @@ class WindowTarget {
   };
   void create_swapchain();
   bool framebuffer_visible() const;
+  std::pair<int, int> framebuffer_size() const;
 
   const Context& ctx_;
   WindowOptions options_;
@@ -82,6 +85,7 @@ class WindowTarget {
   vk::Swapchain swapchain_;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   bool copy_destination_ = false;  //!< the swapchain's images take TRANSFER_DST
+  std::pair<int, int> built_for_{};  //!< the framebuffer size the swapchain was made for
   VkPresentModeKHR present_mode_ = VK_PRESENT_MODE_FIFO_KHR;
   VkExtent2D extent_{};
   std::vector<VkImage> images_;

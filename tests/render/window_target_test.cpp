@@ -1,0 +1,125 @@
+// The window target in this process, under a virtual X server of its own (CTest runs this
+// binary through xvfb-run): a window resized while frames are drawn gets a new swapchain
+// and the frames of its new size, drawn over the renderer's cached background (redrawn for
+// the new size); a hidden (minimised) window draws nothing and comes back when shown.
+#include <GLFW/glfw3.h>
+
+#include <gtest/gtest.h>
+
+#include "app/render_setup.hpp"
+#include "render/image.hpp"
+#include "render/pipeline_cache.hpp"
+#include "render/scene_renderer.hpp"
+#include "render/window_target.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::render {
+namespace {
+
+struct Window {
+  WindowSystem system;
+  std::unique_ptr<Context> ctx;
+  std::unique_ptr<WindowTarget> target;
+  std::unique_ptr<PipelineCache> cache;
+  std::unique_ptr<SceneRenderer> renderer;
+
+  explicit Window(VkSampleCountFlagBits samples) {
+    ContextOptions co;
+    co.validation = Validation::required;
+    co.device_name = "llvmpipe";
+    co.instance_extensions = WindowSystem::instance_extensions();
+    co.swapchain = true;
+    ctx = std::make_unique<Context>(co);
+    WindowOptions wo;
+    wo.width = 320;
+    wo.height = 180;
+    target = std::make_unique<WindowTarget>(*ctx, wo);
+    cache = std::make_unique<PipelineCache>(*ctx, "");
+    RenderSettings rs;
+    rs.samples = samples;
+    renderer = std::make_unique<SceneRenderer>(*ctx, test::percussion(), app::models_dir(), target->format(), rs,
+                                               cache->get());
+  }
+  ~Window() { vkDeviceWaitIdle(ctx->device()); }
+};
+
+FrameState mallet_over_a_bar() {
+  const Target& bar = test::percussion().targets.at(5);
+  FrameState s;
+  s.mallet_centre = {(bar.x_min + bar.x_max) / 2, bar.top_y + 0.02};
+  return s;
+}
+
+//! The same state rendered offscreen at `size`, the way the goldens are.
+Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples) {
+  app::HeadlessOptions o;
+  o.size = size;
+  o.settings.samples = samples;
+  o.device = "llvmpipe";
+  o.validation = Validation::required;
+  o.cache_dir = "";
+  app::HeadlessRenderer r(test::percussion(), o);
+  return r.render(mallet_over_a_bar());
+}
+
+//! Lets the X server's configure reach GLFW: events are polled until the framebuffer has
+//! `w` × `h` pixels (or 500 polls have gone by).
+bool framebuffer_becomes(GLFWwindow* window, int w, int h) {
+  for (int i = 0; i < 500; ++i) {
+    glfwWaitEventsTimeout(0.01);
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    if (fw == w && fh == h) return true;
+  }
+  return false;
+}
+
+void expect_matches(const Image& shot, const Image& expected) {
+  const ImageDiff d = compare_images(shot, expected, 3);
+  ASSERT_TRUE(d.same_size) << shot.width << "x" << shot.height << " vs " << expected.width << "x" << expected.height;
+  EXPECT_LT(d.differing_fraction, 0.001) << d.differing_pixels << " pixels differ, max " << d.max_channel_delta;
+}
+
+void resize_and_check(VkSampleCountFlagBits samples) {
+  Window w(samples);
+  const FrameState s = mallet_over_a_bar();
+  Image shot;
+  ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
+  expect_matches(shot, offscreen({320, 180}, samples));
+
+  glfwSetWindowSize(w.target->window(), 480, 300);
+  ASSERT_TRUE(framebuffer_becomes(w.target->window(), 480, 300));
+  // The swapchain learns it is out of date at the next acquire or present; within a few
+  // frames every frame has the new size.
+  for (int i = 0; i < 4; ++i) w.target->draw(*w.renderer, s);
+  ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
+  EXPECT_GE(w.target->swapchain_recreations(), 1u);
+  EXPECT_EQ(w.target->extent().width, 480u);
+  EXPECT_EQ(w.target->extent().height, 300u);
+  expect_matches(shot, offscreen({480, 300}, samples));
+  // Both sizes were drawn over the cached background, one build each.
+  EXPECT_EQ(w.renderer->background_builds(), 2u);
+  EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
+}
+
+TEST(WindowTarget, AResizedWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_1_BIT); }
+
+TEST(WindowTarget, AResizedMultisampledWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_4_BIT); }
+
+TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
+  Window w(VK_SAMPLE_COUNT_1_BIT);
+  const FrameState s = mallet_over_a_bar();
+  ASSERT_TRUE(w.target->draw(*w.renderer, s));
+  glfwHideWindow(w.target->window());  // what minimising does to an X11 window: it is unmapped
+  glfwPollEvents();
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(w.target->draw(*w.renderer, s));
+  glfwShowWindow(w.target->window());
+  glfwPollEvents();
+  Image shot;
+  ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
+  expect_matches(shot, offscreen({320, 180}, VK_SAMPLE_COUNT_1_BIT));
+  EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
+}
+
+}  // namespace
+}  // namespace mallet::render
