@@ -13,17 +13,23 @@
 #include "render/window_target.hpp"
 #include "test_paths.hpp"
 
+// Last: Xlib's macros (None, Status, Bool…) must not meet the headers above.
+#define GLFW_EXPOSE_NATIVE_X11
+#include <GLFW/glfw3native.h>
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+
 namespace mallet::render {
 namespace {
 
-struct Window {
+struct OpenWindow {
   WindowSystem system;
   std::unique_ptr<Context> ctx;
   std::unique_ptr<WindowTarget> target;
   std::unique_ptr<PipelineCache> cache;
   std::unique_ptr<SceneRenderer> renderer;
 
-  explicit Window(VkSampleCountFlagBits samples) {
+  explicit OpenWindow(VkSampleCountFlagBits samples) {
     ContextOptions co;
     co.validation = Validation::required;
     co.device_name = "llvmpipe";
@@ -40,7 +46,7 @@ struct Window {
     renderer = std::make_unique<SceneRenderer>(*ctx, test::percussion(), app::models_dir(), target->format(), rs,
                                                cache->get());
   }
-  ~Window() { vkDeviceWaitIdle(ctx->device()); }
+  ~OpenWindow() { vkDeviceWaitIdle(ctx->device()); }
 };
 
 FrameState mallet_over_a_bar() {
@@ -74,6 +80,35 @@ bool framebuffer_becomes(GLFWwindow* window, int w, int h) {
   return false;
 }
 
+//! What the X server shows in the window now, read back with XGetImage: the frames that
+//! were really presented, not the swapchain image we drew.
+Image what_the_window_shows(GLFWwindow* window) {
+  Display* display = glfwGetX11Display();
+  const ::Window xid = glfwGetX11Window(window);
+  XSync(display, False);
+  XWindowAttributes a;
+  XGetWindowAttributes(display, xid, &a);
+  XImage* x = XGetImage(display, xid, 0, 0, static_cast<unsigned>(a.width), static_cast<unsigned>(a.height),
+                        AllPlanes, ZPixmap);
+  Image out(a.width, a.height);
+  if (!x) return out;
+  auto channel = [](unsigned long pixel, unsigned long mask) {
+    int shift = 0;
+    while (mask && !(mask & 1)) mask >>= 1, ++shift;
+    return static_cast<std::uint8_t>((pixel >> shift) & mask);
+  };
+  for (int y = 0; y < a.height; ++y)
+    for (int i = 0; i < a.width; ++i) {
+      const unsigned long p = XGetPixel(x, i, y);
+      out.at(i, y)[0] = channel(p, x->red_mask);
+      out.at(i, y)[1] = channel(p, x->green_mask);
+      out.at(i, y)[2] = channel(p, x->blue_mask);
+      out.at(i, y)[3] = 255;
+    }
+  XDestroyImage(x);
+  return out;
+}
+
 void expect_matches(const Image& shot, const Image& expected) {
   const ImageDiff d = compare_images(shot, expected, 3);
   ASSERT_TRUE(d.same_size) << shot.width << "x" << shot.height << " vs " << expected.width << "x" << expected.height;
@@ -81,7 +116,7 @@ void expect_matches(const Image& shot, const Image& expected) {
 }
 
 void resize_and_check(VkSampleCountFlagBits samples) {
-  Window w(samples);
+  OpenWindow w(samples);
   const FrameState s = mallet_over_a_bar();
   Image shot;
   ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
@@ -96,7 +131,13 @@ void resize_and_check(VkSampleCountFlagBits samples) {
   EXPECT_GE(w.target->swapchain_recreations(), 1u);
   EXPECT_EQ(w.target->extent().width, 480u);
   EXPECT_EQ(w.target->extent().height, 300u);
-  expect_matches(shot, offscreen({480, 300}, samples));
+  const Image expected = offscreen({480, 300}, samples);
+  expect_matches(shot, expected);
+  // And the X window itself shows that frame, at its new size (the same state was drawn
+  // several times; vkDeviceWaitIdle, then the server is asked).
+  w.target->draw(*w.renderer, s);
+  vkDeviceWaitIdle(w.ctx->device());
+  expect_matches(what_the_window_shows(w.target->window()), expected);
   // Both sizes were drawn over the cached background, one build each.
   EXPECT_EQ(w.renderer->background_builds(), 2u);
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
@@ -107,7 +148,7 @@ TEST(WindowTarget, AResizedWindowGetsTheFramesOfItsNewSize) { resize_and_check(V
 TEST(WindowTarget, AResizedMultisampledWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_4_BIT); }
 
 TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
-  Window w(VK_SAMPLE_COUNT_1_BIT);
+  OpenWindow w(VK_SAMPLE_COUNT_1_BIT);
   const FrameState s = mallet_over_a_bar();
   ASSERT_TRUE(w.target->draw(*w.renderer, s));
   glfwHideWindow(w.target->window());  // what minimising does to an X11 window: it is unmapped
@@ -117,7 +158,11 @@ TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
   glfwPollEvents();
   Image shot;
   ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
-  expect_matches(shot, offscreen({320, 180}, VK_SAMPLE_COUNT_1_BIT));
+  const Image expected = offscreen({320, 180}, VK_SAMPLE_COUNT_1_BIT);
+  expect_matches(shot, expected);
+  w.target->draw(*w.renderer, s);
+  vkDeviceWaitIdle(w.ctx->device());
+  expect_matches(what_the_window_shows(w.target->window()), expected);
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
 }
 
