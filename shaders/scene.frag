@@ -35,6 +35,10 @@ float ggx(float n_dot_h, float roughness) {
 }
 
 void main() {
+  float visibility = draw.params.z > 0.5 ? sphere_visibility(world_position) : 1.0;
+  // Redrawn over the cached background: an unshadowed pixel is already there, as it is.
+  if (draw.params.z > 1.5 && visibility >= 1.0) discard;
+
   vec4 albedo = draw.base_color;
   if (draw.params.w > 0.5) albedo *= texture(base_color_texture, uv);
   float metallic = clamp(draw.params.x, 0.0, 1.0);
@@ -46,7 +50,6 @@ void main() {
   vec3 h = normalize(l + v);
   float n_dot_l = max(dot(n, l), 0.0);
   float n_dot_v = max(dot(n, v), 1e-4);
-  float visibility = draw.params.z > 0.5 ? sphere_visibility(world_position) : 1.0;
 
   vec3 f0 = mix(vec3(0.04), albedo.rgb, metallic);
   vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, v), 0.0), 5.0);

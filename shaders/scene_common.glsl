@@ -10,5 +10,6 @@ layout(set = 0, binding = 0) uniform Frame {
 layout(push_constant) uniform Draw {
   mat4 model;
   vec4 base_color;   // linear RGBA factor
-  vec4 params;       // x metallic, y roughness, z receives the sphere's shadow (0/1), w textured (0/1)
+  vec4 params;       // x metallic, y roughness, w textured (0/1); z the sphere's shadow: 0 not received,
+                     // 1 received, 2 received and only the pixels it darkens drawn (over the cached background)
 } draw;

@@ -119,12 +119,13 @@ void run(const std::filesystem::path& scene_file, int frames, const std::vector<
 
   for (const std::string& size_text : sizes) {
     const VkExtent2D size = parse_size(size_text, "--sizes");
-    auto make = [&](int msaa, bool shadow, VkExtent2D extent, bool background_cache = true) {
+    auto make = [&](int msaa, bool shadow, VkExtent2D extent, bool background_cache = true, int background_msaa = 1) {
       HeadlessOptions o;
       o.size = extent;
       o.settings.samples = samples_of(msaa);
       o.settings.shadow = shadow;
       o.settings.background_cache = background_cache;
+      o.settings.background_samples = samples_of(background_msaa);
       o.device = device;
       o.validation = render::Validation::off;
       o.cache_dir = tmp_cache;
@@ -146,6 +147,18 @@ void run(const std::filesystem::path& scene_file, int frames, const std::vector<
     {  // what the cached background saves: every frame draws every instrument
       auto r = make(1, true, size, false);
       Row row = time_frames(*r, state, frames, "scene + shadow, whole, no AA");
+      const render::ImageDiff d = render::compare_images(r->read_back(), reference, 3);
+      row.rms = d.rms;
+      row.differing = d.differing_fraction * 100;
+      rows.push_back(row);
+    }
+    for (int background_msaa : {2, 4, 8}) {  // antialiased once, per image size
+      auto r = make(1, true, size, true, background_msaa);
+      if (!render::supports_samples(r->context(), samples_of(background_msaa))) {
+        rows.push_back({"bg MSAA " + std::to_string(background_msaa) + "x: not offered", 0, 0});
+        continue;
+      }
+      Row row = time_frames(*r, state, frames, "scene + shadow, bg MSAA " + std::to_string(background_msaa) + "x");
       const render::ImageDiff d = render::compare_images(r->read_back(), reference, 3);
       row.rms = d.rms;
       row.differing = d.differing_fraction * 100;

@@ -71,7 +71,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   wo.title = "Mallet — " + o.input.filename().string();
   render::WindowTarget window(ctx, wo);
   render::RenderSettings rs = ho.settings;
-  if (ho.auto_samples) rs.samples = render::recommended_samples(ctx);
+  if (ho.auto_samples) render::use_recommended_antialiasing(ctx, rs);
   render::SceneRenderer renderer(ctx, scene, models_dir(), window.format(), rs, cache.get());
   std::printf("device: %s; window %ux%u\n", ctx.device_name().c_str(), window.extent().width, window.extent().height);
 
@@ -114,7 +114,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.msaa == "auto")
     ho.auto_samples = true;
   else
-    ho.settings.samples = sample_count(o.msaa);
+    ho.settings.samples = ho.settings.background_samples = sample_count(o.msaa);
   ho.settings.shadow = !o.no_shadow;
   ho.device = o.device;
 
@@ -195,7 +195,8 @@ void register_render(CLI::App& app) {
   (void)out_dir;
   cmd->add_option("--msaa", o->msaa,
                   "Antialiasing: MSAA samples 1, 2, 4 or 8 (as the device offers; lavapipe: 1, 4), or auto "
-                  "(what the kiosk uses: none on a CPU rasteriser, 4 on a GPU)")
+                  "(what the kiosk uses: on a CPU rasteriser 4 for the cached instruments and 1 for the mallet, "
+                  "4 on a GPU)")
       ->capture_default_str();
   cmd->add_flag("--no-shadow", o->no_shadow, "Leave out the mallet's cast shadow");
   cmd->add_option("--device", o->device, "Vulkan device to use (substring of its name)");

@@ -60,7 +60,11 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
 
 render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r) {
   render::RenderSettings rs;
-  rs.samples = r.msaa == "auto" ? render::recommended_samples(ctx) : static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  if (r.msaa == "auto") {
+    render::use_recommended_antialiasing(ctx, rs);
+  } else {
+    rs.samples = rs.background_samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  }
   rs.shadow = r.shadow;
   return rs;
 }
@@ -77,7 +81,7 @@ HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& op
   ctx_ = std::make_unique<render::Context>(co);
   cache_ = std::make_unique<render::PipelineCache>(*ctx_, options.cache_dir);
   render::RenderSettings settings = options.settings;
-  if (options.auto_samples) settings.samples = render::recommended_samples(*ctx_);
+  if (options.auto_samples) render::use_recommended_antialiasing(*ctx_, settings);
   renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene, models_dir(), render::OffscreenTarget::kFormat,
                                                       settings, cache_->get());
   target_ = std::make_unique<render::OffscreenTarget>(*ctx_, options.size);

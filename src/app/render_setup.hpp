@@ -29,7 +29,7 @@ VkExtent2D parse_size(const std::string& text, const std::string& option);
 struct HeadlessOptions {
   VkExtent2D size{1280, 720};
   render::RenderSettings settings;
-  bool auto_samples = false;          //!< replace settings.samples by render::recommended_samples
+  bool auto_samples = false;          //!< replace settings' samples by render::use_recommended_antialiasing
   std::string device;                 //!< substring of the Vulkan device name; empty = best
   render::Validation validation = validation_from_env();
   std::filesystem::path cache_dir = render::PipelineCache::default_dir();

@@ -77,7 +77,7 @@ struct AttractConfig {
 //! [render]: the screen. Values are names so the core stays free of Vulkan.
 struct RenderConfig {
   std::string present_mode = "fifo";  //!< fifo (vsync), mailbox or immediate; fifo where not offered
-  std::string msaa = "auto";          //!< auto (none on a CPU rasteriser, 4 on a GPU), 1, 2, 4 or 8
+  std::string msaa = "auto";          //!< auto (CPU rasteriser: 4 for the cached instruments, 1 per frame; GPU: 4), 1, 2, 4 or 8
   bool shadow = true;                 //!< the mallet's analytic cast shadow
   std::string device;                 //!< a part of the Vulkan device's name; empty = the best one
   int monitor = 0;                    //!< which monitor the fullscreen kiosk uses (GLFW's order)

@@ -6,10 +6,12 @@
 // (docs/bench-report/report.md); the values below were chosen from it.
 //
 //   knob                      fast      balanced  exact     why (numbers: docs/bench-report, lavapipe, 2 cores)
-//   render.msaa               "1"       "auto"    "4"       4x MSAA halves the image error against a supersampled
-//                                                           reference (RMS 1.77 → 0.85 /255 at 1080p) for 3.4x the
-//                                                           frame on a CPU rasteriser; "auto" = none on a CPU,
-//                                                           4x on a GPU, where it is cheap; fast never pays for it
+//   render.msaa               "1"       "auto"    "4"       image error against a supersampled reference (RMS /255
+//                                                           at 1080p): none 1.77; "auto" on a CPU rasteriser = 4x
+//                                                           MSAA for the cached instruments only (drawn once per
+//                                                           size), 0.90 at no cost per frame; on a GPU 4x for
+//                                                           everything, where it is cheap; "4": 0.85 for ≈10x the
+//                                                           frame on a CPU rasteriser; fast never pays for it
 //   render.shadow             true      true      true      the mallet's analytic shadow: no extra pass; its cost
 //                                                           was within the run-to-run noise (32.6 vs 32.7 ms per
 //                                                           1080p frame; RMS error 2.16 without, 1.77 with) and
@@ -42,8 +44,8 @@
 // renderer draws the static instruments once into a cached background and each frame only
 // copies it and draws the mallet and its shadow over it (1080p on lavapipe 16.0 → 2.8 ms,
 // 1.9x the clear + read-back floor, the same pixels), a lower resolution would buy ~1 ms for
-// that error: it is not a knob. On a CPU rasteriser "fast" is therefore "balanced"; on a GPU
-// it drops the 4x MSAA. What a preset never changes: which strikes happen, when and
+// that error: it is not a knob. On a CPU rasteriser "fast" differs from "balanced" only by
+// the background's antialiasing, paid once per image size; on a GPU it drops the 4x MSAA. What a preset never changes: which strikes happen, when and
 // how hard (the contact solver works on unfiltered samples and none of its settings is a
 // quality knob), the actuator's Eq. 1 signal (the re-seeded double rotator is within 1e-14
 // of the formula at ≈2.6 ns per sample, 10x cheaper than exp + sin per sample: no cheaper

@@ -75,10 +75,18 @@ VkSampleCountFlagBits recommended_samples(const Context& ctx) {
   return supports_samples(ctx, VK_SAMPLE_COUNT_4_BIT) ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
 }
 
+void use_recommended_antialiasing(const Context& ctx, RenderSettings& settings) {
+  settings.samples = recommended_samples(ctx);
+  settings.background_samples =
+      supports_samples(ctx, VK_SAMPLE_COUNT_4_BIT) ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+}
+
 SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::filesystem::path& models_dir,
                              VkFormat color_format, RenderSettings settings, VkPipelineCache cache)
     : ctx_(ctx), scene_(scene), color_format_(color_format), settings_(settings) {
   VkDevice dev = ctx.device();
+  if (settings.samples == VK_SAMPLE_COUNT_1_BIT && !supports_samples(ctx, settings.background_samples))
+    settings_.background_samples = VK_SAMPLE_COUNT_1_BIT;  // a nicety, not a demand: drawn as the frames are
   if (!supports_samples(ctx, settings.samples)) {
     std::string offered;
     for (int n = 1; n <= 64; n *= 2)
@@ -255,7 +263,8 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
   // it; drawing over the cached background only tests against it (it stays the cache).
   enum class Depth { none, test_and_write, test_only };
   auto build = [&](VkShaderModule vs, VkShaderModule fs, const VkPipelineVertexInputStateCreateInfo& input,
-                   Depth depth, bool blend, VkPipelineLayout layout, const char* what) {
+                   Depth depth, bool blend, VkPipelineLayout layout, const char* what,
+                   VkSampleCountFlagBits samples) {
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs,
                  "main", nullptr};
@@ -276,7 +285,7 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = settings_.samples;
+    ms.rasterizationSamples = samples;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     ds.depthTestEnable = depth != Depth::none ? VK_TRUE : VK_FALSE;
     ds.depthWriteEnable = depth == Depth::test_and_write ? VK_TRUE : VK_FALSE;
@@ -329,9 +338,13 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
                                              {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}});
     scene_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
-                            scene_pipeline_layout_.get(), "creating the scene pipeline");
+                            scene_pipeline_layout_.get(), "creating the scene pipeline", settings_.samples);
     over_background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_only, false,
-                                      scene_pipeline_layout_.get(), "creating the scene pipeline");
+                                      scene_pipeline_layout_.get(), "creating the scene pipeline", settings_.samples);
+    if (background_samples() != settings_.samples)
+      background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
+                                   scene_pipeline_layout_.get(), "creating the background pipeline",
+                                   background_samples());
   }
   {
     vk::ShaderModule vs = make_shader(dev, overlay_vert_spv), fs = make_shader(dev, overlay_frag_spv);
@@ -340,7 +353,7 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
                              {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
                              {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)}});
     overlay_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::none, true, overlay_pipeline_layout_.get(),
-                              "creating the overlay pipeline");
+                              "creating the overlay pipeline", settings_.samples);
   }
 }
 
@@ -356,6 +369,15 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
                              VK_IMAGE_ASPECT_COLOR_BIT);
   background_color_ = {};
   background_depth_ = {};
+  background_msaa_color_ = {};
+  background_msaa_depth_ = {};
+  if (settings_.background_cache && background_samples() != settings_.samples) {
+    // Drawn with more samples than the frames, then resolved into the 1-sample cache.
+    background_msaa_color_ = make_image(ctx_, extent, color_format_, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                        background_samples(), VK_IMAGE_ASPECT_COLOR_BIT);
+    background_msaa_depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                        background_samples(), VK_IMAGE_ASPECT_DEPTH_BIT);
+  }
   if (settings_.background_cache) {
     background_color_ = make_image(ctx_, extent, color_format_,
                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -387,7 +409,7 @@ std::size_t SceneRenderer::triangle_count() const {
   return n;
 }
 
-void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, bool receives_shadow) {
+void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow) {
   const GpuModel& model = models_.at(instance.model);
   const VkDeviceSize offset = 0;
   VkBuffer vb = model.vertices.buffer.get();
@@ -397,7 +419,7 @@ void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance,
     const GpuMaterial& m = model.materials.at(p.material);
     DrawConstants dc{instance.transform,
                      {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]},
-                     {m.metallic, m.roughness, receives_shadow ? 1.0f : 0.0f, m.textured ? 1.0f : 0.0f}};
+                     {m.metallic, m.roughness, static_cast<float>(shadow), m.textured ? 1.0f : 0.0f}};
     vkCmdPushConstants(cmd, scene_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                        0, sizeof(dc), &dc);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 1, 1, &m.set, 0,
@@ -453,6 +475,25 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot) {
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
+  const bool resolve = background_msaa_color_.image.get() != VK_NULL_HANDLE;
+  if (resolve) {  // drawn multisampled, resolved into the cache: colour averaged, depth of sample 0
+    transition(cmd, background_msaa_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    transition(cmd, background_msaa_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    color.imageView = background_msaa_color_.view.get();
+    color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    color.resolveImageView = background_color_.view.get();
+    color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    depth.imageView = background_msaa_depth_.view.get();
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // every device offers it
+    depth.resolveImageView = background_depth_.view.get();
+    depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  }
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, attachment_extent_};
   ri.layerCount = 1;
@@ -465,11 +506,12 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot) {
   VkRect2D scissor{{0, 0}, attachment_extent_};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    resolve ? background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
   // Unshadowed: wherever the sphere darkens them, the frame redraws them.
-  for (const Instance& i : instruments_) draw_instance(cmd, i, false);
+  for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::none);
   vkCmdEndRendering(cmd);
   // Every later frame copies the colour and tests against the depth; neither changes again.
   transition(cmd, background_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -589,13 +631,13 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                        {static_cast<std::uint32_t>(shadow.x1 - shadow.x0),
                         static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
-      for (const Instance& i : instruments_) draw_instance(cmd, i, true);
+      for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::only_shadowed_pixels);
       vkCmdSetScissor(cmd, 0, 1, &scissor);
     }
   } else if (state.draw_instruments) {
-    for (const Instance& i : instruments_) draw_instance(cmd, i, true);
+    for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives);
   }
-  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), false);
+  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), Shadow::none);
   if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);
   vkCmdEndRendering(cmd);
 
