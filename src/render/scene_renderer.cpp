@@ -163,9 +163,7 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   for (const Instance& i : instruments_) {
     const Box& b = models_.at(i.model).bounds;
     if (b.empty()) continue;
-    for (int corner = 0; corner < 8; ++corner)
-      instruments_box_.add(glm::dvec3(i.transform * glm::vec4(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y,
-                                                              corner & 4 ? b.hi.z : b.lo.z, 1.0f)));
+    for (int c = 0; c < 8; ++c) instruments_box_.add(glm::dvec3(i.transform * glm::vec4(glm::vec3(b.corner(c)), 1.0f)));
   }
 
   build_pipelines(cache);
@@ -340,7 +338,8 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     scene_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
                             scene_pipeline_layout_.get(), "creating the scene pipeline", settings_.samples);
     over_background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_only, false,
-                                      scene_pipeline_layout_.get(), "creating the scene pipeline", settings_.samples);
+                                      scene_pipeline_layout_.get(), "creating the over-background pipeline",
+                                      settings_.samples);
     if (background_samples() != settings_.samples)
       background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
                                    scene_pipeline_layout_.get(), "creating the background pipeline",

@@ -8,7 +8,8 @@
 // instruments only inside the rectangle the mallet's shadow can reach (shadow_bounds),
 // and draws the mallet over it, depth-tested against the cached depth: the same pixels as
 // drawing the whole scene (a test compares them), at a small part of the cost on a CPU
-// rasteriser (`mallet bench render`).
+// rasteriser (`mallet bench render`). The mallet is drawn there without writing depth (the
+// cache's), so its model must hide its own back by culling alone: convex, as the sphere is.
 //
 // Per frame the caller gives the displayed mallet centre (the contact solver's
 // displayed position plus the visual vibration evaluated at the frame's predicted

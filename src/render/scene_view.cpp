@@ -107,11 +107,7 @@ PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const
   // largest over its corners, so every such point is within R of the segment from the
   // centre to that depth: in the box around the segment's two ends grown by R.
   double along_max = 0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec3 c{corner & 1 ? receivers.hi.x : receivers.lo.x, corner & 2 ? receivers.hi.y : receivers.lo.y,
-                       corner & 4 ? receivers.hi.z : receivers.lo.z};
-    along_max = std::max(along_max, glm::dot(s.centre - c, s.to_light));
-  }
+  for (int i = 0; i < 8; ++i) along_max = std::max(along_max, glm::dot(s.centre - receivers.corner(i), s.to_light));
   if (along_max <= 0) return {};
   const double reach = s.radius + std::max(along_max * s.tan_radius, 1e-5) + 1e-6;
   const glm::dvec3 end = s.centre - along_max * s.to_light;
@@ -121,10 +117,8 @@ PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const
   if (region.empty()) return {};
 
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(corner & 1 ? region.hi.x : region.lo.x,
-                                                                corner & 2 ? region.hi.y : region.lo.y,
-                                                                corner & 4 ? region.hi.z : region.lo.z, 1.0);
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(region.corner(i), 1.0);
     if (clip.w <= 1e-9) return {0, 0, width, height};  // reaches behind the eye
     const double x = (clip.x / clip.w + 1) / 2 * width, y = (clip.y / clip.w + 1) / 2 * height;
     x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);

@@ -48,6 +48,8 @@ struct Box {
     hi = glm::max(hi, p);
   }
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  //! Corner i (0..7): bit 0 picks x from hi, bit 1 y, bit 2 z.
+  glm::dvec3 corner(int i) const { return {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z}; }
 };
 
 //! The pixels [x0, x1) × [y0, y1) of an image.
