@@ -17,9 +17,11 @@
 //                                                           1080p frame; RMS error 2.16 without, 1.77 with) and
 //                                                           it is the only depth cue: off in no preset (the
 //                                                           knob stays)
-//   render.present_mode       "fifo"    "fifo"    "fifo"    mailbox only helps when a frame takes far less than a
-//                                                           refresh; at lavapipe's 11–33 ms per 1080p frame its
-//                                                           worst case is longer than fifo's (bench report: frame model)
+//   render.present_mode       "fifo"    "fifo"    "fifo"    with lavapipe's 2.4–3.5 ms per 1080p frame mailbox would
+//                                                           show a strike sooner (model at 60 Hz: 13.5 ms mean vs
+//                                                           25), but it draws without pause, ~300 frames a second,
+//                                                           on the cores the audio and the pointer share; the bounce's
+//                                                           phase is right in either (Eq. 1 at the present time)
 //   audio.frames_per_buffer   64        64        64        the engine's cost per frame stops falling at 64 (16
 //                                                           frames: 1.3–2x it; 128 and up: the same within the
 //                                                           noise), while the wait for the next callback doubles
