@@ -29,6 +29,7 @@ void CalibrationScreen::frame(const IrFrame& f) {
     case TunerStep::next_preset: request_ = std::string(tuner_->preset()); return;
     case TunerStep::chosen:
       sensitivity_ = std::string(*tuner_->chosen());
+      sensitivity_chosen_ = true;
       tuner_note_ = "IR sensitivity: " + sensitivity_;
       break;
     case TunerStep::failed: {
@@ -70,6 +71,7 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
 
 void CalibrationScreen::accept() {
   result_ = session_.calibration(remote_, utc_timestamp_now());
+  if (sensitivity_chosen_) result_->ir_sensitivity = sensitivity_;  // kept with it: restored at start-up
   const auto& fit = session_.last_fit();
   char buf[160];
   std::snprintf(buf, sizeof buf, "Calibrated: reprojection error %.1f px rms, %.1f px max", fit ? fit->rms_px : 0.0,

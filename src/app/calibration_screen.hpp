@@ -75,6 +75,7 @@ class CalibrationScreen {
   std::string last_round_;  //!< the last rejected round's errors, shown while repeating
   std::optional<SensitivityTuner> tuner_;
   std::string configured_, sensitivity_, tuner_note_;
+  bool sensitivity_chosen_ = false;  //!< the tuner found one (not: kept the configured one)
   std::optional<std::string> request_;
   bool dot_seen_ = false;
 };

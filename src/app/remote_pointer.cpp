@@ -2,7 +2,21 @@
 
 #include <cmath>
 
+#include "core/ir_camera_settings.hpp"
+
 namespace mallet::app {
+
+std::string kiosk_sensitivity(const AppConfig& config, const std::optional<Calibration>& calibration) {
+  return calibration && !calibration->ir_sensitivity.empty() ? calibration->ir_sensitivity
+                                                             : config.wiimote.sensitivity;
+}
+
+input::wiimote::WiimoteDeviceConfig kiosk_device_config(const AppConfig& config,
+                                                        const std::optional<Calibration>& calibration) {
+  input::wiimote::WiimoteDeviceConfig dc = input::wiimote::device_config(config);
+  if (const auto preset = find_sensitivity(kiosk_sensitivity(config, calibration))) dc.ir.sensitivity = *preset;
+  return dc;
+}
 
 RemotePointer::RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine)
     : scene_(scene), engine_(engine), loop_(scene, config), filter_(config.pointer) {

@@ -35,6 +35,14 @@
 
 namespace mallet::app {
 
+//! The IR camera sensitivity the kiosk starts with: the one its calibration screen chose
+//! and saved with the calibration, else the settings file's [wiimote] sensitivity.
+std::string kiosk_sensitivity(const AppConfig& config, const std::optional<Calibration>& calibration);
+
+//! The kiosk's remote: the settings' device config, with kiosk_sensitivity().
+input::wiimote::WiimoteDeviceConfig kiosk_device_config(const AppConfig& config,
+                                                        const std::optional<Calibration>& calibration);
+
 //! One LED sample as the main thread sees it.
 struct RemoteSample {
   Nanos t_ns = 0;

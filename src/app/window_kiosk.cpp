@@ -218,7 +218,9 @@ void WindowKiosk::choose_input(Stage& stage) {
   }
   stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine);
   stage.remote->set_calibration(stage.calibration);
-  input::wiimote::WiimoteDeviceConfig dc = input::wiimote::device_config(stage.config);
+  input::wiimote::WiimoteDeviceConfig dc = kiosk_device_config(stage.config, stage.calibration);
+  if (stage.calibration && !stage.calibration->ir_sensitivity.empty())
+    stage.calibration_status_sensitivity = "IR sensitivity " + stage.calibration->ir_sensitivity + " (saved with it)";
   dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
   if (stage.replay) dc.device.clear();  // the recording is the only device
   stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
@@ -290,7 +292,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     // Abandoned (the operator chord): the previous calibration stays, and so does the
     // configured sensitivity if the tuner was trying another.
     if (calibration_ && calibration_->tuning() && stage_->device)
-      stage_->device->request_sensitivity(stage_->config.wiimote.sensitivity);
+      stage_->device->request_sensitivity(kiosk_sensitivity(stage_->config, stage_->calibration));
     calibration_.reset();
     return;
   }
@@ -303,7 +305,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     calibration_ = std::make_unique<CalibrationScreen>(
         cc, save ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
         remote ? remote_identity(stage_->device->state().device) : std::string("mouse"));
-    if (remote) calibration_->tune_sensitivity({}, stage_->config.wiimote.sensitivity);
+    if (remote) calibration_->tune_sensitivity({}, kiosk_sensitivity(stage_->config, stage_->calibration));
   }
   // The mouse stands in for the IR dot while it is the input.
   if (stage_->source == InputSource::mouse && mouse_screen) {

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/config/toml_reader.hpp"
+#include "core/ir_camera_settings.hpp"
 
 namespace mallet {
 
@@ -29,6 +30,8 @@ std::optional<std::pair<std::string, std::string>> problem_of(const Calibration&
   if (!(c.screen.height_px > 0 && std::isfinite(c.screen.height_px)))
     return std::pair{std::string("screen_height_px"), std::string("must be > 0")};
   if (c.points < 4) return std::pair{std::string("points"), std::string("must be >= 4 (a homography needs 4 points)")};
+  if (!c.ir_sensitivity.empty() && !find_sensitivity(c.ir_sensitivity))
+    return std::pair{std::string("ir_sensitivity"), "unknown preset (known: " + sensitivity_names() + ")"};
   const std::pair<const char*, double> errors[] = {{"rms_error_screen_px", c.rms_error_screen_px},
                                                    {"max_error_screen_px", c.max_error_screen_px},
                                                    {"rms_error_camera_px", c.rms_error_camera_px},
@@ -110,6 +113,9 @@ Calibration read(const toml::table& root, const std::string& name) {
   c.created_utc = top.string_or("created_utc", "");
   c.created_by = top.string_or("created_by", "");
   c.remote = top.string_or("remote", "");
+  c.ir_sensitivity = top.string_or("ir_sensitivity", "");
+  if (!c.ir_sensitivity.empty() && !find_sensitivity(c.ir_sensitivity))
+    top.fail("ir_sensitivity", "unknown preset \"" + c.ir_sensitivity + "\" (known: " + sensitivity_names() + ")");
   config::TableReader t = top.table("camera_to_screen");
   const std::vector<double> m = t.numbers("matrix");
   if (m.size() != 9)
@@ -151,6 +157,8 @@ std::string format_calibration(const Calibration& c) {
   out += "created_utc = " + toml_string(c.created_utc) + "\n";
   out += "created_by = " + toml_string(c.created_by) + "\n";
   if (!c.remote.empty()) out += "remote = " + toml_string(c.remote) + "  # the Wii Remote it was made with\n";
+  if (!c.ir_sensitivity.empty())
+    out += "ir_sensitivity = " + toml_string(c.ir_sensitivity) + "  # the IR camera sensitivity chosen with it\n";
   out += "\n[camera_to_screen]\n";
   out += "# row-major 3x3 homography, camera pixels -> normalised screen\n";
   out += "matrix = [\n";

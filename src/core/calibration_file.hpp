@@ -9,6 +9,8 @@
 //   created_utc = "2025-05-01T09:30:00Z"
 //   created_by = "mallet calibrate fit (from points.csv)"
 //   remote = "00:1f:32:aa:bb:cc"          # optional: the Wii Remote it was made with
+//   ir_sensitivity = "wii1"               # optional: the IR camera sensitivity the kiosk's
+//                                         # calibration screen chose (a kSensitivityPresets name)
 //
 //   [camera_to_screen]
 //   matrix = [ 1.2e-03, 0.0, -0.1,       # row-major 3×3 H:
@@ -42,6 +44,7 @@ struct Calibration {
   double rms_error_camera_px = 0.0;
   double max_error_camera_px = 0.0;
   std::string remote;      //!< the Wii Remote's identity (e.g. its address); empty = unknown
+  std::string ir_sensitivity;  //!< the camera sensitivity chosen with it; empty = the configured one
   std::string created_utc; //!< ISO 8601, e.g. 2025-05-01T09:30:00Z
   std::string created_by;  //!< what made it, e.g. "mallet calibrate fit (from points.csv)"
 };

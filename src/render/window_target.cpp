@@ -102,8 +102,7 @@ std::pair<int, int> WindowTarget::framebuffer_size() const {
 bool WindowTarget::framebuffer_visible() const {
   // Minimised: iconified, or on X11 unmapped (hidden); elsewhere a 0×0 framebuffer.
   if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED) || !glfwGetWindowAttrib(window_, GLFW_VISIBLE)) return false;
-  int w = 0, h = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
+  const auto [w, h] = framebuffer_size();
   return w > 0 && h > 0;
 }
 

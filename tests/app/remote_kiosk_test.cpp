@@ -134,7 +134,22 @@ TEST(RemoteKiosk, TheScreenFirstPicksTheSensitivityThatShowsOneCleanDot) {
   EXPECT_EQ(screen.sensitivity(), "wii1");  // the least sensitive that is clean
   EXPECT_EQ(requested, (std::vector<std::string>{"wii1", "wii1"}));  // tried, then kept
   ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
-  EXPECT_EQ(load_calibration(dir / "calibration.toml").points, 9);
+  const Calibration saved = load_calibration(dir / "calibration.toml");
+  EXPECT_EQ(saved.points, 9);
+  // Saved with the calibration, so the kiosk starts with it after a restart.
+  EXPECT_EQ(saved.ir_sensitivity, "wii1");
+  EXPECT_EQ(kiosk_sensitivity(rig.config, saved), "wii1");
+  EXPECT_EQ(kiosk_device_config(rig.config, saved).ir.sensitivity.name, "wii1");
+}
+
+TEST(RemoteKiosk, WithoutAChosenSensitivityTheKioskStartsWithTheConfiguredOne) {
+  AppConfig config;
+  config.wiimote.sensitivity = "marcan";
+  EXPECT_EQ(kiosk_device_config(config, std::nullopt).ir.sensitivity.name, "marcan");
+  Calibration c;
+  EXPECT_EQ(kiosk_device_config(config, c).ir.sensitivity.name, "marcan");
+  c.ir_sensitivity = "max";
+  EXPECT_EQ(kiosk_device_config(config, c).ir.sensitivity.name, "max");
 }
 
 TEST(RemoteKiosk, WithTwoDotsNoSensitivityIsCleanAndTheConfiguredOneIsPutBack) {
@@ -154,6 +169,13 @@ TEST(RemoteKiosk, WithTwoDotsNoSensitivityIsCleanAndTheConfiguredOneIsPutBack) {
   ASSERT_FALSE(requested.empty());
   EXPECT_EQ(requested.back(), "wii3");
   EXPECT_EQ(requested.size(), kSensitivityPresets.size() + 1);
+  // The targets, with the mouse's kind of input (no device): what is kept has no sensitivity
+  // of its own, so the configured one stays the kiosk's after a restart.
+  Nanos t = 100 * kNanosPerSecond;
+  for (const Vec2 target : screen.session().targets())
+    for (int i = 0; i < 150; ++i) screen.feed(t += 10'000'000, camera_of(target));
+  ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
+  EXPECT_EQ(screen.result()->ir_sensitivity, "");
 }
 
 TEST(RemoteKiosk, ThePreviousCalibrationStaysUntilTheNewOneIsAccepted) {

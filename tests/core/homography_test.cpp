@@ -452,5 +452,21 @@ TEST(CalibrationFile, MalformedFilesNameFileLineAndKey) {
   EXPECT_EQ(std::string(bad.what()).rfind((dir / "bad.toml").string() + ":13:", 0), 0u) << bad.what();
 }
 
+TEST(CalibrationFile, TheSensitivityChosenWithItIsKeptAndCheckedIfThere) {
+  Calibration c = sample_calibration();
+  EXPECT_EQ(format_calibration(c).find("ir_sensitivity"), std::string::npos);  // none chosen: not written
+  EXPECT_EQ(parse_calibration(format_calibration(c), "c.toml").ir_sensitivity, "");
+  c.ir_sensitivity = "wii1";
+  EXPECT_EQ(parse_calibration(format_calibration(c), "c.toml").ir_sensitivity, "wii1");
+  const FileError e = file_error_of(
+      [&] { parse_calibration(replaced(format_calibration(c), "\"wii1\"", "\"wii9\""), "c.toml"); });
+  EXPECT_EQ(e.file(), "c.toml");
+  EXPECT_GT(e.line(), 1u);
+  EXPECT_NE(std::string(e.what()).find("ir_sensitivity: unknown preset \"wii9\" (known: "), std::string::npos)
+      << e.what();
+  c.ir_sensitivity = "loud";
+  EXPECT_THROW(write_calibration_file(test::scratch_dir() / "c.toml", c), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace mallet
