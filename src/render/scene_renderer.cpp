@@ -370,13 +370,7 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   background_depth_ = {};
   background_msaa_color_ = {};
   background_msaa_depth_ = {};
-  if (settings_.background_cache && background_samples() != settings_.samples) {
-    // Drawn with more samples than the frames, then resolved into the 1-sample cache.
-    background_msaa_color_ = make_image(ctx_, extent, color_format_, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
-                                        background_samples(), VK_IMAGE_ASPECT_COLOR_BIT);
-    background_msaa_depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                        background_samples(), VK_IMAGE_ASPECT_DEPTH_BIT);
-  }
+  background_scratch_slot_.reset();
   if (settings_.background_cache) {
     background_color_ = make_image(ctx_, extent, color_format_,
                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -452,7 +446,18 @@ void SceneRenderer::draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Sl
   vkCmdDrawIndexed(cmd, static_cast<std::uint32_t>(overlay.indices().size()), 1, 0, 0, 0);
 }
 
-void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot) {
+void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index) {
+  const bool resolve = background_samples() != settings_.samples;
+  if (resolve) {
+    // Drawn with more samples than the frames, then resolved into the 1-sample cache; these
+    // images are freed once this frame is done (record(), the next time this slot comes).
+    background_msaa_color_ = make_image(ctx_, attachment_extent_, color_format_, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+                                        background_samples(), VK_IMAGE_ASPECT_COLOR_BIT);
+    background_msaa_depth_ = make_image(ctx_, attachment_extent_, kDepthFormat,
+                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, background_samples(),
+                                        VK_IMAGE_ASPECT_DEPTH_BIT);
+    background_scratch_slot_ = slot_index;
+  }
   const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
@@ -474,7 +479,6 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot) {
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
-  const bool resolve = background_msaa_color_.image.get() != VK_NULL_HANDLE;
   if (resolve) {  // drawn multisampled, resolved into the cache: colour averaged, depth of sample 0
     transition(cmd, background_msaa_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage,
@@ -527,6 +531,11 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
   ensure_attachments(extent);
   if (state.overlay && !state.overlay->indices().empty()) ensure_atlas(state.overlay->atlas());
   Slot& slot = slots_.at(slot_index);
+  if (background_scratch_slot_ == slot_index) {  // the frame that drew the background is done
+    background_msaa_color_ = {};
+    background_msaa_depth_ = {};
+    background_scratch_slot_.reset();
+  }
 
   FrameUniform u;
   u.view_proj = view_proj_;
@@ -543,7 +552,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
   const bool over_background =
       settings_.background_cache && state.draw_instruments && (msaa || target.copy_destination);
   if (over_background && !background_ready_) {
-    record_background(cmd, slot);
+    record_background(cmd, slot, slot_index);
     background_ready_ = true;
     ++background_builds_;
   }

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -131,7 +132,7 @@ class SceneRenderer {
   void build_pipelines(VkPipelineCache cache);
   void ensure_attachments(VkExtent2D extent);
   void ensure_atlas(const FontAtlas& atlas);
-  void record_background(VkCommandBuffer cmd, const Slot& slot);
+  void record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index);
   //! The shader's params.z: whether a draw receives the sphere's shadow, and whether it is
   //! the redraw over the cached background, which keeps only the pixels the shadow darkens.
   enum class Shadow { none = 0, receives = 1, only_shadowed_pixels = 2 };
@@ -164,6 +165,7 @@ class SceneRenderer {
   Box instruments_box_;                         //!< world bounds of everything that receives the shadow
   GpuImage background_color_, background_depth_;  //!< the instruments alone, at attachment_extent_
   GpuImage background_msaa_color_, background_msaa_depth_;  //!< drawn into, then resolved (background_samples)
+  std::optional<std::uint32_t> background_scratch_slot_;   //!< the slot of the frame that drew them
   bool background_ready_ = false;
   std::uint64_t background_builds_ = 0;
   const FontAtlas* atlas_source_ = nullptr;

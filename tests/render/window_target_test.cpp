@@ -43,6 +43,7 @@ struct OpenWindow {
     cache = std::make_unique<PipelineCache>(*ctx, "");
     RenderSettings rs;
     rs.samples = samples;
+    rs.background_samples = VK_SAMPLE_COUNT_4_BIT;  // with 1 sample per frame: what the kiosk does on lavapipe
     renderer = std::make_unique<SceneRenderer>(*ctx, test::percussion(), app::models_dir(), target->format(), rs,
                                                cache->get());
   }
@@ -61,6 +62,7 @@ Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples) {
   app::HeadlessOptions o;
   o.size = size;
   o.settings.samples = samples;
+  o.settings.background_samples = VK_SAMPLE_COUNT_4_BIT;
   o.device = "llvmpipe";
   o.validation = Validation::required;
   o.cache_dir = "";
