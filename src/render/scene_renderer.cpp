@@ -63,6 +63,23 @@ struct VertexInput {
   VertexInput(const VertexInput&) = delete;
 };
 
+//! Begins rendering into `color` and `depth` over all of `extent`, the viewport and the
+//! scissor set to it.
+void begin_rendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
+                     const VkRenderingAttachmentInfo& depth, VkExtent2D extent) {
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &color;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  const VkViewport viewport{0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
 }  // namespace
 
 bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples) {
@@ -461,12 +478,16 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
   const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  transition(cmd, background_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-             VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, color_stage,
-             VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  transition(cmd, background_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
-             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  // New images (made with the size, or just above): nothing to keep, nothing to wait for.
+  auto to_attachments = [&](const GpuImage& c, const GpuImage& d) {
+    transition(cmd, c.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    transition(cmd, d.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  };
+  to_attachments(background_color_, background_depth_);
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   color.imageView = background_color_.view.get();
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -480,12 +501,7 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
   if (resolve) {  // drawn multisampled, resolved into the cache: colour averaged, depth of sample 0
-    transition(cmd, background_msaa_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage,
-               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    transition(cmd, background_msaa_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
-               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    to_attachments(background_msaa_color_, background_msaa_depth_);
     color.imageView = background_msaa_color_.view.get();
     color.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
@@ -497,18 +513,7 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
     depth.resolveImageView = background_depth_.view.get();
     depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   }
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, attachment_extent_};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &color;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  VkViewport viewport{0, 0, static_cast<float>(attachment_extent_.width),
-                      static_cast<float>(attachment_extent_.height), 0, 1};
-  VkRect2D scissor{{0, 0}, attachment_extent_};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  begin_rendering(cmd, color, depth, attachment_extent_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     resolve ? background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
@@ -610,18 +615,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth.clearValue.depthStencil = {1.0f, 0};
   }
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &color;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-
-  VkViewport viewport{0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1};
-  VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  begin_rendering(cmd, color, depth, extent);
+  const VkRect2D whole{{0, 0}, extent};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     over_background ? over_background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
@@ -640,7 +635,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                         static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
       for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::only_shadowed_pixels);
-      vkCmdSetScissor(cmd, 0, 1, &scissor);
+      vkCmdSetScissor(cmd, 0, 1, &whole);
     }
   } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives);
