@@ -74,6 +74,17 @@ std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
                                              std::max(14.0f, static_cast<float>(extent.height) / 24.0f));
 }
 
+ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
+                             const std::string& title)
+    : ctx(make_window_context(device.empty() ? r.device : device)),
+      cache(std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir())) {
+  render::WindowOptions wo = window_options(r, size, windowed);
+  wo.title = title;
+  window = std::make_unique<render::WindowTarget>(*ctx, wo);
+  font = overlay_font(window->extent());
+  overlay = std::make_unique<render::Overlay>(*font);
+}
+
 HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& options) {
   render::ContextOptions co;
   co.validation = options.validation;

@@ -12,6 +12,7 @@
 #include "core/scene.hpp"
 #include "render/font_atlas.hpp"
 #include "render/offscreen_target.hpp"
+#include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/vk_context.hpp"
@@ -73,5 +74,21 @@ render::RenderSettings render_settings(const render::Context& ctx, const RenderC
 
 //! The overlay's font, sized for a window of this height (a 24th of it, at least 14 px).
 std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent);
+
+//! A window of the product (the kiosk's, the study's), made from the [render] settings in
+//! the order its parts need and unmade in reverse: GLFW, a Vulkan context that presents
+//! (`device`, else [render] device), the persisted pipeline cache, the window (see
+//! window_options), the overlay's font and the overlay. A renderer drawing into it must be
+//! destroyed before it.
+struct ProductWindow {
+  ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
+                const std::string& title);
+  render::WindowSystem glfw;
+  std::unique_ptr<render::Context> ctx;
+  std::unique_ptr<render::PipelineCache> cache;
+  std::unique_ptr<render::WindowTarget> window;
+  std::unique_ptr<render::FontAtlas> font;
+  std::unique_ptr<render::Overlay> overlay;
+};
 
 }  // namespace mallet::app

@@ -47,21 +47,15 @@ class StudyWindow final : public StudyStage, public AnswerSource {
   StudyWindow(const StudyPlan& plan, const Scene& scene, const StudyWindowOptions& o)
       : plan_(plan), scene_(scene), loop_(scene, plan.config),
         meter_(scene, plan.config, HeadlessLoop::kNoAttract, false), keys_(answer_keys(plan.protocol)),
-        prompt_(answer_prompt(plan.protocol)) {
+        prompt_(answer_prompt(plan.protocol)),
+        win_(plan.config.render, o.device, o.size, o.windowed, "Mallet study") {
     const AppConfig& c = plan.config;
-    ctx_ = make_window_context(o.device.empty() ? c.render.device : o.device);
-    cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
-    render::WindowOptions wo = window_options(c.render, o.size, o.windowed);
-    wo.title = "Mallet study";
-    window_ = std::make_unique<render::WindowTarget>(*ctx_, wo);
-    glfwSetWindowUserPointer(window_->window(), this);
-    glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int) {
+    glfwSetWindowUserPointer(win_.window->window(), this);
+    glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int) {
       if (action == GLFW_PRESS) static_cast<StudyWindow*>(glfwGetWindowUserPointer(w))->pressed_.push_back({key, monotonic_now()});
     });
-    font_ = overlay_font(window_->extent());
-    overlay_ = std::make_unique<render::Overlay>(*font_);
-    renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene_, models_dir(), window_->format(),
-                                                        render_settings(*ctx_, c.render), cache_->get());
+    renderer_ = std::make_unique<render::SceneRenderer>(*win_.ctx, scene_, models_dir(), win_.window->format(),
+                                                        render_settings(*win_.ctx, c.render), win_.cache->get());
     rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz, plan.protocol.sound);
     output_ = start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
     rig_.engine->set_acoustic_volume(c.audio.volume);
@@ -76,17 +70,17 @@ class StudyWindow final : public StudyStage, public AnswerSource {
       for (std::size_t i = static_cast<std::size_t>(actuator); i < block.size(); i += channels)
         peak_ = std::max(peak_, static_cast<double>(std::fabs(block[i])));
     };
-    std::fprintf(stderr, "<6>mallet study: %s, %ux%u, %s\n", ctx_->device_name().c_str(), window_->extent().width,
-                 window_->extent().height, audio_status_.c_str());
+    std::fprintf(stderr, "<6>mallet study: %s, %ux%u, %s\n", win_.ctx->device_name().c_str(),
+                 win_.window->extent().width, win_.window->extent().height, audio_status_.c_str());
   }
 
   ~StudyWindow() override {
-    vkDeviceWaitIdle(ctx_->device());
+    vkDeviceWaitIdle(win_.ctx->device());
     if (output_) output_->stop();
   }
 
   bool quit() const { return quit_; }
-  std::uint64_t validation_messages() const { return ctx_->validation_messages(); }
+  std::uint64_t validation_messages() const { return win_.ctx->validation_messages(); }
 
   // --- StudyStage
   Nanos now() override { return monotonic_now(); }
@@ -164,24 +158,25 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     const Nanos now = monotonic_now();
     for (const Press& p : pressed_)
       if (p.key == GLFW_KEY_ESCAPE || p.key == GLFW_KEY_Q) quit_ = true;
-    if (window_->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;
+    if (win_.window->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;
     if (g_stop.load()) quit_ = true;
     if (quit_) {
       if (!thanking_)
         std::fprintf(stderr, "<5>mallet study: stopped by the participant after %d trial(s) shown\n", trials_shown_);
       return false;
     }
-    render::Overlay& o = *overlay_;
+    render::Overlay& o = *win_.overlay;
     o.clear();
-    const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
-    const float px = font_->pixel_height();
+    const VkExtent2D extent = win_.window->extent();
+    const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
+    const float px = win_.font->pixel_height();
     if (!banner_.empty()) draw_banner(o, banner_, w, h);
     if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
     render::FrameState state;
-    const Nanos present = window_->predicted_present(now);
+    const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = loop_.view(hand_).displayed(present);
-    state.overlay = overlay_.get();
-    window_->draw(*renderer_, state);
+    state.overlay = win_.overlay.get();
+    win_.window->draw(*renderer_, state);
     return true;
   }
 
@@ -191,12 +186,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
   HeadlessLoop meter_;
   std::vector<AnswerKey> keys_;
   std::string prompt_;
-  render::WindowSystem glfw_;
-  std::unique_ptr<render::Context> ctx_;
-  std::unique_ptr<render::PipelineCache> cache_;
-  std::unique_ptr<render::WindowTarget> window_;
-  std::unique_ptr<render::FontAtlas> font_;
-  std::unique_ptr<render::Overlay> overlay_;
+  ProductWindow win_;
   std::unique_ptr<render::SceneRenderer> renderer_;
   AudioRig rig_;
   std::unique_ptr<audio::PortAudioOutput> output_;

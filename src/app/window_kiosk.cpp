@@ -97,12 +97,7 @@ class WindowKiosk {
   std::string input_line() const;
 
   KioskOptions options_;
-  render::WindowSystem glfw_;
-  std::unique_ptr<render::Context> ctx_;
-  std::unique_ptr<render::PipelineCache> cache_;
-  std::unique_ptr<render::WindowTarget> window_;
-  std::unique_ptr<render::FontAtlas> font_;
-  std::unique_ptr<render::Overlay> overlay_;
+  ProductWindow win_;
   // The stage goes before the states and ghost that refer to its scene.
   std::unique_ptr<Stage> stage_;
   std::unique_ptr<KioskStates> states_;
@@ -122,23 +117,19 @@ class WindowKiosk {
   std::uint64_t strikes_ = 0, callbacks_at_beat_ = 0;
 };
 
-WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup) : options_(o) {
-  ctx_ = make_window_context(o.device.empty() ? setup.config.render.device : o.device);
-  cache_ = std::make_unique<render::PipelineCache>(*ctx_, render::PipelineCache::default_dir());
-  window_ = std::make_unique<render::WindowTarget>(*ctx_, window_options(setup.config.render, o.size, o.windowed));
-  glfwSetWindowUserPointer(window_->window(), this);
-  glfwSetKeyCallback(window_->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
+WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
+    : options_(o), win_(setup.config.render, o.device, o.size, o.windowed, "Mallet") {
+  glfwSetWindowUserPointer(win_.window->window(), this);
+  glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
     if (action == GLFW_PRESS || action == GLFW_REPEAT)
       static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
   });
-  font_ = overlay_font(window_->extent());
-  overlay_ = std::make_unique<render::Overlay>(*font_);
   started_ = monotonic_now();
   volume_ = setup.config.audio.volume;
   gain_ = setup.config.actuator.gain;
   build(std::move(setup));
-  std::fprintf(stderr, "<6>mallet run: %s, %ux%u, %s\n", ctx_->device_name().c_str(), window_->extent().width,
-               window_->extent().height, stage_->audio_status.c_str());
+  std::fprintf(stderr, "<6>mallet run: %s, %ux%u, %s\n", win_.ctx->device_name().c_str(),
+               win_.window->extent().width, win_.window->extent().height, stage_->audio_status.c_str());
 }
 
 void WindowKiosk::build(KioskSetup setup) {
@@ -146,8 +137,9 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->config = std::move(setup.config);
   stage->scene = std::move(setup.scene);
   const AppConfig& c = stage->config;
-  stage->renderer = std::make_unique<render::SceneRenderer>(*ctx_, stage->scene, models_dir(), window_->format(),
-                                                            render_settings(*ctx_, c.render), cache_->get());
+  stage->renderer = std::make_unique<render::SceneRenderer>(*win_.ctx, stage->scene, models_dir(),
+                                                            win_.window->format(), render_settings(*win_.ctx, c.render),
+                                                            win_.cache->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
   choose_input(*stage);  // a bad replay file throws here, before anything running is touched
@@ -298,7 +290,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   }
   if (!calibration_) {
     CalibrationSessionConfig cc;
-    cc.screen = {static_cast<double>(window_->extent().width), static_cast<double>(window_->extent().height)};
+    cc.screen = {static_cast<double>(win_.window->extent().width), static_cast<double>(win_.window->extent().height)};
     const bool remote = stage_->device != nullptr;
     // A replay calibrates in memory only: the file belongs to the real remote.
     const bool save = stage_->source == InputSource::wiimote;
@@ -398,7 +390,7 @@ void WindowKiosk::reload() {
     return;
   }
   try {
-    vkDeviceWaitIdle(ctx_->device());
+    vkDeviceWaitIdle(win_.ctx->device());
     volume_ = setup->config.audio.volume;
     gain_ = setup->config.actuator.gain;
     build(std::move(*setup));
@@ -446,10 +438,11 @@ void WindowKiosk::strike(const Impact& impact) {
 }
 
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
-  render::Overlay& o = *overlay_;
+  render::Overlay& o = *win_.overlay;
   o.clear();
-  const float w = static_cast<float>(window_->extent().width), h = static_cast<float>(window_->extent().height);
-  const float px = font_->pixel_height();
+  const VkExtent2D extent = win_.window->extent();
+  const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
+  const float px = win_.font->pixel_height();
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
   if (const KioskHint hint = states_->hint(); hint != KioskHint::none) draw_banner(o, hint_text(hint), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
@@ -503,8 +496,8 @@ int WindowKiosk::run() {
       notifier_.ready();
     }
     handle_keys(now);
-    if (window_->close_requested()) {
-      glfwSetWindowShouldClose(window_->window(), GLFW_FALSE);
+    if (win_.window->close_requested()) {
+      glfwSetWindowShouldClose(win_.window->window(), GLFW_FALSE);
       if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes from the page
       states_->window_close_requested(now);
     }
@@ -512,8 +505,8 @@ int WindowKiosk::run() {
 
     double x = 0, y = 0;
     int w = 1, h = 1;
-    glfwGetCursorPos(window_->window(), &x, &y);
-    glfwGetWindowSize(window_->window(), &w, &h);
+    glfwGetCursorPos(win_.window->window(), &x, &y);
+    glfwGetWindowSize(win_.window->window(), &w, &h);
     const bool moved = last_x >= 0 && (x != last_x || y != last_y);
     last_x = x;
     last_y = y;
@@ -555,23 +548,24 @@ int WindowKiosk::run() {
 
     draw_overlay(now, frame_ms);
     render::FrameState state;
-    const Nanos present = window_->predicted_present(now);
+    const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = !mouse && states_->visitor_plays() ? stage_->remote->view().displayed(present)
                                                              : stage_->loop->displayed(present);
-    state.overlay = overlay_.get();
-    if (window_->draw(*stage_->renderer, state)) ++frames_;
+    state.overlay = win_.overlay.get();
+    if (win_.window->draw(*stage_->renderer, state)) ++frames_;
     if (frames_ == 1) notifier_.ready();
     heartbeat(now);
   }
   notifier_.stopping();
   std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
                static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes_));
-  vkDeviceWaitIdle(ctx_->device());
+  vkDeviceWaitIdle(win_.ctx->device());
   if (stage_->device) stage_->device->stop();
   if (stage_->output) stage_->output->stop();
-  if (ctx_->validation_messages() > 0) {
+  if (win_.ctx->validation_messages() > 0) {
     std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",
-                 static_cast<unsigned long long>(ctx_->validation_messages()), ctx_->first_validation_message().c_str());
+                 static_cast<unsigned long long>(win_.ctx->validation_messages()),
+                 win_.ctx->first_validation_message().c_str());
     return 1;
   }
   return 0;
