@@ -52,6 +52,11 @@ render::Image downsample_linear_light(const render::Image& image, int factor) {
   return out;
 }
 
+VkSampleCountFlagBits samples_of(int n) {
+  return n == 8 ? VK_SAMPLE_COUNT_8_BIT : n == 4 ? VK_SAMPLE_COUNT_4_BIT : n == 2 ? VK_SAMPLE_COUNT_2_BIT
+                                                                                : VK_SAMPLE_COUNT_1_BIT;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -84,11 +89,6 @@ Row time_frames(HeadlessRenderer& r, const render::FrameState& state, int frames
   }
   std::sort(ms.begin(), ms.end());
   return {what, ms[ms.size() / 2], ms[std::min(ms.size() - 1, ms.size() * 95 / 100)]};
-}
-
-VkSampleCountFlagBits samples_of(int n) {
-  return n == 8 ? VK_SAMPLE_COUNT_8_BIT : n == 4 ? VK_SAMPLE_COUNT_4_BIT : n == 2 ? VK_SAMPLE_COUNT_2_BIT
-                                                                                : VK_SAMPLE_COUNT_1_BIT;
 }
 
 void run(const std::filesystem::path& scene_file, int frames, const std::vector<std::string>& sizes,

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <vulkan/vulkan.h>
+
 #include "core/one_euro_filter.hpp"
 #include "core/scene.hpp"
 #include "render/image.hpp"
@@ -79,6 +81,9 @@ std::vector<PointerTradeRow> measure_pointer_trade(const Scene& scene, std::uint
 
 //! A supersampled image box-filtered down by `factor` in linear light (bench_render.cpp).
 render::Image downsample_linear_light(const render::Image& image, int factor);
+
+//! MSAA samples per pixel as the renderer takes them: 2, 4 or 8; anything else 1 (bench_render.cpp).
+VkSampleCountFlagBits samples_of(int n);
 
 //! Writes report.md, the .dat files and (if gnuplot is installed) the PNGs. Returns the
 //! lines to print.

@@ -39,11 +39,6 @@ render::Image upscale2(const render::Image& in) {
   return out;
 }
 
-VkSampleCountFlagBits samples_of(int n) {
-  return n == 8 ? VK_SAMPLE_COUNT_8_BIT : n == 4 ? VK_SAMPLE_COUNT_4_BIT : n == 2 ? VK_SAMPLE_COUNT_2_BIT
-                                                                                : VK_SAMPLE_COUNT_1_BIT;
-}
-
 }  // namespace
 
 void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSections& out) {
