@@ -99,11 +99,16 @@ std::pair<int, int> WindowTarget::framebuffer_size() const {
   return {w, h};
 }
 
-bool WindowTarget::framebuffer_visible() const {
+bool WindowTarget::framebuffer_visible(std::pair<int, int> size) const {
   // Minimised: iconified, or on X11 unmapped (hidden); elsewhere a 0×0 framebuffer.
   if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED) || !glfwGetWindowAttrib(window_, GLFW_VISIBLE)) return false;
-  const auto [w, h] = framebuffer_size();
-  return w > 0 && h > 0;
+  return size.first > 0 && size.second > 0;
+}
+
+void WindowTarget::recreate_swapchain() {
+  vkDeviceWaitIdle(ctx_.device());  // the old swapchain's images may be in use
+  create_swapchain();
+  ++recreations_;
 }
 
 Nanos WindowTarget::predicted_present(Nanos now) const {
@@ -197,7 +202,8 @@ void WindowTarget::create_swapchain() {
 }
 
 bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image* capture) {
-  if (!framebuffer_visible()) {
+  const std::pair<int, int> size = framebuffer_size();  // asked of the window system once a frame
+  if (!framebuffer_visible(size)) {
     // Minimised: nothing to draw into. Waiting up to a refresh for the window's events keeps
     // the callers' loops from spinning a core until it comes back.
     glfwWaitEventsTimeout(1.0 / refresh_hz_);
@@ -206,11 +212,7 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   VkDevice dev = ctx_.device();
   // Not every driver says OUT_OF_DATE when the window changes size (lavapipe on X11 goes
   // on presenting the old size, measured): the window's own size is checked too.
-  if (framebuffer_size() != built_for_) {
-    vkDeviceWaitIdle(dev);
-    create_swapchain();
-    ++recreations_;
-  }
+  if (size != built_for_) recreate_swapchain();
   FrameSync& f = frames_[frame_];
   VkFence fence = f.done.get();
   check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
@@ -221,10 +223,8 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
                                              &index);
     if (r == VK_SUCCESS || r == VK_SUBOPTIMAL_KHR) break;
     if (r == VK_ERROR_OUT_OF_DATE_KHR && attempt < 3) {
-      vkDeviceWaitIdle(dev);
-      if (!framebuffer_visible()) return false;
-      create_swapchain();
-      ++recreations_;
+      if (!framebuffer_visible(framebuffer_size())) return false;
+      recreate_swapchain();
       continue;
     }
     check(r, "acquiring a swapchain image");
@@ -294,11 +294,7 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   }
   frame_ = (frame_ + 1) % SceneRenderer::kSlots;
   if (pr == VK_ERROR_OUT_OF_DATE_KHR || pr == VK_SUBOPTIMAL_KHR) {
-    vkDeviceWaitIdle(dev);
-    if (framebuffer_visible()) {
-      create_swapchain();
-      ++recreations_;
-    }
+    if (framebuffer_visible(framebuffer_size())) recreate_swapchain();
   } else {
     check(pr, "presenting a frame");
   }

@@ -75,7 +75,8 @@ class WindowTarget {
     vk::Fence done;
   };
   void create_swapchain();
-  bool framebuffer_visible() const;
+  void recreate_swapchain();  //!< waits for the device, makes a new one, counts it
+  bool framebuffer_visible(std::pair<int, int> size) const;
   std::pair<int, int> framebuffer_size() const;
 
   const Context& ctx_;
