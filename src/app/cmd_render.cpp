@@ -114,7 +114,7 @@ void run_render(const RenderCliOptions& o) {
   if (o.msaa == "auto")
     ho.auto_samples = true;
   else
-    ho.settings.samples = ho.settings.background_samples = sample_count(o.msaa);
+    ho.settings.samples = sample_count(o.msaa);
   ho.settings.shadow = !o.no_shadow;
   ho.device = o.device;
 

@@ -52,9 +52,7 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
   ho.auto_samples = config.render.msaa == "auto";
-  if (!ho.auto_samples)
-    ho.settings.samples = ho.settings.background_samples =
-        static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
+  if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
   ho.settings.shadow = config.render.shadow;
   ho.device = o.device.empty() ? config.render.device : o.device;
   HeadlessRenderer renderer(scene, ho);

@@ -60,11 +60,11 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
 
 render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r) {
   render::RenderSettings rs;
-  if (r.msaa == "auto") {
+  // An explicit count is everything's: the background's own samples stay 1, the default.
+  if (r.msaa == "auto")
     render::use_recommended_antialiasing(ctx, rs);
-  } else {
-    rs.samples = rs.background_samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
-  }
+  else
+    rs.samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
   rs.shadow = r.shadow;
   return rs;
 }
