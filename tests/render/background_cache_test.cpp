@@ -20,11 +20,13 @@ namespace mallet::render {
 namespace {
 
 std::unique_ptr<app::HeadlessRenderer> renderer(const Scene& scene, bool cache,
-                                                VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT) {
+                                                VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
+                                                VkSampleCountFlagBits background_samples = VK_SAMPLE_COUNT_1_BIT) {
   app::HeadlessOptions o;
   o.size = {480, 270};
   o.settings.background_cache = cache;
   o.settings.samples = samples;
+  o.settings.background_samples = background_samples;
   o.validation = Validation::required;
   o.cache_dir = "";
   o.device = "llvmpipe";
@@ -91,13 +93,7 @@ TEST(BackgroundCache, AnAntialiasedBackgroundIsTheMultisampledSceneBesideTheMall
   // the frames of 1 sample without the antialiased background.
   auto probe = renderer(test::percussion(), true);
   if (!supports_samples(probe->context(), VK_SAMPLE_COUNT_4_BIT)) GTEST_SKIP() << "no 4x MSAA on this device";
-  app::HeadlessOptions o;
-  o.size = {480, 270};
-  o.validation = Validation::required;
-  o.cache_dir = "";
-  o.device = "llvmpipe";
-  o.settings.background_samples = VK_SAMPLE_COUNT_4_BIT;
-  app::HeadlessRenderer cached(test::percussion(), o);
+  auto cached = renderer(test::percussion(), true, VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_4_BIT);
   auto whole4 = renderer(test::percussion(), false, VK_SAMPLE_COUNT_4_BIT);
   auto whole1 = renderer(test::percussion(), false);
   const Scene& s = test::percussion();
@@ -106,13 +102,13 @@ TEST(BackgroundCache, AnAntialiasedBackgroundIsTheMultisampledSceneBesideTheMall
     FrameState f;
     f.mallet_centre = {bar.x_max, bar.top_y + 0.02};
     const Image reference = whole4->render(f);
-    const ImageDiff ours = compare_images(cached.render(f), reference, 3);
+    const ImageDiff ours = compare_images(cached->render(f), reference, 3);
     const ImageDiff plain = compare_images(whole1->render(f), reference, 3);
     EXPECT_LT(ours.differing_fraction, 0.002) << "bar " << id << ": " << ours.differing_pixels << " pixels";
     EXPECT_LT(ours.rms, 0.3 * plain.rms) << "bar " << id;
   }
-  EXPECT_EQ(cached.renderer().background_builds(), 1u);
-  EXPECT_EQ(cached.context().validation_messages(), 0u) << cached.context().first_validation_message();
+  EXPECT_EQ(cached->renderer().background_builds(), 1u);
+  EXPECT_EQ(cached->context().validation_messages(), 0u) << cached->context().first_validation_message();
 }
 
 TEST(BackgroundCache, IsRedrawnWhenTheImageSizeChanges) {
