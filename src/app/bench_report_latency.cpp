@@ -13,7 +13,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/bench_report.hpp"
-#include "app/strike_loop.hpp"
+#include "app/strike_route.hpp"
 #include "core/quality.hpp"
 #include "input/wiimote/report_tracker.hpp"
 
@@ -60,8 +60,8 @@ Measured measure(const Scene& scene, const AppConfig& config, int strikes) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < strikes; ++k) {
     input::wiimote::ReportTracker tracker(config.tracking);
-    StrikeLoop loop(scene, config);
     AudioRig rig = make_audio_rig(scene, config, fs);
+    StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::input, false, false});
     std::vector<float> out(static_cast<std::size_t>(block * config.audio.routing.channels));
     const double phase_s = unit(rng) * 0.01;  // where between camera frames the contact falls
     for (int f = 0; f < 40; ++f) {
@@ -75,8 +75,7 @@ Measured measure(const Scene& scene, const AppConfig& config, int strikes) {
       std::optional<Impact> impact;
       if (r.update.point) {
         const Vec2 world = v.map(r.update.point->x / 1023.0, r.update.point->y / 767.0);
-        impact = loop.feed(t, world);
-        if (impact) rig.engine->post(*impact);
+        if (const std::optional<Strike> s = route.feed(t, world, t)) impact = s->impact;
       }
       const auto t1 = Clock::now();
       if (!impact) continue;

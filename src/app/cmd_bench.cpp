@@ -9,6 +9,8 @@ void register_bench(CLI::App& app) {
   add_bench_input(*bench);
   add_bench_render(*bench);
   add_bench_report(*bench);
+  add_bench_latency(*bench);
+  add_bench_prediction(*bench);
 }
 
 }  // namespace mallet::app

@@ -107,7 +107,7 @@ void run_render(const RenderCliOptions& o) {
   const AppConfig config = o.config ? config::load_app_config(*o.config) : AppConfig{};
   const Scene scene = config::load_scene(o.scene);
   const input::Trajectory trajectory = input::read_trajectory_csv(o.input);
-  const Replay replay(scene, config.contact, config.bounce, trajectory,
+  const Replay replay(scene, config, trajectory,
                       o.input_space == "world" ? InputSpace::world : InputSpace::screen, o.input.string());
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");

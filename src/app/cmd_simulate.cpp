@@ -25,6 +25,15 @@ void register_simulate(CLI::App& app) {
       "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
       "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample\n"
       "                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.\n"
+      "With --causal the strikes are decided as the live kiosk decides them: each sample is\n"
+      "known only from its own time plus --input-delay-ms, contact prediction and [timing]\n"
+      "align follow the settings, and the frames are paced by --display-hz and --present-mode.\n"
+      "events.csv then adds after its columns  contact_t,sound_t,shown_t,predicted:\n"
+      "  contact_t  the contact as the kiosk estimated it (seen, or predicted) (s)\n"
+      "  sound_t    when both channels start in audio.wav (s)\n"
+      "  shown_t    the present time of the first frame that shows the bounce (s)\n"
+      "  predicted  1 when the strike was scheduled from a prediction, else 0\n"
+      "Without --causal every output is the exact stimulus, as before.\n"
       "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
       "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
       "Bad input prints FILE:LINE: problem and exits 2 with nothing written.");
@@ -39,6 +48,17 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--sample-rate", *rate, "Audio sample rate in Hz (default: [audio].sample_rate_hz, 48000)");
   cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")->capture_default_str();
   cmd->add_option("--tail", options->tail_s, "Seconds rendered after the last trajectory sample")
+      ->capture_default_str();
+  cmd->add_flag("--causal", options->causal, "Decide strikes as the live kiosk does (see below)");
+  cmd->add_option("--input-delay-ms", options->input_delay_ms,
+                  "With --causal: from a sample's time to the kiosk knowing it (ms)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--display-hz", options->display_hz, "With --causal: the display's refresh rate (Hz)")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--present-mode", options->present_mode, "With --causal: fifo, mailbox or immediate")
+      ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}))
       ->capture_default_str();
   cmd->callback([options, rate, space] {
     if (*rate != 0) options->sample_rate_hz = *rate;

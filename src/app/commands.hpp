@@ -27,5 +27,7 @@ void add_bench_audio(CLI::App& bench);
 void add_bench_input(CLI::App& bench);
 void add_bench_render(CLI::App& bench);
 void add_bench_report(CLI::App& bench);
+void add_bench_latency(CLI::App& bench);
+void add_bench_prediction(CLI::App& bench);
 
 }  // namespace mallet::app

@@ -9,6 +9,13 @@ namespace mallet::app {
 namespace {
 constexpr Nanos kStep = 20'000'000;  // input and audio advance together in 20 ms steps
 constexpr int kMaxBlock = 4096;
+
+//! The simulated clock knows every sample at its own time, so every strike is known at its
+//! contact: nothing to predict (and the compressed runs stay exact).
+AppConfig offline(AppConfig config) {
+  config.timing.predict.horizon_ms = 0;
+  return config;
+}
 }  // namespace
 
 HeadlessLoop::HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after, bool acoustic_enabled)
@@ -17,13 +24,12 @@ HeadlessLoop::HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos id
       channels_(config.audio.routing.channels),
       idle_after_(idle_after),
       rig_(make_audio_rig(scene, config, config.audio.sample_rate_hz, acoustic_enabled)),
-      loop_(scene, config),
-      last_visitor_(idle_after == kNoAttract ? 0 : -idle_after) {}
-
-void HeadlessLoop::strike(const Impact& impact, bool ghost) {
-  if (!rig_.engine->post(impact)) ++counters_.refused_posts;
-  ++(ghost ? counters_.ghost_strikes : counters_.visitor_strikes);
-  if (on_strike) on_strike(impact, ghost);
+      route_(scene, offline(config), rig_.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false}),
+      last_visitor_(idle_after == kNoAttract ? 0 : -idle_after) {
+  route_.on_strike = [this](const Strike& s) {
+    ++(feeding_ghost_ ? counters_.ghost_strikes : counters_.visitor_strikes);
+    if (on_strike) on_strike(s, feeding_ghost_);
+  };
 }
 
 void HeadlessLoop::feed_ghost_until(Nanos t) {
@@ -31,18 +37,13 @@ void HeadlessLoop::feed_ghost_until(Nanos t) {
   if (!ghost_ && t - last_visitor_ >= idle_after_) {
     const Nanos start = std::max(now_, last_visitor_ + idle_after_);
     ghost_.emplace(scene_, start);
-    loop_.reset();
-    loop_.set_cycle_materials(true);
+    route_.reset();
+    route_.loop().set_cycle_materials(true);
   }
   if (!ghost_) return;
-  for (const PointerSample& s : ghost_->samples_until(t)) {
-    if (auto impact = loop_.feed(s.t_ns, {s.x, s.y})) strike(*impact, true);
-    post_motion();
-  }
-}
-
-void HeadlessLoop::post_motion() {
-  if (loop_.motion() && !rig_.engine->post_motion(*loop_.motion())) ++counters_.refused_posts;
+  feeding_ghost_ = true;
+  for (const PointerSample& s : ghost_->samples_until(t)) route_.feed(s.t_ns, {s.x, s.y});
+  feeding_ghost_ = false;
 }
 
 void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
@@ -52,20 +53,18 @@ void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
   feed_ghost_until(t);
   if (ghost_) {  // a visitor takes over from the ghost within this sample
     ghost_.reset();
-    loop_.reset();
-    loop_.set_cycle_materials(false);
+    route_.reset();
+    route_.loop().set_cycle_materials(false);
   }
   last_visitor_ = t;
-  if (auto impact = loop_.feed(t, hand)) strike(*impact, false);
-  post_motion();
+  route_.feed(t, hand);
   render_audio_until(t);
   now_ = std::max(now_, t);
 }
 
 void HeadlessLoop::present(const Impact& impact) {
   advance(impact.t_ns);  // the audio before the stimulus's block is settled; its own block is not
-  loop_.show(impact);
-  strike(impact, false);
+  route_.present(impact, impact.t_ns);
 }
 
 void HeadlessLoop::advance(Nanos t) {

@@ -6,7 +6,7 @@
 //
 // Order of work: input is always fed up to a time before the audio up to that time is
 // rendered, so every impact is posted before the block it falls in and starts on its own
-// sample.
+// sample. Strikes go through the kiosk's one strike route (strike_route.hpp).
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -15,6 +15,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/strike_loop.hpp"
+#include "app/strike_route.hpp"
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
 
@@ -24,7 +25,6 @@ class HeadlessLoop {
  public:
   struct Counters {
     std::uint64_t visitor_strikes = 0, ghost_strikes = 0;
-    std::uint64_t refused_posts = 0;        //!< the engine's ring was full (never expected)
     std::uint64_t audio_frames = 0;
     std::uint64_t non_finite_samples = 0;
     double peak = 0;                        //!< largest |sample| rendered
@@ -49,29 +49,29 @@ class HeadlessLoop {
 
   Nanos now() const { return now_; }
   bool attract() const { return ghost_.has_value(); }
-  Vec2 displayed(Nanos t_present) const { return loop_.displayed(t_present); }
-  const StrikeLoop& strike_loop() const { return loop_; }
-  double visual_offset_m(Nanos t_present) const { return loop_.visual_offset_m(t_present); }
+  Vec2 displayed(Nanos t_present) const { return route_.loop().displayed(t_present); }
+  const StrikeLoop& strike_loop() const { return route_.loop(); }
+  double visual_offset_m(Nanos t_present) const { return route_.loop().visual_offset_m(t_present); }
   const Counters& counters() const { return counters_; }
   const audio::AudioEngine& engine() const { return *rig_.engine; }
   int sample_rate_hz() const { return rate_; }
   int channels() const { return channels_; }
 
-  std::function<void(const Impact&, bool ghost)> on_strike;
+  //! Each strike as the route delivered it (`ghost`: the attract mode's).
+  std::function<void(const Strike&, bool ghost)> on_strike;
   std::function<void(std::span<const float>)> on_audio;  //!< interleaved frames
 
  private:
   void feed_ghost_until(Nanos t);
-  void strike(const Impact& impact, bool ghost);
-  void post_motion();  //!< the texture scene's cursor motion of the last feed, to the stripes
   void render_audio_until(Nanos t);
 
   const Scene& scene_;
   int rate_, channels_;
   Nanos idle_after_;
   AudioRig rig_;
-  StrikeLoop loop_;
+  StrikeRoute route_;
   std::optional<AttractLoop> ghost_;
+  bool feeding_ghost_ = false;
   Nanos now_ = 0;
   Nanos last_visitor_;
   std::int64_t audio_pos_ = 0;

@@ -47,7 +47,7 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
   const int rate = loop.sample_rate_hz();
   audio::WavWriter wav(out / "audio.wav", loop.channels(), rate);
   loop.on_audio = [&](std::span<const float> block) { wav.write(block); };
-  loop.on_strike = [&](const Impact& impact, bool) { say(strike_line(scene, impact)); };
+  loop.on_strike = [&](const Strike& s, bool) { say(strike_line(scene, s.impact)); };
 
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");

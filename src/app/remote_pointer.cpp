@@ -1,5 +1,6 @@
 #include "app/remote_pointer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/ir_camera_settings.hpp"
@@ -18,12 +19,16 @@ input::wiimote::WiimoteDeviceConfig kiosk_device_config(const AppConfig& config,
   return dc;
 }
 
-RemotePointer::RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine)
-    : scene_(scene), engine_(engine), loop_(scene, config), filter_(config.pointer) {
+RemotePointer::RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine,
+                             const PresentClock* picture)
+    : scene_(scene), route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, true, true}) {
   pending_.reserve(256);
+  route_.on_strike = [this](const Strike& s) {
+    if (on_strike) on_strike(s.impact);
+  };
 }
 
-void RemotePointer::feed_point(Nanos t, Vec2 camera, RemoteSample& out) {
+void RemotePointer::feed_point(Nanos t, Nanos now, Vec2 camera, RemoteSample& out) {
   std::optional<Homography> h;
   {
     std::lock_guard lock(mutex_);
@@ -38,26 +43,12 @@ void RemotePointer::feed_point(Nanos t, Vec2 camera, RemoteSample& out) {
   const std::uint64_t generation = generation_.load(std::memory_order_acquire);
   if (generation != seen_generation_) {  // Play (re)started, or a new calibration: a new stroke
     seen_generation_ = generation;
-    loop_.reset();
-    filter_.reset();
+    route_.reset();
   }
-  if (!playing) return;
-  // Strikes from the raw samples (the filter's lag would delay them); the filter only
-  // smooths what is shown.
-  if (const int m = wall_material_.exchange(-1, std::memory_order_acq_rel); m >= 0) loop_.set_wall_material(m);
-  if (const std::optional<Impact> impact = loop_.feed(t, hand)) {
-    engine_.post(*impact, audio::Producer::input);
-    strikes_.fetch_add(1, std::memory_order_relaxed);
-    if (on_strike) on_strike(*impact);
-  }
-  if (loop_.motion()) engine_.post_motion(*loop_.motion(), audio::Producer::input);
-  const Vec2 shown = filter_.update(t, hand).value_or(hand);
-  const StrikeLoop::View view = loop_.view(shown);
-  std::lock_guard lock(mutex_);
-  view_ = view;
+  if (playing) route_.feed(t, hand, now);
 }
 
-void RemotePointer::on_samples(std::span<const input::wiimote::LedSample> samples, Nanos) {
+void RemotePointer::on_samples(std::span<const input::wiimote::LedSample> samples, Nanos now) {
   for (const input::wiimote::LedSample& s : samples) {
     RemoteSample out;
     out.t_ns = s.t_ns;
@@ -65,12 +56,11 @@ void RemotePointer::on_samples(std::span<const input::wiimote::LedSample> sample
     if (s.has_frame) out.frame = s.frame;
     if (s.event == IrTrackerEvent::lost || s.event == IrTrackerEvent::jumped) {
       // The next dot starts a new stroke: no swept contact across the gap or the jump.
-      loop_.reset();
-      filter_.reset();
+      route_.reset();
     }
     if (s.has_point) {
       out.camera_px = Vec2{s.point.x, s.point.y};
-      feed_point(s.t_ns, *out.camera_px, out);
+      feed_point(s.t_ns, std::max(now, s.t_ns), *out.camera_px, out);
     }
     std::lock_guard lock(mutex_);
     if (s.event == IrTrackerEvent::lost) tracking_ = false;
@@ -104,10 +94,7 @@ std::vector<RemoteSample> RemotePointer::take() {
   return out;
 }
 
-StrikeLoop::View RemotePointer::view() const {
-  std::lock_guard lock(mutex_);
-  return view_;
-}
+StrikeLoop::View RemotePointer::view() const { return route_.view(); }
 
 bool RemotePointer::tracking() const {
   std::lock_guard lock(mutex_);

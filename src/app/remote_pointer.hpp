@@ -5,8 +5,9 @@
 //   WiimoteDevice's reading thread (its sample sink, see wiimote_device.hpp)
 //     → on_samples(): the tracked LED (raw camera px; the tracker runs in the device)
 //       → calibration (camera → normalised screen homography) → scene (screen → world m)
-//       → contact solver (StrikeLoop, unfiltered samples) → AudioEngine::post(Producer::input)
-//       → 1€ filter (the displayed head only) → a View the render loop reads
+//       → the strike route (strike_route.hpp: contact solver on the unfiltered samples,
+//         AudioEngine::post(Producer::input), the log line; the 1€ filter on the drawn head
+//         only) → a View the render loop reads
 //   The render loop (main thread) takes() the samples since its last frame, for the kiosk's
 //   states (movement, tracking lost/regained) and the calibration screen (camera points).
 //
@@ -25,11 +26,11 @@
 #include <span>
 #include <vector>
 
-#include "app/strike_loop.hpp"
+#include "app/strike_route.hpp"
 #include "audio/engine.hpp"
 #include "core/app_config.hpp"
 #include "core/calibration_file.hpp"
-#include "core/one_euro_filter.hpp"
+#include "core/present_clock.hpp"
 #include "core/scene.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 
@@ -54,13 +55,15 @@ struct RemoteSample {
 
 class RemotePointer {
  public:
-  //! `scene`, `config` and `engine` must outlive this object (and the device's thread).
-  RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine);
+  //! `scene`, `config`, `engine` and `picture` must outlive this object (and the device's thread).
+  RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine,
+                const PresentClock* picture = nullptr);
 
-  //! The device's sample sink (reading thread).
+  //! The device's sample sink (reading thread); `now` is when the samples arrived, the
+  //! time the route knows a strike they make.
   void on_samples(std::span<const input::wiimote::LedSample> samples, Nanos now);
-  //! Called on the reading thread after each strike was posted (logging, rumble). Set
-  //! before the device starts.
+  //! Called on the reading thread after each strike was delivered (rumble). Set before the
+  //! device starts.
   std::function<void(const Impact&)> on_strike;
 
   // --- main thread ---
@@ -74,32 +77,27 @@ class RemotePointer {
   StrikeLoop::View view() const;
   bool tracking() const;
   //! The wall scene's material for the strikes from the next sample on.
-  void set_wall_material(int material) { wall_material_.store(material, std::memory_order_release); }
-  std::uint64_t strikes() const { return strikes_.load(std::memory_order_relaxed); }
+  void set_wall_material(int material) { route_.request_wall_material(material); }
+  std::uint64_t strikes() const { return route_.strikes(); }
   std::uint64_t dropped() const;
 
   static constexpr std::size_t kMaxPending = 4096;
 
  private:
-  void feed_point(Nanos t, Vec2 camera, RemoteSample& out);
+  void feed_point(Nanos t, Nanos now, Vec2 camera, RemoteSample& out);
 
   const Scene& scene_;
-  audio::AudioEngine& engine_;
   // Reading thread only.
-  StrikeLoop loop_;
-  OneEuroFilter filter_;
+  StrikeRoute route_;
   std::uint64_t seen_generation_ = 0;
   // Shared.
   mutable std::mutex mutex_;
   std::optional<Homography> camera_to_screen_;
   std::vector<RemoteSample> pending_;
-  StrikeLoop::View view_;
   bool tracking_ = false;
   std::uint64_t dropped_ = 0;
   std::atomic<bool> playing_{false};
   std::atomic<std::uint64_t> generation_{0};
-  std::atomic<std::uint64_t> strikes_{0};
-  std::atomic<int> wall_material_{-1};  //!< a request, -1 = none
 };
 
 }  // namespace mallet::app

@@ -7,15 +7,29 @@
 
 namespace mallet::app {
 
-Replay::Replay(const Scene& scene, const ContactConfig& contact, BounceMode bounce,
-               const input::Trajectory& trajectory, InputSpace space, const std::string& trajectory_name)
-    : scene_(&scene), mallet_(scene, contact), bounce_(bounce) {
+Replay::Replay(const Scene& scene, const AppConfig& config, const input::Trajectory& trajectory, InputSpace space,
+               const std::string& trajectory_name, std::optional<CausalTiming> causal)
+    : scene_(&scene), bounce_(config.bounce), held_(scene, config.contact) {
+  // Offline, every strike is known at its contact: nothing to predict, nothing to wait for.
+  AppConfig c = config;
+  if (!causal) {
+    c.timing.align = CueAlign::asap;
+    c.timing.predict.horizon_ms = 0;
+  }
+  StrikeRoute route(scene, c, nullptr, causal ? causal->picture : nullptr,
+                    RouteOptions{audio::Producer::main, false, false});
+  route.on_strike = [this](const Strike& s) {
+    strikes_.push_back(s);
+    impacts_.push_back(s.impact);
+  };
   for (const PointerSample& s : trajectory.samples) {
     const Vec2 hand = space == InputSpace::screen ? scene.screen_to_world.map(s.x, s.y) : Vec2{s.x, s.y};
-    const auto accepted_before = mallet_.counters().accepted;
-    if (auto impact = mallet_.update(s.t_ns, hand)) impacts_.push_back(*impact);
-    if (mallet_.counters().accepted != accepted_before) path_.push_back({s.t_ns, hand});
+    const auto accepted_before = route.loop().counters().accepted;
+    if (causal) route.feed(s.t_ns, hand, s.t_ns + causal->input_delay_ns);
+    else route.feed(s.t_ns, hand);
+    if (route.loop().counters().accepted != accepted_before) path_.push_back({s.t_ns, hand});
   }
+  counters_ = route.loop().counters();
   if (path_.empty()) throw FileError(trajectory_name, 0, 0, "no usable sample (every position is nan or inf)");
   if (scene.texture) {
     TextureCursor cursor(*scene.texture);
@@ -57,7 +71,7 @@ CursorState Replay::cursor_at(Nanos t) const {
     vibration.start(latest, scene_->materials[latest.material].visual);
   }
   const Vec2 hand = hand_at(t);
-  const Vec2 shown = mallet_.displayed_centre(hand);
+  const Vec2 shown = held_.displayed_centre(hand);
   const double offset = vibration.offset_m(t);
   return {hand, {shown.x, shown.y + offset}, offset};
 }

@@ -2,12 +2,17 @@
 // A trajectory replayed through the core exactly as the kiosk feeds it: the impacts the
 // contact solver finds, the hand's path, and — at any instant — where the mallet head is
 // displayed (held on the surface, plus Eq. 1's visual vibration of the latest strike).
-// `mallet simulate` writes these; `mallet render` draws them.
+// `mallet simulate` writes these; `mallet render` draws them. The strikes come from the
+// kiosk's one strike route (strike_route.hpp), detection only: nothing is posted or logged.
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/app_config.hpp"
 #include "core/impact.hpp"
+#include "app/strike_route.hpp"
 #include "core/mallet.hpp"
+#include "core/present_clock.hpp"
 #include "core/scene.hpp"
 #include "core/visual_vibration.hpp"
 #include "input/trajectory_csv.hpp"
@@ -36,15 +41,25 @@ struct TextureSample {
   StripeMotion motion;
 };
 
+//! How the live kiosk would have known the trajectory (simulate --causal): each sample
+//! only from its own time plus the input's delay, the frames paced by `picture`.
+struct CausalTiming {
+  Nanos input_delay_ns = 0;
+  const PresentClock* picture = nullptr;  //!< must outlive the Replay's construction
+};
+
 class Replay {
  public:
-  //! Throws FileError naming `trajectory_name` when no sample is usable.
-  Replay(const Scene& scene, const ContactConfig& contact, BounceMode bounce, const input::Trajectory& trajectory,
-         InputSpace space, const std::string& trajectory_name);
+  //! Throws FileError naming `trajectory_name` when no sample is usable. Without `causal`
+  //! every strike counts as known at its contact (the stimuli, exact).
+  Replay(const Scene& scene, const AppConfig& config, const input::Trajectory& trajectory, InputSpace space,
+         const std::string& trajectory_name, std::optional<CausalTiming> causal = std::nullopt);
 
   const std::vector<Impact>& impacts() const { return impacts_; }
+  //! The same strikes as the route delivered them: when decided, heard and shown.
+  const std::vector<Strike>& strikes() const { return strikes_; }
   const std::vector<HandSample>& path() const { return path_; }
-  const Mallet::Counters& counters() const { return mallet_.counters(); }
+  const Mallet::Counters& counters() const { return counters_; }
   //! Texture scenes: the cursor after the Speed technique at every accepted sample.
   const std::vector<TextureSample>& texture_path() const { return texture_path_; }
 
@@ -55,9 +70,11 @@ class Replay {
 
  private:
   const Scene* scene_;
-  Mallet mallet_;
   BounceMode bounce_;
+  Mallet held_;  //!< where the head is held on the surface (a pure function of the hand)
+  Mallet::Counters counters_;
   std::vector<Impact> impacts_;
+  std::vector<Strike> strikes_;
   std::vector<HandSample> path_;
   std::vector<TextureSample> texture_path_;
 };

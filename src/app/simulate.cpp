@@ -13,6 +13,7 @@
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/present_clock.hpp"
 #include "core/visual_vibration.hpp"
 #include "input/trajectory_csv.hpp"
 
@@ -109,7 +110,15 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   AudioRig rig = make_audio_rig(scene, config, rate);
 
   // --- the contact solver, fed exactly as the kiosk feeds it
-  const Replay replay(scene, config.contact, config.bounce, trajectory, options.input_space, options.input.string());
+  std::optional<CausalTiming> causal;
+  PresentPacing pacing = PresentPacing::fifo;
+  if (!parse_present_pacing(options.present_mode, pacing))
+    throw FileError("--present-mode", 0, 0, "expected fifo, mailbox or immediate, got " + options.present_mode);
+  const PresentClock picture(options.display_hz, pacing);
+  if (options.causal)
+    causal = CausalTiming{static_cast<Nanos>(std::llround(options.input_delay_ms * 1e6)), &picture};
+  const Replay replay(scene, config, trajectory, options.input_space, options.input.string(), causal);
+  const Nanos ahead = static_cast<Nanos>(std::llround(config.audio.schedule_ahead_ms * 1e6));
   result.impacts = replay.impacts();
   result.counters = replay.counters();
   const std::vector<HandSample>& path = replay.path();
@@ -123,11 +132,17 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   {
     const fs::path path_events = out.stage("events.csv");
     std::ofstream f(path_events);
-    f << "t,target,instrument,material,note,velocity\n";
-    for (const Impact& i : result.impacts) {
+    f << "t,target,instrument,material,note,velocity" << (causal ? ",contact_t,sound_t,shown_t,predicted" : "")
+      << '\n';
+    for (const Strike& s : replay.strikes()) {
+      const Impact& i = s.impact;
       const Target& t = scene.targets[i.target];
       f << format_seconds(i.t_ns) << ',' << t.id << ',' << t.instrument << ','
-        << scene.materials[i.material].name << ',' << i.note << ',' << g9(i.speed_m_per_s) << '\n';
+        << scene.materials[i.material].name << ',' << i.note << ',' << g9(i.speed_m_per_s);
+      if (causal)
+        f << ',' << format_seconds(i.t_ns) << ',' << format_seconds(s.heard_ns + ahead) << ','
+          << format_seconds(s.shown_ns) << ',' << (i.predicted ? 1 : 0);
+      f << '\n';
     }
     check_stream(f, path_events);
   }
@@ -193,8 +208,10 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     for (std::int64_t first = 0; first < frames; first += kBlock) {
       const int n = static_cast<int>(std::min<std::int64_t>(kBlock, frames - first));
       const std::int64_t block_end = first + n;
+      // Posted before the block it is heard in (t + the route's delay: --causal).
       while (next_impact < result.impacts.size() &&
-             align_to_sample(result.impacts[next_impact].t_ns, rate).index < block_end)
+             align_to_sample(result.impacts[next_impact].t_ns + result.impacts[next_impact].delay_ns, rate).index <
+                 block_end)
         rig.engine->post(result.impacts[next_impact++]);
       // The stripes' motion updates, as the input thread posts them. At most the ring's
       // capacity per block (a 1024-frame block holds far fewer pointer samples).

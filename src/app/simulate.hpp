@@ -2,6 +2,8 @@
 // `mallet simulate`: replays a trajectory through the core exactly as the kiosk would
 // and writes the stimuli a researcher needs to reproduce a session:
 //   events.csv  t,target,instrument,material,note,velocity       (one row per impact)
+//               --causal adds ,contact_t,sound_t,shown_t,predicted (when the kiosk would
+//               have decided, sounded and shown each strike: see cmd_simulate.cpp)
 //   cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset         (at --trace-rate)
 //               texture scenes add ,gain,stripe_phase (the Speed technique's gain, Eq. 1's phase)
 //   audio.wav   float32, channels as routed in the config (default 0 acoustic, 1 actuator)
@@ -29,6 +31,10 @@ struct SimulateOptions {
   std::optional<int> sample_rate_hz;             //!< overrides [audio].sample_rate_hz
   double trace_rate_hz = 1000.0;
   double tail_s = 1.0;                           //!< rendered after the last sample
+  bool causal = false;          //!< decide strikes as the live kiosk does
+  double input_delay_ms = 0;    //!< --causal: a sample is known this long after its time
+  double display_hz = 60;       //!< --causal: the frames' pacing ...
+  std::string present_mode = "fifo";  //!< ... and present mode
 };
 
 struct SimulateResult {

@@ -5,7 +5,7 @@
 namespace mallet::app {
 
 StrikeLoop::StrikeLoop(const Scene& scene, const AppConfig& config)
-    : scene_(scene), mallet_(scene, config.contact), vibration_(config.bounce) {
+    : scene_(scene), mallet_(scene, config.contact, config.timing.predict), vibration_(config.bounce) {
   if (scene.texture) texture_.emplace(*scene.texture);
 }
 
@@ -16,11 +16,13 @@ void StrikeLoop::reset() {
 
 std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
   hand_ = hand;
+  // The solver sees every sample, in a texture scene too (nothing to strike there): its
+  // counters say which samples were usable.
+  std::optional<Impact> impact = mallet_.update(t, hand);
   if (texture_) {
     motion_ = texture_->update(t, hand);
     return std::nullopt;
   }
-  std::optional<Impact> impact = mallet_.update(t, hand);
   if (impact) {
     show(*impact);
     if (cycle_materials_) next_wall_material();

@@ -9,6 +9,7 @@
 #include "core/app_config.hpp"
 #include "core/attract_tune.hpp"
 #include "core/mallet.hpp"
+#include "core/strike_detector.hpp"
 #include "core/scene.hpp"
 #include "core/texture_cursor.hpp"
 #include "core/visual_vibration.hpp"
@@ -22,7 +23,8 @@ class StrikeLoop {
  public:
   StrikeLoop(const Scene& scene, const AppConfig& config);
 
-  //! The hand (sphere centre, world metres) at t; the strike it made, if any.
+  //! The hand (sphere centre, world metres) at t; the strike it made, if any: seen by the
+  //! swept solver, or predicted ([timing] predict_*; Impact::predicted, t_ns ahead of t).
   std::optional<Impact> feed(Nanos t, Vec2 hand);
   //! The texture scene's cursor motion from the last feed (for AudioEngine::post_motion).
   const std::optional<StripeMotion>& motion() const { return motion_; }
@@ -49,6 +51,9 @@ class StrikeLoop {
     return {texture_ ? texture_->cursor() : mallet_.displayed_centre(hand), vibration_};
   }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
+  const StrikeDetector::PredictionCounters& prediction_counters() const { return mallet_.prediction_counters(); }
+  //! Where the solver holds the head for a hand: on the surface while below a contact plane.
+  Vec2 held(Vec2 hand) const { return mallet_.displayed_centre(hand); }
   //! The Speed technique's gain of the last displacement (1 outside texture scenes).
   double gain() const { return texture_ ? texture_->gain() : 1.0; }
 
@@ -64,7 +69,7 @@ class StrikeLoop {
 
  private:
   const Scene& scene_;
-  Mallet mallet_;
+  StrikeDetector mallet_;
   VisualVibration vibration_;
   Vec2 hand_{0.0, 0.3};
   std::optional<TextureCursor> texture_;

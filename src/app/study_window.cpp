@@ -16,7 +16,7 @@
 #include "app/headless_loop.hpp"
 #include "app/kiosk_text.hpp"
 #include "app/render_setup.hpp"
-#include "app/strike_loop.hpp"
+#include "app/strike_route.hpp"
 #include "app/study_stimuli.hpp"
 #include "audio/portaudio_output.hpp"
 #include "render/font_atlas.hpp"
@@ -45,7 +45,7 @@ char key_char(int key) {
 class StudyWindow final : public StudyStage, public AnswerSource {
  public:
   StudyWindow(const StudyPlan& plan, const Scene& scene, const StudyWindowOptions& o)
-      : plan_(plan), scene_(scene), loop_(scene, plan.config),
+      : plan_(plan), scene_(scene),
         meter_(scene, plan.config, HeadlessLoop::kNoAttract, false), keys_(answer_keys(plan.protocol)),
         prompt_(answer_prompt(plan.protocol)),
         win_(plan.config.render, o.device, o.size, o.windowed, "Mallet study") {
@@ -57,11 +57,12 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     renderer_ = std::make_unique<render::SceneRenderer>(*win_.ctx, scene_, models_dir(), win_.window->format(),
                                                         render_settings(*win_.ctx, c.render), win_.cache->get());
     rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz, plan.protocol.sound);
+    route_ = std::make_unique<StrikeRoute>(scene_, c, rig_.engine.get(), &win_.window->present_clock());
     output_ = start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
     rig_.engine->set_acoustic_volume(c.audio.volume);
     rig_.engine->set_actuator_gain(c.actuator.gain);
     const Target& bar = scene_.targets.at(0);
-    hand_ = {0.5 * (bar.x_min + bar.x_max), bar.top_y};
+    route_->feed(monotonic_now(), {0.5 * (bar.x_min + bar.x_max), bar.top_y});  // the head rests on the first bar
     started_ = monotonic_now();
     if (o.quit_after_s > 0) quit_at_ = started_ + static_cast<Nanos>(std::llround(o.quit_after_s * 1e9));
     const int actuator = c.audio.routing.actuator;
@@ -93,17 +94,15 @@ class StudyWindow final : public StudyStage, public AnswerSource {
   void present(const Impact& impact) override {
     ++tap_;
     banner_ = plan_.stimuli_per_trial() > 1 ? "Tap " + std::to_string(tap_) : "Tap";
-    rig_.engine->post(impact);
-    loop_.show(impact);
+    route_->present(impact, monotonic_now());
     // The actuator's signal, rendered offline by the same engine on its own clock: the
     // device's output is not read back.
     Impact m = impact;
     m.t_ns = meter_.now();
     meter_.present(m);
     meter_.advance(m.t_ns + plan_.protocol.timing.stimulus);
-    std::fprintf(stderr, "<6>%s\n", strike_line(scene_, impact).c_str());
   }
-  double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
+  double visual_offset_m(Nanos t) const override { return route_->view().vibration.offset_m(t); }
   double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
   void trial_starts(const ScheduledTrial& trial) override {
     ++trials_shown_;
@@ -173,8 +172,9 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     if (!banner_.empty()) draw_banner(o, banner_, w, h);
     if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
     render::FrameState state;
+    win_.window->present_clock().frame_started(now);
     const Nanos present = win_.window->predicted_present(now);
-    state.mallet_centre = loop_.view(hand_).displayed(present);
+    state.mallet_centre = route_->view().displayed(present);
     state.overlay = win_.overlay.get();
     win_.window->draw(*renderer_, state);
     return true;
@@ -182,17 +182,16 @@ class StudyWindow final : public StudyStage, public AnswerSource {
 
   const StudyPlan& plan_;
   const Scene& scene_;
-  StrikeLoop loop_;
   HeadlessLoop meter_;
   std::vector<AnswerKey> keys_;
   std::string prompt_;
   ProductWindow win_;
   std::unique_ptr<render::SceneRenderer> renderer_;
   AudioRig rig_;
+  std::unique_ptr<StrikeRoute> route_;  //!< the stimuli's: actuator, note, bounce and log line
   std::unique_ptr<audio::PortAudioOutput> output_;
   std::string audio_status_, banner_, status_;
   std::deque<Press> pressed_;
-  Vec2 hand_{0.0, 0.3};
   Nanos started_ = 0, quit_at_ = 0;
   double peak_ = 0;
   int tap_ = 0, trials_shown_ = 0;

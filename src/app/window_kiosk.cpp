@@ -15,10 +15,12 @@
 #include "app/calibration_screen.hpp"
 #include "app/data_paths.hpp"
 #include "app/kiosk_text.hpp"
+#include "app/mouse_pointer.hpp"
 #include "app/remote_pointer.hpp"
 #include "app/render_setup.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
+#include "app/strike_route.hpp"
 #include "app/systemd_notify.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -26,6 +28,7 @@
 #include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
 #include "input/clock.hpp"
+#include "input/evdev/evdev_mouse.hpp"
 #include "input/wiimote/hid_transport.hpp"
 #include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
@@ -55,7 +58,8 @@ struct Stage {
   std::unique_ptr<audio::PortAudioOutput> output;
   std::string audio_status;
   std::unique_ptr<render::SceneRenderer> renderer;
-  std::unique_ptr<StrikeLoop> loop;  //!< the mouse and the ghost (main thread)
+  //! The main thread's strike route: the ghost, and the mouse when the window system reads it.
+  std::unique_ptr<StrikeRoute> route;
   InputSource source = InputSource::mouse;
   std::string input_why;             //!< how the source was chosen, for the operator page
   std::optional<Calibration> calibration;  //!< the remote's camera → screen map in use
@@ -69,6 +73,12 @@ struct Stage {
   std::unique_ptr<input::wiimote::WiimoteDevice> device;
   bool link_up = false;
   bool checked_calibration = false;  //!< against the first connected remote's identity
+  // The mouse read at its source (input.mouse = auto | evdev): its reading thread feeds
+  // `mouse`, which posts strikes itself. Without it the window system's cursor events
+  // feed the main thread's route. The source is declared last so that its thread goes first.
+  std::string mouse_line;  //!< how the mouse is read, for the log and the operator page
+  std::unique_ptr<MousePointer> mouse;
+  std::unique_ptr<input::evdev::EvdevMouse> evdev;
 };
 
 //! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
@@ -86,15 +96,24 @@ class WindowKiosk {
   void reload();
   void next_wall_material();  //!< operator page M: the wall's next material
   void next_scene();          //!< operator page S: the next of [scenes] choices
-  void post_motion(audio::Producer from);  //!< the texture scene's cursor motion, to the stripes
+  //! Operator page T: kLatencyTestPulses times, one a second, a white square in the top-left
+  //! corner, a strike's note on the speaker and its pulse on the actuator, all scheduled for
+  //! the same instant; a photodiode and a microphone (or a 240 fps video) show the offsets
+  //! the operator then enters as [timing] display_latency_ms and audio_output_latency_ms.
+  void start_latency_test(Nanos now);
+  void latency_test_frame(Nanos present);  //!< posts the pulses due, draws the square
+  void on_cursor(double x, double y);  //!< the window system's cursor event, stamped as it is read
   void draw_overlay(Nanos now, double frame_ms);
-  void strike(const Impact& impact);
   void apply_volume();
   void heartbeat(Nanos now);
   void choose_input(Stage& stage);
+  void choose_mouse(Stage& stage);  //!< evdev when it can be opened, else the window system's events
   void poll_remote(Nanos now);
   void calibration_frame(Nanos now, std::optional<Vec2> mouse_screen);
   std::string input_line() const;
+  std::string timing_line() const;  //!< the strike route's policy and the figures it uses
+  //! Strikes delivered since start, over every route and every reload.
+  std::uint64_t strikes() const;
 
   KioskOptions options_;
   ProductWindow win_;
@@ -107,14 +126,19 @@ class WindowKiosk {
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
   std::string notice_;                             //!< the last calibration's outcome ...
   Nanos notice_until_ = 0;                         //!< ... shown until then
+  static constexpr int kLatencyTestPulses = 10;
+  std::vector<Nanos> latency_test_;  //!< the test's instants still to come or on screen
   std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
+  std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
+  std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
   Nanos started_ = 0;
   // Liveness: the watchdog is fed only while input, audio and render all make progress.
   SystemdNotifier notifier_ = SystemdNotifier::from_environment();
   Nanos next_watchdog_ = 0, next_log_ = 0;
   std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
-  std::uint64_t strikes_ = 0, callbacks_at_beat_ = 0;
+  std::uint64_t callbacks_at_beat_ = 0;
+  std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
 };
 
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
@@ -123,6 +147,9 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
   glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
     if (action == GLFW_PRESS || action == GLFW_REPEAT)
       static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
+  });
+  glfwSetCursorPosCallback(win_.window->window(), [](GLFWwindow* w, double x, double y) {
+    static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
   });
   started_ = monotonic_now();
   volume_ = setup.config.audio.volume;
@@ -141,15 +168,18 @@ void WindowKiosk::build(KioskSetup setup) {
                                                             win_.window->format(), render_settings(*win_.ctx, c.render),
                                                             win_.cache->get());
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
-  stage->loop = std::make_unique<StrikeLoop>(stage->scene, c);
+  stage->route = std::make_unique<StrikeRoute>(stage->scene, c, stage->rig.engine.get(), &win_.window->present_clock(),
+                                               RouteOptions{audio::Producer::main, false, true});
   choose_input(*stage);  // a bad replay file throws here, before anything running is touched
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
+  if (stage_ && stage_->evdev) stage_->evdev->stop();
   stage->output = start_output(*stage->rig.engine, c.audio, stage->audio_status);  // null: the scene plays silently
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();
+  if (stage_) strikes_before_ = strikes();
   stage_ = std::move(stage);
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
   states_->input_source(now, stage_->source);
@@ -157,7 +187,12 @@ void WindowKiosk::build(KioskSetup setup) {
     states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
     stage_->device->start();
   }
+  if (stage_->evdev) {
+    MousePointer* m = stage_->mouse.get();
+    stage_->evdev->start([m](std::span<const PointerSample> samples) { m->on_samples(samples); });
+  }
   std::fprintf(stderr, "<6>%s\n", input_line().c_str());
+  std::fprintf(stderr, "<6>%s\n", timing_line().c_str());
   apply_volume();
 }
 
@@ -166,6 +201,7 @@ void WindowKiosk::choose_input(Stage& stage) {
   stage.source = InputSource::mouse;
   if (want == "mouse") {
     stage.input_why = "the settings say mouse";
+    choose_mouse(stage);
     return;
   }
   if (want == "replay") {
@@ -182,6 +218,7 @@ void WindowKiosk::choose_input(Stage& stage) {
       }
     if (!found) {
       stage.input_why = "no Wii Remote found at start-up";
+      choose_mouse(stage);
       return;
     }
     stage.input_why = "found " + remote_identity(*found);
@@ -208,7 +245,8 @@ void WindowKiosk::choose_input(Stage& stage) {
     stage.calibration = c;
     stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
   }
-  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine);
+  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine,
+                                                 &win_.window->present_clock());
   stage.remote->set_calibration(stage.calibration);
   input::wiimote::WiimoteDeviceConfig dc = kiosk_device_config(stage.config, stage.calibration);
   if (stage.calibration && !stage.calibration->ir_sensitivity.empty())
@@ -218,19 +256,72 @@ void WindowKiosk::choose_input(Stage& stage) {
   stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
       stage.replay ? static_cast<input::wiimote::DeviceFinder&>(*stage.replay) : finder_, clock_, dc);
   Stage* s = &stage;
-  // The reading thread: strikes go from there to the engine (RemotePointer); this only
-  // logs them and pulses the rumble when configured.
-  stage.remote->on_strike = [s](const Impact& impact) {
-    s->device->on_impact();
-    std::fprintf(stderr, "<6>%s\n", strike_line(s->scene, impact).c_str());
-  };
+  // The reading thread: strikes go from there through the strike route (RemotePointer);
+  // this only pulses the rumble when configured.
+  stage.remote->on_strike = [s](const Impact&) { s->device->on_impact(); };
   stage.device->set_sample_sink(
       [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
 }
 
+//! "off", or "10 ms ahead".
+std::string predict_text(const PredictionConfig& p) {
+  if (!(p.horizon_ms > 0)) return "off";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.0f ms ahead", p.horizon_ms);
+  return buf;
+}
+
+std::string WindowKiosk::timing_line() const {
+  const AppConfig& c = stage_->config;
+  const TimingConfig& t = c.timing;
+  char buf[240];
+  const double audio_ms = stage_->output ? stage_->output->output_latency_s() * 1e3 : 0.0;
+  std::snprintf(buf, sizeof buf, "timing: align %s, prediction %s, frames %s, display %.0f ms, audio out %.1f ms%s",
+                to_string(t.align), predict_text(t.predict).c_str(), win_.window->present_clock().describe().c_str(),
+                t.display_latency_ms, audio_ms, c.audio.output_latency_ms >= 0 ? " (set)" : " (the device's)");
+  return buf;
+}
+
+void WindowKiosk::choose_mouse(Stage& stage) {
+  const InputConfig& in = stage.config.input;
+  if (in.mouse == "window") {
+    stage.mouse_line = "mouse: the window system's events, once a frame (the settings say window)";
+    return;
+  }
+  input::evdev::EvdevMouseConfig mc;
+  mc.screen_width_px = static_cast<int>(win_.window->extent().width);
+  mc.screen_height_px = static_cast<int>(win_.window->extent().height);
+  input::evdev::EvdevOpenResult opened =
+      input::evdev::EvdevMouse::open(in.mouse_device.empty() ? input::evdev::kAutoDevice : in.mouse_device, mc);
+  if (!opened.mouse) {
+    stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
+    return;
+  }
+  stage.evdev = std::move(opened.mouse);
+  stage.mouse = std::make_unique<MousePointer>(stage.scene, stage.config, *stage.rig.engine,
+                                               &win_.window->present_clock());
+  if (last_cursor_) stage.evdev->warp(last_cursor_->x, last_cursor_->y);
+  stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
+}
+
+std::uint64_t WindowKiosk::strikes() const {
+  return strikes_before_ + stage_->route->strikes() + (stage_->remote ? stage_->remote->strikes() : 0) +
+         (stage_->mouse ? stage_->mouse->strikes() : 0);
+}
+
 std::string WindowKiosk::input_line() const {
   const Stage& s = *stage_;
-  if (s.source == InputSource::mouse) return "input: mouse (" + s.input_why + ")";
+  if (s.source == InputSource::mouse) {
+    std::string line = "input: mouse (" + s.input_why + "); " + s.mouse_line;
+    if (s.evdev) {
+      const input::evdev::EvdevMouseStatus m = s.evdev->status();
+      char buf[120];
+      if (m.connected) std::snprintf(buf, sizeof buf, ", %.0f reports/s", m.rate_hz);
+      else std::snprintf(buf, sizeof buf, ", lost: %s", m.problem.c_str());
+      line += buf;
+    }
+    return line;
+  }
   const input::wiimote::WiimoteState w = s.device->state();
   std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
                              : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
@@ -350,6 +441,7 @@ void WindowKiosk::handle_keys(Nanos now) {
       case GLFW_KEY_LEFT: gain_ = std::max(0.0, gain_ - 0.02); break;
       case GLFW_KEY_M: next_wall_material(); break;
       case GLFW_KEY_S: next_scene(); break;
+      case GLFW_KEY_T: start_latency_test(now); break;
       default: break;
     }
   }
@@ -358,10 +450,40 @@ void WindowKiosk::handle_keys(Nanos now) {
 
 void WindowKiosk::next_wall_material() {
   if (stage_->scene.kind != SceneKind::wall) return;
-  stage_->loop->next_wall_material();
-  const int m = stage_->loop->wall_material();
+  stage_->route->loop().next_wall_material();
+  const int m = stage_->route->loop().wall_material();
   if (stage_->remote) stage_->remote->set_wall_material(m);
+  if (stage_->mouse) stage_->mouse->set_wall_material(m);
   std::fprintf(stderr, "<5>wall material: %s\n", stage_->scene.materials[static_cast<std::size_t>(m)].name.c_str());
+}
+
+void WindowKiosk::start_latency_test(Nanos now) {
+  latency_test_.clear();
+  // The first instant far enough ahead that its sound can still be scheduled on time.
+  for (int i = 0; i < kLatencyTestPulses; ++i) latency_test_.push_back(now + (i + 1) * kNanosPerSecond);
+  for (Nanos t : latency_test_) {
+    Impact pulse;  // a firm strike on the first bar: a sharp onset on both channels
+    pulse.t_ns = t;
+    pulse.target = 0;
+    pulse.material = stage_->scene.targets.empty() ? -1 : stage_->scene.targets[0].material;
+    pulse.note = stage_->scene.targets.empty() ? 0 : stage_->scene.targets[0].note;
+    pulse.speed_m_per_s = 1.0;
+    if (!stage_->scene.targets.empty()) stage_->rig.engine->post(pulse);  // heard at t: the engine's clock
+  }
+  std::fprintf(stderr, "<5>latency test: %d pulses, one a second, from %s (square, note and actuator at each)\n",
+               kLatencyTestPulses, format_seconds(latency_test_.front()).c_str());
+}
+
+void WindowKiosk::latency_test_frame(Nanos present) {
+  // The square is in the frame presented at or after each instant, for 100 ms.
+  constexpr Nanos kShown = 100'000'000;
+  std::erase_if(latency_test_, [present](Nanos t) { return present >= t + kShown; });
+  for (Nanos t : latency_test_)
+    if (present >= t) {
+      const float side = win_.font->pixel_height() * 4;
+      win_.overlay->fill_rect(0, 0, side, side, {1.0f, 1.0f, 1.0f, 1.0f});
+      return;
+    }
 }
 
 void WindowKiosk::next_scene() {
@@ -378,8 +500,10 @@ void WindowKiosk::next_scene() {
   if (std::filesystem::path(stage_->scene.file) != options_.scene) options_.scene = previous;  // refused: stays
 }
 
-void WindowKiosk::post_motion(audio::Producer from) {
-  if (stage_->loop->motion()) stage_->rig.engine->post_motion(*stage_->loop->motion(), from);
+void WindowKiosk::on_cursor(double x, double y) {
+  int w = 1, h = 1;
+  glfwGetWindowSize(win_.window->window(), &w, &h);
+  cursor_.push_back({monotonic_now(), x / std::max(w, 1), y / std::max(h, 1)});
 }
 
 void WindowKiosk::reload() {
@@ -421,7 +545,7 @@ void WindowKiosk::heartbeat(Nanos now) {
   if (log_due) {
     std::fprintf(stderr, "<6>heartbeat: %s, frames %llu, strikes %llu, audio callbacks %llu, xruns %llu%s\n",
                  to_string(states_->state()), static_cast<unsigned long long>(frames_),
-                 static_cast<unsigned long long>(strikes_ + (stage_->remote ? stage_->remote->strikes() : 0)), static_cast<unsigned long long>(a.callbacks),
+                 static_cast<unsigned long long>(strikes()), static_cast<unsigned long long>(a.callbacks),
                  static_cast<unsigned long long>(a.xruns), stage_->output && !stage_->output->device_ok()
                                                                ? ", audio device lost (retrying)" : "");
     next_log_ = now + 60 * kNanosPerSecond;
@@ -429,12 +553,6 @@ void WindowKiosk::heartbeat(Nanos now) {
   frames_at_beat_ = frames_;
   polls_at_beat_ = polls_;
   callbacks_at_beat_ = a.callbacks;
-}
-
-void WindowKiosk::strike(const Impact& impact) {
-  ++strikes_;
-  stage_->rig.engine->post(impact);
-  std::fprintf(stderr, "<6>%s\n", strike_line(stage_->scene, impact).c_str());
 }
 
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
@@ -450,7 +568,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",
            {1.0f, 1.0f, 1.0f, 0.35f});
   if (states_->state() != KioskState::operator_page) return;
-  char lines[9][240];
+  char lines[10][240];
   const double uptime = to_seconds(now - started_);
   std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page   quality: %s", to_string(stage_->config.quality));
   std::snprintf(lines[1], sizeof lines[1], "%s", input_line().c_str());
@@ -459,8 +577,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                 std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
   std::snprintf(lines[4], sizeof lines[4], "volume %.0f %%  (Up / Down)", volume_ * 100);
   std::snprintf(lines[5], sizeof lines[5], "actuator gain %.2f  (Left / Right)", gain_);
-  std::snprintf(lines[6], sizeof lines[6], "R recalibrate    Q quit    Esc close");
-  const int wall = stage_->loop->wall_material();
+  std::snprintf(lines[6], sizeof lines[6], "R recalibrate    T latency test    Q quit    Esc close");
+  const int wall = stage_->route->loop().wall_material();
   std::snprintf(lines[7], sizeof lines[7], "scene: %s  (S next)%s%s%s",
                 std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "",
                 wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "",
@@ -470,16 +588,16 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                     ? (stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
                        stage_->calibration_status_sensitivity).c_str()
                                                        : "calibration: R runs the screen with the mouse (not saved)");
-  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 34), ph = line * 10;
+  std::snprintf(lines[9], sizeof lines[9], "%s", timing_line().c_str());
+  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 40), ph = line * 11;
   const float x0 = (w - pw) / 2, y0 = (h - ph) / 2;
   o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  for (int i = 0; i < 9; ++i)
+  for (int i = 0; i < 10; ++i)
     o.text(x0 + px, y0 + line * static_cast<float>(i + 1), lines[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
 }
 
 int WindowKiosk::run() {
-  double last_x = -1, last_y = -1;
   const Nanos quit_after = static_cast<Nanos>(std::llround(options_.quit_after_s * 1e9));
   Nanos last_frame = monotonic_now();
   next_log_ = last_frame + 60 * kNanosPerSecond;
@@ -503,54 +621,60 @@ int WindowKiosk::run() {
     }
     if (states_->should_quit() || (quit_after > 0 && now - started_ >= quit_after)) break;
 
-    double x = 0, y = 0;
-    int w = 1, h = 1;
-    glfwGetCursorPos(win_.window->window(), &x, &y);
-    glfwGetWindowSize(win_.window->window(), &w, &h);
-    const bool moved = last_x >= 0 && (x != last_x || y != last_y);
-    last_x = x;
-    last_y = y;
-    const Vec2 screen{x / std::max(w, 1), y / std::max(h, 1)};
+    // The mouse's samples since the last frame: from its reading thread (evdev), else the
+    // window system's cursor events, each stamped as it was read.
+    std::vector<PointerSample> cursor = std::exchange(cursor_, {});
+    if (stage_->mouse) cursor = stage_->mouse->take();
+    if (!cursor.empty()) last_cursor_ = Vec2{cursor.back().x, cursor.back().y};
     const bool mouse = stage_->source == InputSource::mouse;
-    if (mouse && moved) states_->pointer(now, screen);
+    if (mouse)
+      for (const PointerSample& p : cursor) states_->pointer(p.t_ns, {p.x, p.y});
     if (stage_->device) poll_remote(now);
     states_->tick(now);
-    const bool inside = screen.x >= 0 && screen.x <= 1 && screen.y >= 0 && screen.y <= 1;
-    calibration_frame(now, mouse && inside && last_x >= 0 ? std::optional<Vec2>(screen) : std::nullopt);
+    const std::optional<Vec2> screen = last_cursor_;
+    const bool inside = screen && screen->x >= 0 && screen->x <= 1 && screen->y >= 0 && screen->y <= 1;
+    calibration_frame(now, mouse && inside ? screen : std::nullopt);
     if (stage_->remote) stage_->remote->set_playing(states_->visitor_plays());
+    if (stage_->mouse) stage_->mouse->set_playing(states_->visitor_plays());
     apply_volume();
 
-    if (!mouse && states_->visitor_plays()) {
-      ghost_.reset();  // the remote's strikes go from its reading thread to the engine
-    } else if (states_->visitor_plays() && moved) {
+    StrikeRoute& route = *stage_->route;
+    // A live source with its own thread (the remote, the evdev mouse) strikes through its
+    // own route; the main thread's route plays the window system's mouse and the ghost.
+    const bool threaded = !mouse || stage_->mouse;
+    if (threaded && states_->visitor_plays()) {
+      ghost_.reset();
+    } else if (states_->visitor_plays() && !cursor.empty()) {
       if (ghost_) {  // a visitor takes over from the ghost within this frame
         ghost_.reset();
-        stage_->loop->reset();
-        stage_->loop->set_cycle_materials(false);
+        route.reset();
+        route.loop().set_cycle_materials(false);
       }
-      if (auto impact = stage_->loop->feed(now, stage_->scene.screen_to_world.map(screen.x, screen.y)))
-        strike(*impact);
-      post_motion(audio::Producer::main);
+      for (const PointerSample& p : cursor) route.feed(p.t_ns, stage_->scene.screen_to_world.map(p.x, p.y), now);
     } else if (states_->ghost_plays()) {
       if (!ghost_) {
         ghost_.emplace(stage_->scene, now);
-        stage_->loop->reset();
-        stage_->loop->set_cycle_materials(true);  // the wall shows each of its materials in turn
+        route.reset();
+        route.loop().set_cycle_materials(true);  // the wall shows each of its materials in turn
       }
-      for (const PointerSample& s : ghost_->samples_until(now)) {
-        if (auto impact = stage_->loop->feed(s.t_ns, {s.x, s.y})) strike(*impact);
-        post_motion(audio::Producer::main);
-      }
+      // The ghost is a script: its samples up to the next frame are known now, so each of
+      // its strikes is heard on its own sample, not at the frame that plays it.
+      const Nanos until = now + win_.window->present_clock().period_ns();
+      for (const PointerSample& p : ghost_->samples_until(until)) route.feed(p.t_ns, {p.x, p.y});
     } else {
-      if (ghost_) stage_->loop->set_cycle_materials(false);
+      if (ghost_) route.loop().set_cycle_materials(false);
       ghost_.reset();
     }
 
     draw_overlay(now, frame_ms);
     render::FrameState state;
+    win_.window->present_clock().frame_started(now);
     const Nanos present = win_.window->predicted_present(now);
-    state.mallet_centre = !mouse && states_->visitor_plays() ? stage_->remote->view().displayed(present)
-                                                             : stage_->loop->displayed(present);
+    if (!latency_test_.empty()) latency_test_frame(present);
+    state.mallet_centre = !states_->visitor_plays() ? route.view().displayed(present)
+                          : !mouse               ? stage_->remote->view().displayed(present)
+                          : stage_->mouse        ? stage_->mouse->view().displayed(present)
+                                                 : route.view().displayed(present);
     state.overlay = win_.overlay.get();
     if (win_.window->draw(*stage_->renderer, state)) ++frames_;
     if (frames_ == 1) notifier_.ready();
@@ -558,9 +682,10 @@ int WindowKiosk::run() {
   }
   notifier_.stopping();
   std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
-               static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes_));
+               static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes()));
   vkDeviceWaitIdle(win_.ctx->device());
   if (stage_->device) stage_->device->stop();
+  if (stage_->evdev) stage_->evdev->stop();
   if (stage_->output) stage_->output->stop();
   if (win_.ctx->validation_messages() > 0) {
     std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",

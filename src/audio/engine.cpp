@@ -97,7 +97,10 @@ void AudioEngine::schedule(const Impact& impact, std::int64_t block_start) {
     return;
   }
   Pending p{impact, block_start, 0.0};
-  const SampleAlignment a = align_to_sample(impact.t_ns + ahead_ns_ - origin_ns_, settings_.sample_rate_hz);
+  // Heard at the contact plus the route's delay (align = picture, a late decision), plus
+  // the constant schedule_ahead.
+  const SampleAlignment a =
+      align_to_sample(impact.t_ns + impact.delay_ns + ahead_ns_ - origin_ns_, settings_.sample_rate_hz);
   if (a.index >= block_start) {
     p.start = a.index;
     p.delay_s = a.delay_s;

@@ -11,7 +11,8 @@
 // relaxed atomics that other threads may read.
 //
 // Sample-accurate scheduling: an impact at time t (ns, monotonic clock) starts on
-// the first sample at or after t + schedule_ahead − origin, with its exact sub-sample
+// the first sample at or after t + delay_ns + schedule_ahead − origin (delay_ns: the strike
+// route's, see app/strike_route.hpp), with its exact sub-sample
 // phase, even inside a block. With schedule_ahead = 0 an impact that is already past
 // starts at the beginning of the next block (as soon as possible: jitter up to one
 // block); with schedule_ahead > 0 every impact is delayed by exactly that constant
@@ -91,6 +92,7 @@ class AudioEngine {
 
   //! The monotonic-clock time of frame 0. Set before the stream starts.
   void set_origin(Nanos origin_ns) { origin_ns_ = origin_ns; }
+  Nanos origin() const { return origin_ns_; }
 
   //! Replaces the modal voices as the speaker's source (nullptr: back to modal). Call
   //! before the stream starts; the engine does not own it.

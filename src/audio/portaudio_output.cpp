@@ -250,6 +250,8 @@ void PortAudioOutput::open_locked() {
   stream_ = stream;
   device_ = device;
   latency_s_ = info ? info->outputLatency : p.suggestedLatency;
+  // A measured figure (the operator's latency test, key T) beats the driver's report.
+  if (config_.output_latency_ms >= 0) latency_s_ = config_.output_latency_ms * 1e-3;
   stream_rate_ = info ? info->sampleRate : sample_rate_;
 }
 
@@ -258,6 +260,7 @@ void PortAudioOutput::start_stream_locked() {
   // Frame 0 is heard one output latency after the start; frames already rendered (a
   // restart, a reopen) lie before it. See FRAME 0'S TIME in the header.
   const Nanos latency_ns = static_cast<Nanos>(std::llround(latency_s_ * 1e9));
+  latency_ns_.store(latency_ns, std::memory_order_relaxed);
   engine_.set_origin(monotonic_now() + latency_ns - frames_to_ns(engine_.position(), sample_rate_));
   if (const PaError e = Pa_StartStream(static_cast<PaStream*>(stream_)); e != paNoError)
     throw std::runtime_error("audio: cannot start \"" + device_.name + "\": " + error_text(e));
@@ -335,12 +338,22 @@ OutputCounters PortAudioOutput::counters() const {
   c.device_losses = losses_.load(std::memory_order_relaxed);
   c.reopen_attempts = reopen_attempts_.load(std::memory_order_relaxed);
   c.reopens = reopens_.load(std::memory_order_relaxed);
+  c.resyncs = resyncs_.load(std::memory_order_relaxed);
   return c;
 }
 
 // The audio thread. See THE CALLBACK CONTRACT in the header.
 int PortAudioOutput::render(void* output, unsigned long frames, unsigned long status_flags) {
   if (status_flags & paOutputUnderflow) xruns_.fetch_add(1, std::memory_order_relaxed);
+  // This buffer is heard no sooner than one output latency from now. If the engine's clock
+  // says earlier by more than a buffer, the stream lost time: re-anchor (FRAME 0'S TIME).
+  // Never backwards: a callback may run early while the device's buffer fills.
+  const Nanos earliest = monotonic_now() + latency_ns_.load(std::memory_order_relaxed);
+  const Nanos planned = engine_.origin() + frames_to_ns(engine_.position(), sample_rate_);
+  if (earliest - planned > frames_to_ns(static_cast<std::int64_t>(frames), sample_rate_) + 1'000'000) {
+    engine_.set_origin(earliest - frames_to_ns(engine_.position(), sample_rate_));
+    resyncs_.fetch_add(1, std::memory_order_relaxed);
+  }
   if (options_.format == StreamFormat::float32) {
     auto* out = static_cast<float*>(output);
     for (unsigned long done = 0; done < frames;) {

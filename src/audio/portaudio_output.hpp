@@ -21,7 +21,12 @@
 // and the engine's origin may only change while no callback runs. The error is the
 // start-up time between Pa_StartStream and the first callback plus whatever PortAudio's
 // latency figure leaves out; it is fixed at start and does not grow while the stream runs
-// (apart from the drift between the sound card's clock and the system's).
+// (apart from the drift between the sound card's clock and the system's). A stream that
+// falls behind (an xrun: the device played silence, or a server such as JACK skipped the
+// time it was late) would leave every later strike late by that much: the callback then
+// moves the origin forward to when its buffer can really be heard (counted in
+// OutputCounters::resyncs). It is the audio thread's own change, between two process()
+// calls, so the engine never sees it mid-block.
 //
 // DEVICE LOSS. A supervisor thread (not the audio thread) polls every
 // Options::poll_interval: if the stream is no longer active (Pa_IsStreamActive false,
@@ -86,6 +91,7 @@ struct OutputCounters {
   std::uint64_t device_losses = 0;   //!< times the stream was found stopped or stalled
   std::uint64_t reopen_attempts = 0; //!< tries to open the device again
   std::uint64_t reopens = 0;         //!< successful reopens
+  std::uint64_t resyncs = 0;         //!< the stream fell behind its clock and was re-anchored
 };
 
 class PortAudioOutput {
@@ -162,6 +168,8 @@ class PortAudioOutput {
   void* stream_ = nullptr;  // PaStream*
   DeviceInfo device_;
   double latency_s_ = 0;
+  std::atomic<Nanos> latency_ns_{0};  //!< latency_s_ for the audio thread
+  std::atomic<std::uint64_t> resyncs_{0};
   double stream_rate_ = 0;
   std::vector<float> scratch_;  // int16 conversion and silent rendering; sized once
 

@@ -8,6 +8,7 @@
 #include "core/ir_tracker.hpp"
 #include "core/mallet.hpp"
 #include "core/modal_preset.hpp"
+#include "core/contact_predictor.hpp"
 #include "core/one_euro_filter.hpp"
 #include "core/visual_vibration.hpp"
 
@@ -37,6 +38,9 @@ struct AudioConfig {
   int frames_per_buffer = 64;
   double suggested_latency_ms = 0;  //!< 0 = the device's default low latency
   double schedule_ahead_ms = 0;     //!< 0 = as soon as possible; > 0 = constant latency, no jitter
+  //! From a frame leaving the callback to it being heard; < 0: the device's own report
+  //! (PortAudio's outputLatency). Set by [timing] audio_output_latency_ms (measured, key T).
+  double output_latency_ms = -1;
   int max_voices = 64;
   int max_modes = kMaxModalModes;   //!< modes sounding per bar (a quality knob; see core/quality.hpp)
   double volume = 0.8;              //!< speaker channel gain (the operator's volume)
@@ -66,6 +70,30 @@ struct InputConfig {
   //! replay_file, a `mallet wiimote monitor --record` file, played as a live remote (looping).
   std::string source = "auto";
   std::string replay_file;  //!< for "replay"; relative to the settings file's folder
+  //! How the mouse is read: "auto" (its event node through evdev, at the device's own
+  //! rate, stamped by the kernel; the window system's events when no node can be opened),
+  //! "evdev" (the node only) or "window" (the window system's cursor events only).
+  std::string mouse = "auto";
+  std::string mouse_device;  //!< an evdev node (/dev/input/eventN); empty = the first mouse
+};
+
+//! [timing] align: when the actuator and the note are heard.
+enum class CueAlign {
+  asap,     //!< as soon as the strike is known (or at its predicted contact)
+  picture,  //!< together with the first frame that shows the bounce
+};
+
+const char* to_string(CueAlign a);
+
+//! [timing]: when the three cues of a strike reach the visitor (src/app/strike_route.hpp).
+struct TimingConfig {
+  CueAlign align = CueAlign::asap;
+  double display_latency_ms = 0;        //!< from a present to light on the panel (measured, key T)
+  // [timing] audio_output_latency_ms is AudioConfig::output_latency_ms (the device's clock).
+  //! Contact prediction ([timing] predict_horizon_ms, 0 = off; predict_confidence names the
+  //! set of tests a prediction must pass; predict_clearance_m): see core/contact_predictor.hpp.
+  std::string predict_confidence = "balanced";
+  PredictionConfig predict = prediction_balanced();
 };
 
 //! [attract]: the attract mode that plays when nobody is there.
@@ -110,6 +138,7 @@ struct AppConfig {
   RenderConfig render;
   AttractConfig attract;
   ScenesConfig scenes;
+  TimingConfig timing;
 };
 
 }  // namespace mallet

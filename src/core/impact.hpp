@@ -14,6 +14,10 @@ struct Impact {
   int note = 0;               //!< MIDI note number
   double speed_m_per_s = 0;   //!< normal impact speed v (after clamping)
   double x_m = 0;             //!< where along the bar's top the sphere touched
+  //! Both audio channels are heard this long after t_ns: 0 = as soon as possible
+  //! ([timing] align = "asap"); the strike route sets it for align = "picture".
+  Nanos delay_ns = 0;
+  bool predicted = false;     //!< decided from a prediction before the contact was seen
 };
 
 static_assert(std::is_trivially_copyable_v<Impact>);

@@ -46,6 +46,11 @@ int Mallet::material_of(int target) const { return materials_.at(static_cast<std
 
 void Mallet::reset() { last_.reset(); }
 
+void Mallet::disarm(const ContactZone& zone, double hand_y) {
+  armed_ = false;
+  rearm_y_ = std::max(hand_y, zone.plane_y) + config_.rearm_height_m;
+}
+
 const ContactZone* Mallet::zone_at(double x) const {
   const ContactZone* best = nullptr;
   for (const ContactZone& z : zones_)

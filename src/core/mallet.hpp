@@ -79,6 +79,14 @@ class Mallet {
   bool armed() const { return armed_; }
   void reset();  //!< forget the previous sample (e.g. tracking was lost)
 
+  //! Treats `zone` as struck now, with the hand at height `hand_y`: a strike decided
+  //! from a prediction (core/strike_detector.hpp) must not sound again when the real
+  //! crossing follows. Re-arms only when the hand rises `rearm_height_m` above
+  //! max(hand_y, zone.plane_y), so a hand that stops just above the bar after a wrong
+  //! prediction makes no second note while it hovers there. A real contact that follows
+  //! moves the re-arm height down to the plane's, as after any strike.
+  void disarm(const ContactZone& zone, double hand_y);
+
   //! The material a target's strikes carry from now on (the wall's material switch);
   //! ignored unless both indices are valid. Initially each target's configured material.
   void set_material(int target, int material);

@@ -12,6 +12,7 @@ QualityKnobs quality_knobs(Quality q) {
   k.schedule_ahead_ms = defaults.audio.schedule_ahead_ms;
   k.max_modes = defaults.audio.max_modes;
   k.pointer = defaults.pointer;
+  k.predict_horizon_ms = defaults.timing.predict.horizon_ms;
   switch (q) {
     case Quality::fast:
       k.msaa = "1";
@@ -21,6 +22,7 @@ QualityKnobs quality_knobs(Quality q) {
     case Quality::exact:
       k.msaa = "4";
       k.schedule_ahead_ms = 12.0;
+      k.predict_horizon_ms = 0;  // the constant 12 ms covers the camera: every speed from the samples
       break;
   }
   return k;
@@ -36,6 +38,7 @@ void apply_quality(Quality q, AppConfig& config) {
   config.audio.schedule_ahead_ms = k.schedule_ahead_ms;
   config.audio.max_modes = k.max_modes;
   config.pointer = k.pointer;
+  config.timing.predict.horizon_ms = k.predict_horizon_ms;
 }
 
 std::optional<Quality> parse_quality(std::string_view text) {
@@ -44,6 +47,8 @@ std::optional<Quality> parse_quality(std::string_view text) {
   if (text == "exact") return Quality::exact;
   return std::nullopt;
 }
+
+const char* to_string(CueAlign a) { return a == CueAlign::picture ? "picture" : "asap"; }
 
 const char* to_string(Quality q) {
   switch (q) {

@@ -48,6 +48,7 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : c
     GLFWmonitor* m = monitors[std::clamp(options.monitor, 0, monitor_count - 1)];
     if (const GLFWvidmode* mode = glfwGetVideoMode(m)) {
       if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
+      clock_.set_refresh_hz(refresh_hz_);
       if (options.fullscreen) {  // borderless: the monitor's own mode, no mode switch
         glfwWindowHint(GLFW_RED_BITS, mode->redBits);
         glfwWindowHint(GLFW_GREEN_BITS, mode->greenBits);
@@ -111,13 +112,6 @@ void WindowTarget::recreate_swapchain() {
   ++recreations_;
 }
 
-Nanos WindowTarget::predicted_present(Nanos now) const {
-  const double period_ns = 1e9 / refresh_hz_;
-  // FIFO: this frame waits behind the one already queued, then for the next vblank.
-  const double queued = present_mode_ == VK_PRESENT_MODE_FIFO_KHR ? 2.0 : 1.0;
-  return now + static_cast<Nanos>(queued * period_ns);
-}
-
 void WindowTarget::create_swapchain() {
   VkPhysicalDevice pd = ctx_.physical_device();
   built_for_ = framebuffer_size();
@@ -146,6 +140,9 @@ void WindowTarget::create_swapchain() {
                                   : options_.present_mode == PresentMode::immediate ? VK_PRESENT_MODE_IMMEDIATE_KHR
                                                                                      : VK_PRESENT_MODE_FIFO_KHR;
   present_mode_ = std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
+  clock_.set_pacing(present_mode_ == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
+                    : present_mode_ == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
+                                                                     : PresentPacing::fifo);
 
   if (caps.currentExtent.width != UINT32_MAX) {
     extent_ = caps.currentExtent;

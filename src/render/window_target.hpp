@@ -12,6 +12,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "core/present_clock.hpp"
 #include "core/time.hpp"
 #include "render/gpu_resources.hpp"
 #include "render/image.hpp"
@@ -58,10 +59,15 @@ class WindowTarget {
   bool close_requested() const;
   std::uint64_t swapchain_recreations() const { return recreations_; }
 
-  //! When the frame about to be drawn should reach the screen: now + the frames queued
-  //! ahead of it times the display's refresh period. The visual vibration is evaluated
-  //! there, not at the time the frame is recorded.
-  Nanos predicted_present(Nanos now) const;
+  //! When the frame about to be drawn should reach the screen (present_clock()'s model:
+  //! FIFO = now + the frames queued ahead of it times the refresh period). The visual
+  //! vibration is evaluated there, not at the time the frame is recorded.
+  Nanos predicted_present(Nanos now) const { return clock_.present_of_frame_started(now); }
+  //! The swapchain's present model: its pacing (the present mode in use), the display's
+  //! refresh, refined by the frame starts the caller reports (frame_started). The strike
+  //! route reads it from other threads to align the sound with the picture.
+  PresentClock& present_clock() { return clock_; }
+  const PresentClock& present_clock() const { return clock_; }
 
   //! Draws and presents one frame; false when nothing was drawn (minimised: it then waits
   //! up to one refresh for window events, so a loop around it does not spin). With
@@ -96,6 +102,7 @@ class WindowTarget {
   std::uint32_t frame_ = 0;
   std::uint64_t recreations_ = 0;
   double refresh_hz_ = 60.0;
+  PresentClock clock_;
   GpuBuffer capture_buffer_;
 };
 

@@ -300,9 +300,9 @@ TEST(SecondPaperScenes, AttractModeSweepsTheDiscAndTheStripesSound) {
 TEST(SecondPaperScenes, AttractModeTapsTheWallInEveryMaterial) {
   HeadlessLoop loop(test::wall(), AppConfig{}, 0);
   std::set<int> materials;
-  loop.on_strike = [&](const Impact& i, bool ghost) {
+  loop.on_strike = [&](const Strike& s, bool ghost) {
     EXPECT_TRUE(ghost);
-    materials.insert(i.material);
+    materials.insert(s.impact.material);
   };
   loop.advance(20 * kNanosPerSecond);
   EXPECT_GE(loop.counters().ghost_strikes, 5u);

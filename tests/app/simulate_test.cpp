@@ -165,6 +165,101 @@ TEST(Simulate, MonoRoutingMixesBothIntoOneChannel) {
   EXPECT_GT(energy, 0.0);
 }
 
+//! The first sample of a channel that is not zero.
+std::int64_t onset_of(const std::vector<float>& channel) {
+  for (std::size_t n = 0; n < channel.size(); ++n)
+    if (channel[n] != 0.0f) return static_cast<std::int64_t>(n);
+  return -1;
+}
+
+//! One straight strike on bar 2 at 1.2 m/s, sampled at 60 Hz (a window system's mouse).
+fs::path write_one_strike(const fs::path& dir, const Scene& scene) {
+  const fs::path csv = dir / "one.csv";
+  std::ofstream f(csv);
+  f.precision(17);
+  f << "t,x,y\n";
+  const double plane = scene.targets[2].top_y + scene.mallet_radius_m;
+  const double x = 0.5 * (scene.targets[2].x_min + scene.targets[2].x_max);
+  for (int k = 0; k <= 12; ++k) f << 0.05 + k / 60.0 << ',' << x << ',' << plane + 0.1 - 1.2 * (k / 60.0) << '\n';
+  return csv;
+}
+
+struct CausalRun {
+  CsvTable events;
+  std::vector<float> actuator, acoustic;
+};
+
+CausalRun run_causal(const fs::path& dir, const std::string& name, const std::string& settings, double delay_ms) {
+  const Scene scene = config::load_scene(test::percussion_scene());
+  std::ofstream(dir / (name + ".toml")) << settings;
+  SimulateOptions o;
+  o.scene = test::percussion_scene();
+  o.input = write_one_strike(dir, scene);
+  o.out_dir = dir / name;
+  o.input_space = InputSpace::world;
+  o.config = dir / (name + ".toml");
+  o.causal = true;
+  o.input_delay_ms = delay_ms;
+  run_simulate(o);
+  const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
+  const auto a = wav.channel(1), n = wav.channel(0);
+  return {read_csv_table(o.out_dir / "events.csv"), {a.begin(), a.end()}, {n.begin(), n.end()}};
+}
+
+TEST(SimulateCausal, AsapSoundsWhenTheSampleAfterTheContactArrives) {
+  const fs::path dir = test::scratch_dir();
+  const CausalRun r = run_causal(dir, "asap", "[timing]\nalign = \"asap\"\n", 8.0);
+  EXPECT_EQ(r.events.header, (std::vector<std::string>{"t", "target", "instrument", "material", "note", "velocity",
+                                                        "contact_t", "sound_t", "shown_t", "predicted"}));
+  ASSERT_EQ(r.events.rows.size(), 1u);
+  const double contact = r.events.number(0, 6), sound = r.events.number(0, 7), shown = r.events.number(0, 8);
+  EXPECT_EQ(r.events.number(0, 0), contact);
+  EXPECT_EQ(r.events.rows[0][9], "0");
+  // Known at the first sample past the contact (60 Hz from 50 ms) plus the 8 ms delay.
+  const double first_after = 0.05 + std::ceil((contact - 0.05) * 60.0) / 60.0;
+  EXPECT_NEAR(sound, first_after + 0.008, 1e-6);
+  // Both channels start in audio.wav at sound_t, on its own sample.
+  EXPECT_NEAR(static_cast<double>(onset_of(r.actuator)), sound * 48000, 1.0);
+  EXPECT_EQ(onset_of(r.acoustic), onset_of(r.actuator));
+  // The first 60 Hz FIFO frame started after the decision is on screen two refreshes later.
+  const double period = 1.0 / 60.0;
+  EXPECT_NEAR(shown, std::ceil(sound / period - 1e-9) * period + 2 * period, 2e-6);
+}
+
+TEST(SimulateCausal, PictureAlignmentSoundsWithTheFrameThatShowsTheBounce) {
+  const fs::path dir = test::scratch_dir();
+  const CausalRun r = run_causal(dir, "picture", "[timing]\nalign = \"picture\"\ndisplay_latency_ms = 4\n", 8.0);
+  ASSERT_EQ(r.events.rows.size(), 1u);
+  const double sound = r.events.number(0, 7), shown = r.events.number(0, 8);
+  EXPECT_NEAR(sound, shown + 0.004, 1e-9);
+  EXPECT_NEAR(static_cast<double>(onset_of(r.actuator)), sound * 48000, 1.0);
+  EXPECT_EQ(onset_of(r.acoustic), onset_of(r.actuator));
+}
+
+TEST(SimulateCausal, WithoutCausalTheTimingSettingsChangeNothing) {
+  const fs::path dir = test::scratch_dir();
+  const Scene scene = config::load_scene(test::percussion_scene());
+  const Scripted s = write_two_strikes(dir, scene);
+  std::ofstream(dir / "timing.toml") << "[timing]\nalign = \"picture\"\ndisplay_latency_ms = 20\n";
+  auto run = [&](const std::string& name, bool timing) {
+    SimulateOptions o;
+    o.scene = test::percussion_scene();
+    o.input = s.csv;
+    o.out_dir = dir / name;
+    o.input_space = InputSpace::world;
+    if (timing) o.config = dir / "timing.toml";
+    run_simulate(o);
+    return o.out_dir;
+  };
+  const fs::path plain = run("plain", false), timed = run("timed", true);
+  for (const char* file : {"events.csv", "cursor.csv", "audio.wav"}) {
+    std::ifstream a(plain / file, std::ios::binary), b(timed / file, std::ios::binary);
+    const std::string da((std::istreambuf_iterator<char>(a)), {}), db((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(da.empty()) << file;
+    EXPECT_EQ(da, db) << file;
+  }
+}
+
 TEST(SimulateCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
   const fs::path dir = test::scratch_dir();
   std::ofstream(dir / "unsorted.csv") << "t,x,y\n0,0.5,0.5\n0.2,0.5,0.5\n0.1,0.5,0.5\n";

@@ -52,7 +52,7 @@ HeadlessRenderer& renderer() {
 Replay replay_of(std::initializer_list<std::array<double, 3>> samples) {
   input::Trajectory t;
   for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
-  return Replay(percussion(), ContactConfig{}, BounceMode::signed_eq1, t, InputSpace::world, "test");
+  return Replay(percussion(), AppConfig{}, t, InputSpace::world, "test");
 }
 
 void expect_matches_golden(const render::Image& actual, const std::string& name,
@@ -142,7 +142,7 @@ namespace {
 Replay replay_in(const Scene& scene, std::initializer_list<std::array<double, 3>> samples) {
   input::Trajectory t;
   for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
-  return Replay(scene, ContactConfig{}, BounceMode::signed_eq1, t, InputSpace::world, "test");
+  return Replay(scene, AppConfig{}, t, InputSpace::world, "test");
 }
 
 TEST(Golden, TextureBumpWithTheCursorClimbingIt) {

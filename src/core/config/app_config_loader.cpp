@@ -129,6 +129,35 @@ AppConfig read(const toml::table& root, const std::string& file) {
       t->fail("source", "\"replay\" needs replay_file (a `mallet wiimote monitor --record` file)");
     if (!i.replay_file.empty() && std::filesystem::path(i.replay_file).is_relative())
       i.replay_file = (std::filesystem::path(file).parent_path() / i.replay_file).string();
+    i.mouse = t->string_or("mouse", i.mouse);
+    if (i.mouse != "auto" && i.mouse != "evdev" && i.mouse != "window")
+      t->fail("mouse", "expected \"auto\", \"evdev\" or \"window\", got \"" + i.mouse + "\"");
+    i.mouse_device = t->string_or("mouse_device", i.mouse_device);
+    t->finish();
+  }
+  if (auto t = top.optional_table("timing")) {
+    TimingConfig& g = c.timing;
+    const std::string align = t->string_or("align", to_string(g.align));
+    if (align == "asap") g.align = CueAlign::asap;
+    else if (align == "picture") g.align = CueAlign::picture;
+    else t->fail("align", "expected \"asap\" or \"picture\", got \"" + align + "\"");
+    g.display_latency_ms = t->number_or("display_latency_ms", g.display_latency_ms);
+    t->require_range("display_latency_ms", g.display_latency_ms, 0, 200);
+    double& audio = c.audio.output_latency_ms;
+    audio = t->number_or("audio_output_latency_ms", audio);
+    if (audio >= 0) t->require_range("audio_output_latency_ms", audio, 0, 500);
+    const std::string confidence = t->string_or("predict_confidence", g.predict_confidence);
+    const double horizon = t->number_or("predict_horizon_ms", g.predict.horizon_ms);
+    t->require_range("predict_horizon_ms", horizon, 0, 50);
+    const double clearance = t->number_or("predict_clearance_m", g.predict.clearance_m);
+    t->require_range("predict_clearance_m", clearance, 0, 0.05);
+    if (confidence == "eager") g.predict = prediction_eager();
+    else if (confidence == "balanced") g.predict = prediction_balanced();
+    else if (confidence == "exact") g.predict = prediction_exact();
+    else t->fail("predict_confidence", "expected \"eager\", \"balanced\" or \"exact\", got \"" + confidence + "\"");
+    g.predict_confidence = confidence;
+    g.predict.horizon_ms = horizon;
+    g.predict.clearance_m = clearance;
     t->finish();
   }
   if (auto t = top.optional_table("attract")) {

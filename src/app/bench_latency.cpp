@@ -1,0 +1,796 @@
+// `mallet bench latency`: true contact → actuator, note and picture, measured on the real
+// windowed kiosk (a child process) with a virtual X server and a JACK server of the
+// bench's own. See bench_latency.hpp for what each time means and --help for the output.
+#include "app/bench_latency.hpp"
+
+#include <signal.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/bench_latency_child.hpp"
+#include "app/bench_latency_jack.hpp"
+#include "app/bench_latency_onset.hpp"
+#include "app/bench_latency_x11.hpp"
+#include "app/commands.hpp"
+#include "app/data_paths.hpp"
+#include "core/config/scene_config.hpp"
+
+namespace mallet::app::latency {
+
+// --- matching and statistics (pure)
+
+namespace {
+
+constexpr Nanos kMs = 1'000'000;
+constexpr Nanos kStrikeWindow = 50 * kMs;  // a logged strike within ±50 ms of a contact is its strike
+constexpr Nanos kCueBefore = 50 * kMs;     // a cue may lead its contact (prediction) by this much
+constexpr Nanos kCueAfter = 300 * kMs;     // and lag it by this much at most
+
+std::optional<Nanos> first_in(const std::vector<Nanos>& sorted, Nanos from, Nanos to) {
+  auto it = std::lower_bound(sorted.begin(), sorted.end(), from);
+  if (it == sorted.end() || *it >= to) return std::nullopt;
+  return *it;
+}
+
+double ms_of(Nanos dt) { return static_cast<double>(dt) / 1e6; }  // the nearest double: 12 ms is 12.0
+
+}  // namespace
+
+Matched match_recording(const Recording& r) {
+  auto sorted = [](std::vector<Nanos> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const std::vector<Nanos> strikes = sorted(r.strikes), actuator = sorted(r.actuator), note = sorted(r.note);
+  std::vector<std::vector<Nanos>> picture;
+  for (const auto& p : r.picture) picture.push_back(sorted(p));
+  std::vector<Recording::Contact> contacts = r.contacts;
+  std::sort(contacts.begin(), contacts.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+
+  Matched m;
+  m.cues = {{"actuator", {}}, {"note", {}}, {"picture", {}}, {"actuator-picture", {}}, {"note-actuator", {}}};
+  std::vector<char> used(strikes.size(), 0);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Recording::Contact& c = contacts[k];
+    // The nearest unused logged strike within the window.
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < strikes.size(); ++i) {
+      if (used[i] || std::llabs(strikes[i] - c.t) > kStrikeWindow) continue;
+      if (!best || std::llabs(strikes[i] - c.t) < std::llabs(strikes[*best] - c.t)) best = i;
+    }
+    StrikeRow row{c, {}, {}, {}, {}};
+    if (!best) {
+      ++m.missed_strikes;
+      m.rows.push_back(row);
+      continue;
+    }
+    used[*best] = 1;
+    ++m.strikes;
+    row.strike_ms = ms_of(strikes[*best] - c.t);
+    // A cue belongs to this contact if it comes before the next contact's own window opens.
+    const Nanos to =
+        std::min(c.t + kCueAfter, k + 1 < contacts.size() ? contacts[k + 1].t - kCueBefore : c.t + kCueAfter);
+    const std::optional<Nanos> a = first_in(actuator, c.t - kCueBefore, to);
+    const std::optional<Nanos> n = first_in(note, c.t - kCueBefore, to);
+    std::optional<Nanos> p;
+    if (c.bar >= 0 && static_cast<std::size_t>(c.bar) < picture.size())
+      p = first_in(picture[static_cast<std::size_t>(c.bar)], c.t - kCueBefore, to);
+    if (a) m.cues[0].ms.push_back(*(row.actuator_ms = ms_of(*a - c.t)));
+    if (n) m.cues[1].ms.push_back(*(row.note_ms = ms_of(*n - c.t)));
+    if (p) m.cues[2].ms.push_back(*(row.picture_ms = ms_of(*p - c.t)));
+    if (a && p) m.cues[3].ms.push_back(ms_of(*a - *p));
+    if (n && a) m.cues[4].ms.push_back(ms_of(*n - *a));
+    m.rows.push_back(row);
+  }
+  for (char u : used) m.false_strikes += u ? 0 : 1;
+  return m;
+}
+
+Summary summarise(std::vector<double> ms) {
+  Summary s;
+  s.n = ms.size();
+  if (ms.empty()) return s;
+  std::sort(ms.begin(), ms.end());
+  const std::size_t n = ms.size();
+  s.median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+  // Nearest rank: the smallest sample with at least 99 % of the samples at or below it.
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n)));
+  s.p99 = ms[std::clamp<std::size_t>(rank, 1, n) - 1];
+  s.max = std::fabs(ms.front()) > std::fabs(ms.back()) ? ms.front() : ms.back();
+  return s;
+}
+
+// --- the run
+
+namespace {
+
+constexpr int kWidth = 960, kHeight = 540;
+constexpr int kRate = 48000, kPeriod = 128;
+constexpr int kPictureTolerancePx = 1;
+
+std::atomic<int> g_signal{0};
+void on_signal(int s) { g_signal.store(s); }
+
+//! SIGINT/SIGTERM/SIGHUP end the bench through its ordinary error path, so every child is
+//! torn down by its owner; the old handlers come back afterwards.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &sa, &old_[i]);
+  }
+  ~SignalGuard() {
+    for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &old_[i], nullptr);
+  }
+
+ private:
+  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction old_[3]{};
+};
+
+//! The whole run's bound, and every wait's check for a signal.
+struct Deadline {
+  Nanos end = 0;
+  void check() const {
+    if (const int s = g_signal.load())
+      throw std::runtime_error("bench latency: stopped by signal " + std::to_string(s));
+    if (monotonic_now() > end) throw std::runtime_error("bench latency: the run took longer than its bound; stopped");
+  }
+};
+
+void sleep_until(Nanos t) {
+  timespec ts{static_cast<time_t>(t / kNanosPerSecond), static_cast<long>(t % kNanosPerSecond)};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    if (g_signal.load()) return;
+  }
+}
+void sleep_ms(double ms) { sleep_until(monotonic_now() + static_cast<Nanos>(ms * 1e6)); }
+
+//! A private folder for the run's files, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "mallet-bench-latency-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in " + pattern);
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  if (!in) throw std::runtime_error("cannot read " + p.string());
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream out(p);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + p.string());
+}
+
+//! The shipped percussion scene with no visual vibration: a copy of the scene and of its
+//! materials file with every visual amplitude_s set to 0 (the actuator and the acoustic
+//! parameters as shipped). The bounce lifts the head a few mm right after the contact,
+//! which would delay the picture's "mallet at the bar"; without it, the first frame that
+//! shows the head at the bar is the frame where the bounce starts.
+//! The quoted value of a top-level `key = "value"` line, if the line is one.
+std::optional<std::string> quoted_value(const std::string& line, const std::string& key) {
+  const std::size_t k = line.find_first_not_of(" \t");
+  if (k == std::string::npos || line.compare(k, key.size(), key) != 0) return std::nullopt;
+  const std::size_t eq = line.find_first_not_of(" \t", k + key.size());
+  if (eq == std::string::npos || line[eq] != '=') return std::nullopt;
+  const std::size_t open = line.find('"', eq), close = open == std::string::npos ? open : line.find('"', open + 1);
+  if (close == std::string::npos) return std::nullopt;
+  return line.substr(open + 1, close - open - 1);
+}
+
+//! `line` with the number after every `amplitude_s =` replaced by 0.0.
+std::string without_amplitude(std::string line) {
+  const std::string key = "amplitude_s";
+  for (std::size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + key.size())) {
+    std::size_t i = line.find_first_not_of(" \t", at + key.size());
+    if (i == std::string::npos || line[i] != '=') continue;
+    i = line.find_first_not_of(" \t", i + 1);
+    if (i == std::string::npos) break;
+    const std::size_t end = line.find_first_not_of("+-0123456789.eE_", i);
+    line.replace(i, (end == std::string::npos ? line.size() : end) - i, "0.0");
+  }
+  return line;
+}
+
+std::filesystem::path still_scene(const std::filesystem::path& dir) {
+  const std::filesystem::path shipped = default_scene();
+  std::filesystem::path materials = shipped.parent_path() / "../materials.toml";
+  std::filesystem::path instruments = shipped.parent_path() / "../instruments.toml";
+  std::string body, line;
+  std::istringstream scene_in(slurp(shipped));
+  while (std::getline(scene_in, line)) {
+    if (const auto v = quoted_value(line, "materials_file")) materials = shipped.parent_path() / *v;
+    else if (const auto w = quoted_value(line, "instruments_file")) instruments = shipped.parent_path() / *w;
+    else body += line + "\n";
+  }
+  // Top-level keys go before the first table.
+  const std::string scene = "materials_file = \"" + (dir / "materials.toml").string() + "\"\ninstruments_file = \"" +
+                            instruments.lexically_normal().string() + "\"\n" + body;
+  std::string still_materials;
+  std::istringstream materials_in(slurp(materials.lexically_normal()));
+  while (std::getline(materials_in, line)) still_materials += without_amplitude(line) + "\n";
+  write_text(dir / "materials.toml", still_materials);
+  std::filesystem::create_directories(dir / "scenes");
+  const std::filesystem::path file = dir / "scenes" / "percussion.toml";
+  write_text(file, scene);
+  return file;
+}
+
+//! A bar the hand strikes, in world metres and window pixels.
+struct Bar {
+  int target = 0;
+  std::string name;        //!< "glockenspiel bar 4 (metal)"
+  double x_m = 0;          //!< the bar's middle
+  double contact_y_m = 0;  //!< top + mallet radius: the sphere's centre at contact
+  int x_px = 0;            //!< the middle, window pixels
+  PixelBox strip;          //!< where the picture watch looks, screen pixels
+};
+
+//! The kiosk's window pixels ↔ world metres: the window is the whole screen, and the
+//! kiosk maps a cursor at (px, py) to screen_to_world(px / width, py / height).
+struct Mapping {
+  const Scene* scene = nullptr;
+  double y_of_row(int row) const { return scene->screen_to_world.map(0.5, static_cast<double>(row) / kHeight).y; }
+  double row_of_y(double y) const { return scene->screen_to_world.unmap({0.0, y}).y * kHeight; }
+  double col_of_x(double x) const { return scene->screen_to_world.unmap({x, 0.0}).x * kWidth; }
+};
+
+std::vector<Bar> choose_bars(const Scene& scene, const Mapping& map) {
+  std::vector<Bar> bars;
+  for (const char* material : {"metal", "wood"}) {
+    for (const Instrument& inst : scene.instruments) {
+      if (inst.targets.empty() || scene.materials.at(static_cast<std::size_t>(inst.material)).name != material)
+        continue;
+      const Target& t = scene.targets.at(static_cast<std::size_t>(inst.targets[inst.targets.size() / 2]));
+      Bar b;
+      b.target = t.id;
+      b.name = inst.name + " bar " + std::to_string(inst.targets.size() / 2 + 1) + " (" + material + ")";
+      b.x_m = 0.5 * (t.x_min + t.x_max);
+      b.contact_y_m = t.top_y + scene.mallet_radius_m;
+      b.x_px = static_cast<int>(std::lround(map.col_of_x(b.x_m)));
+      const double centre_row = map.row_of_y(b.contact_y_m);
+      const double radius_px = scene.mallet_radius_m / std::fabs(map.y_of_row(0) - map.y_of_row(1));
+      // From 70 px above the resting head's centre (the hovering head is in view) to just
+      // below its lowest pixel; 5 px wide around the bar's middle.
+      const int top = std::max(0, static_cast<int>(centre_row) - 70);
+      const int bottom = std::min(kHeight - 1, static_cast<int>(centre_row + radius_px) + 8);
+      b.strip = {std::clamp(b.x_px - 2, 0, kWidth - 5), top, 5, bottom - top + 1};
+      bars.push_back(b);
+      break;
+    }
+  }
+  if (bars.size() != 2) throw std::runtime_error("bench latency: the scene needs a metal and a wood instrument");
+  return bars;
+}
+
+//! The kiosk's stderr as it arrives: whether it runs, its strike lines, its status lines.
+struct KioskLog {
+  std::mutex mutex;
+  bool started = false;
+  std::vector<Nanos> strikes;
+  std::vector<std::string> status;
+
+  void line(std::string_view text) {
+    std::lock_guard lock(mutex);
+    if (const std::size_t at = text.find("strike t="); at != std::string_view::npos) {
+      if (const std::optional<Nanos> t = parse_time(text.substr(at + 9))) strikes.push_back(*t);
+      return;
+    }
+    if (text.find("mallet run:") != std::string_view::npos && !started) {
+      started = true;
+      status.emplace_back(text.substr(text.find("mallet run:")));
+    }
+    for (const char* key : {"input:", "timing:"})
+      if (text.find(key) != std::string_view::npos && status.size() < 4)
+        status.emplace_back(text.substr(text.find(key)));
+  }
+  //! "123.456789012" (format_seconds) → ns, exactly.
+  static std::optional<Nanos> parse_time(std::string_view s) {
+    bool negative = !s.empty() && s[0] == '-';
+    if (negative) s.remove_prefix(1);
+    Nanos whole = 0, frac = 0;
+    std::size_t i = 0;
+    for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) whole = whole * 10 + (s[i] - '0');
+    if (i == 0 || i >= s.size() || s[i] != '.') return std::nullopt;
+    int digits = 0;
+    for (++i; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])) && digits < 9; ++i, ++digits)
+      frac = frac * 10 + (s[i] - '0');
+    for (; digits < 9; ++digits) frac *= 10;
+    const Nanos t = whole * kNanosPerSecond + frac;
+    return negative ? -t : t;
+  }
+};
+
+struct Config {
+  std::string preset, align;
+};
+
+struct ConfigResult {
+  Config config;
+  Matched matched;
+  std::vector<std::string> kiosk_status;
+  int rest_row[2] = {0, 0};
+  double resolution_ms = 0;  //!< ±1 px / v at the slowest stroke
+  std::uint64_t xruns = 0;   //!< JACK xruns during the strokes
+};
+
+//! Everything the runs share: the servers, the recorder, the hand, the eye.
+struct Rig {
+  TempDir temp;
+  std::filesystem::path scene_file, runtime_dir, state_dir;
+  Scene scene;
+  Mapping map;
+  std::vector<Bar> bars;
+  std::unique_ptr<VirtualDisplay> x;
+  std::unique_ptr<JackServer> jack;
+  std::unique_ptr<JackRecorder> recorder;
+  std::unique_ptr<FakePointer> hand;
+  std::unique_ptr<ScreenReader> eye;
+  std::unique_ptr<PictureWatch> watch;
+};
+
+//! The hand (the sphere's centre) at world (x, y): the pointer at that window pixel.
+struct Hand {
+  const Rig& rig;
+  Nanos move(double x_m, double y_m, int* row_out = nullptr) const {
+    const int col = static_cast<int>(std::lround(rig.map.col_of_x(x_m)));
+    const int row = std::clamp(static_cast<int>(std::lround(rig.map.row_of_y(y_m))), 0, kHeight - 1);
+    if (row_out) *row_out = row;
+    return rig.hand->move_to(col, row);
+  }
+};
+
+std::string settings_text(const Config& c) {
+  std::string t = "# written by `mallet bench latency` for one run of the kiosk under test\n";
+  t += "quality = \"" + c.preset + "\"\n";
+  t += "[audio]\n";
+  t += "device = \"system\"   # the JACK host API's device, on the bench's own JACK server\n";
+  t += "sample_rate_hz = " + std::to_string(kRate) + "\n";
+  t += "[audio.routing]\nchannels = 2\nacoustic = 0\nactuator = 1\n";
+  t += "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
+  t += "[timing]\nalign = \"" + c.align + "\"\n";
+  t += "[attract]\nidle_after_s = 86400.0   # the ghost never takes over\n";
+  t += "[render]\npresent_mode = \"fifo\"\n";
+  return t;
+}
+
+//! LD_PRELOAD without the Vulkan validation layer (the sanitizer tests preload it; GLFW
+//! looks vkGetInstanceProcAddr up by name and a preloaded layer would answer).
+std::optional<std::string> child_preload() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  if (!preload) return std::nullopt;
+  std::string kept, entry;
+  std::stringstream in(preload);
+  while (std::getline(in, entry, ':'))
+    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
+  return kept;
+}
+
+[[noreturn]] void kiosk_failed(Child& kiosk, const std::string& what) {
+  throw std::runtime_error("bench latency: the kiosk " + what + " (" +
+                           (kiosk.running() ? std::string("still running") : kiosk.ended_how()) +
+                           "); its last lines:\n" + kiosk.tail(15));
+}
+
+ConfigResult run_config(Rig& rig, const Config& config, int strokes, const std::string& device,
+                        const Deadline& deadline) {
+  ConfigResult result;
+  result.config = config;
+  const std::filesystem::path settings = rig.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
+  write_text(settings, settings_text(config));
+
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("bench latency: cannot find this executable (/proc/self/exe)");
+  auto log = std::make_shared<KioskLog>();
+  ChildOptions o;
+  o.argv = {exe.string(),
+            "run",
+            "--windowed",
+            "--size",
+            std::to_string(kWidth) + "x" + std::to_string(kHeight),
+            "--config",
+            settings.string(),
+            "--scene",
+            rig.scene_file.string()};
+  if (!device.empty()) o.argv.insert(o.argv.end(), {"--device", device});
+  o.env = {{"DISPLAY", rig.x->name()},
+           {"JACK_DEFAULT_SERVER", rig.jack->name()},
+           {"JACK_NO_START_SERVER", "1"},
+           {"XDG_RUNTIME_DIR", rig.runtime_dir.string()},
+           {"MALLET_STATE_DIR", rig.state_dir.string()}};
+  if (const std::optional<std::string> preload = child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  o.on_line = [log](Nanos, std::string_view line) { log->line(line); };
+  Child kiosk(std::move(o));
+
+  // Up: it says it runs, its window is on the screen, its audio ports are connected, and
+  // a frame has been drawn (the bars are in the strips).
+  const Nanos up_by = monotonic_now() + 60 * kNanosPerSecond;
+  auto wait_for = [&](const char* what, auto&& done) {
+    while (!done()) {
+      deadline.check();
+      if (!kiosk.running()) kiosk_failed(kiosk, std::string("exited before ") + what);
+      if (monotonic_now() > up_by) kiosk_failed(kiosk, std::string("did not get to ") + what + " within 60 s");
+      sleep_ms(20);
+    }
+  };
+  wait_for("its start line", [&] {
+    std::lock_guard lock(log->mutex);
+    return log->started;
+  });
+  std::optional<PixelBox> window;
+  wait_for("a window on the screen", [&] { return (window = rig.hand->find_window(kWidth, kHeight)).has_value(); });
+  if (window->x != 0 || window->y != 0)
+    kiosk_failed(kiosk, "window could not be placed at the screen's origin (it is at " + std::to_string(window->x) +
+                            "," + std::to_string(window->y) + ")");
+  std::vector<std::string> ports;
+  wait_for("audio ports on the JACK server", [&] {
+    ports = rig.recorder->connect_source(std::chrono::milliseconds(0));
+    return !ports.empty();
+  });
+  wait_for("a first frame", [&] {
+    Grab g;
+    if (!rig.eye->grab(rig.bars[1].strip, g)) return false;
+    const auto [lo, hi] = std::minmax_element(g.rgb.begin(), g.rgb.end());
+    return ((*hi >> 8) & 0xff) > ((*lo >> 8) & 0xff) + 30;  // not one flat colour any more
+  });
+  {
+    std::lock_guard lock(log->mutex);
+    result.kiosk_status = log->status;
+  }
+
+  // Take over from the attract mode's ghost: a first sample anchors, a second moves.
+  rig.hand->move_to(kWidth / 2, kHeight / 6);
+  sleep_ms(40);
+  rig.hand->move_to(kWidth / 2, kHeight / 6 + 30);
+  sleep_ms(400);
+
+  const Hand hand{rig};
+  const double above_m = 0.04, below_m = 0.03;
+  const double speeds[] = {1.0, 1.5, 2.0, 1.25, 1.75};
+  // One stroke on bar b at v m/s: hover above it, a straight downswing (an event every
+  // 1 ms) to 3 cm below the contact plane, a pause there (`on_hold` may look at the screen
+  // meanwhile), back up. Returns the true contact (−1 if the path never crossed).
+  auto stroke = [&](const Bar& b, double v, const std::function<void()>& on_hold) -> Nanos {
+    const double top = b.contact_y_m + above_m, bottom = b.contact_y_m - below_m;
+    hand.move(b.x_m, top);
+    sleep_ms(15);
+    hand.move(b.x_m, top);
+    sleep_ms(150);
+    std::vector<std::pair<Nanos, double>> path;  // (when sent, world y the kiosk sees)
+    const Nanos t0 = monotonic_now() + kMs;
+    for (int k = 0;; ++k) {
+      const Nanos due = t0 + k * kMs;
+      const double y = std::max(bottom, top - v * to_seconds(due - t0));
+      sleep_until(due);
+      int row = 0;
+      const Nanos sent = hand.move(b.x_m, y, &row);
+      path.emplace_back(sent, rig.map.y_of_row(row));
+      if (y <= bottom) break;
+    }
+    // The crossing of the contact plane, interpolated between the two events around it.
+    Nanos contact = -1;
+    for (std::size_t k = 1; k < path.size() && contact < 0; ++k) {
+      const auto [ta, ya] = path[k - 1];
+      const auto [tb, yb] = path[k];
+      if (ya > b.contact_y_m && yb <= b.contact_y_m)
+        contact =
+            ta + static_cast<Nanos>(std::llround((ya - b.contact_y_m) / (ya - yb) * static_cast<double>(tb - ta)));
+    }
+    sleep_ms(80);
+    if (on_hold) on_hold();
+    for (int k = 1; k <= 20; ++k) {  // back up at ≈1 m/s
+      hand.move(b.x_m, bottom + (top - bottom) * k / 20.0);
+      sleep_ms(3.5);
+    }
+    return contact;
+  };
+
+  // Warm-up: one stroke per bar, and while the hand is held below it, where the head rests
+  // at the bar in the picture (the contact solver holds it at the surface).
+  for (std::size_t i = 0; i < rig.bars.size(); ++i) {
+    deadline.check();
+    std::optional<int> rest;
+    stroke(rig.bars[i], 1.0, [&] {
+      Grab g;
+      if (rig.eye->grab(rig.bars[i].strip, g)) rest = lowest_white_row(g, rig.bars[i].strip);
+    });
+    const double centre = rig.map.row_of_y(rig.bars[i].contact_y_m);
+    if (!rest || *rest < centre - 4 || *rest > rig.bars[i].strip.y + rig.bars[i].strip.height - 2)
+      kiosk_failed(kiosk, "does not show the mallet resting on " + rig.bars[i].name +
+                              " where expected (lowest white row " +
+                              (rest ? std::to_string(*rest) : std::string("none")) + ", head centre row " +
+                              std::to_string(static_cast<int>(centre)) + ")");
+    result.rest_row[i] = *rest;
+    rig.watch->set_rest_row(static_cast<int>(i), *rest);
+    sleep_ms(350);
+  }
+
+  // The measured strokes.
+  Recording rec;
+  rec.picture.resize(rig.bars.size());
+  sleep_ms(200);
+  AudioTrack track;
+  rig.recorder->start_recording(track);
+  rig.watch->take();
+  const Nanos begin = monotonic_now();
+  const std::uint64_t xruns_before = rig.recorder->xruns();
+  for (int s = 0; s < strokes; ++s) {
+    deadline.check();
+    if (!kiosk.running()) kiosk_failed(kiosk, "exited during the strokes");
+    const Nanos started = monotonic_now();
+    const int bar = s % 2;
+    const double v = speeds[static_cast<std::size_t>(s) % 5];
+    const Nanos contact = stroke(rig.bars[static_cast<std::size_t>(bar)], v, {});
+    if (contact >= 0) rec.contacts.push_back({contact, bar, v});
+    rig.recorder->drain(track);
+    sleep_until(started + 600 * kMs);
+  }
+  sleep_ms(400);
+  const Nanos end = monotonic_now();
+  rig.recorder->drain(track);
+  rig.recorder->stop_recording();
+  // Each contact's first new sample on each channel, from 50 ms before it to 300 ms after
+  // (or to the next contact's window), not counting the seams of late cycles.
+  const std::vector<Gap> gaps = track.irregular(rig.recorder->period());
+  for (std::size_t k = 0; k < rec.contacts.size(); ++k) {
+    const Nanos c = rec.contacts[k].t;
+    const Nanos to =
+        k + 1 < rec.contacts.size() ? std::min(c + kCueAfter, rec.contacts[k + 1].t - kCueBefore) : c + kCueAfter;
+    const std::size_t i0 = track.index_at(c - kCueBefore), i1 = track.index_at(to);
+    for (int channel : {0, 1})
+      if (const std::optional<std::size_t> i =
+              find_onset(track.channels[static_cast<std::size_t>(channel)], i0, i1, {}, gaps))
+        (channel == 1 ? rec.actuator : rec.note).push_back(track.time_of(*i));
+  }
+  for (const PictureEvent& p : rig.watch->take()) rec.picture[static_cast<std::size_t>(p.strip)].push_back(p.t);
+  {
+    std::lock_guard lock(log->mutex);
+    for (Nanos t : log->strikes)
+      if (t >= begin - kStrikeWindow && t <= end) rec.strikes.push_back(t);
+  }
+  result.xruns = rig.recorder->xruns() - xruns_before;
+  kiosk.stop(std::chrono::milliseconds(3000));
+  result.matched = match_recording(rec);
+  const double px_m = std::fabs(rig.map.y_of_row(0) - rig.map.y_of_row(1));
+  result.resolution_ms = px_m / 1.0 * 1e3;  // the slowest stroke, 1.0 m/s
+  return result;
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five;
+  in >> one >> five;
+  return in ? one + " / " + five : std::string("unknown");
+}
+
+std::string cell(const std::optional<double>& v) {
+  if (!v) return "nan";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f", *v);
+  return b;
+}
+
+}  // namespace
+
+void run_bench_latency(const LatencyOptions& options) {
+  // The servers, named by their Debian packages when they are missing.
+  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
+    if (find_program(program).empty())
+      throw std::runtime_error(std::string("bench latency needs ") + program + ": install the Debian package " +
+                               package);
+  SignalGuard signals;
+  g_signal.store(0);
+  const int strokes = options.strokes > 0 ? options.strokes : options.quick ? 6 : 20;
+  const std::vector<std::string> presets =
+      options.quick ? std::vector<std::string>{"balanced"} : std::vector<std::string>{"balanced", "exact"};
+  const std::vector<std::string> aligns = {"asap", "picture"};
+  const std::size_t configs = presets.size() * aligns.size();
+  // Start-up ≈ 15 s, a configuration ≈ 10 s + 0.6 s a stroke: the bound is well above that.
+  Deadline deadline{monotonic_now() + (40 + static_cast<Nanos>(configs) * (60 + strokes)) * kNanosPerSecond};
+  std::filesystem::create_directories(options.out);
+
+  Rig rig;
+  rig.runtime_dir = rig.temp.path() / "runtime";
+  rig.state_dir = rig.temp.path() / "state";
+  std::filesystem::create_directories(rig.runtime_dir);
+  std::filesystem::create_directories(rig.state_dir);
+  chmod(rig.runtime_dir.c_str(), 0700);
+  rig.scene_file = still_scene(rig.temp.path());
+  rig.scene = config::load_scene(rig.scene_file);
+  for (const Material& m : rig.scene.materials)
+    if (m.visual.amplitude != 0.0) throw std::runtime_error("bench latency: the still scene still has a bounce");
+  rig.map.scene = &rig.scene;
+  rig.bars = choose_bars(rig.scene, rig.map);
+
+  rig.x = std::make_unique<VirtualDisplay>(kWidth, kHeight);
+  deadline.check();
+  rig.jack = std::make_unique<JackServer>("mallet-bench-" + std::to_string(getpid()), kRate, kPeriod);
+  deadline.check();
+  rig.recorder = std::make_unique<JackRecorder>(rig.jack->name(), 2);
+  rig.hand = std::make_unique<FakePointer>(rig.x->name());
+  rig.eye = std::make_unique<ScreenReader>(rig.x->name());
+  std::vector<PixelBox> strips;
+  for (const Bar& b : rig.bars) strips.push_back(b.strip);
+  rig.watch = std::make_unique<PictureWatch>(rig.x->name(), strips, kPictureTolerancePx);
+
+  std::printf("mallet bench latency: true contact → each cue, measured on `mallet run --windowed` "
+              "(a child process)\n");
+  std::printf(
+      "  X: Xvfb %s, %dx%d; JACK: dummy driver, %d Hz, %d-frame cycles (%.2f ms), playback latency %.2f ms, "
+      "JACK clock − monotonic %+.3f ms\n",
+      rig.x->name().c_str(), kWidth, kHeight, rig.recorder->rate(), rig.recorder->period(),
+      1e3 * rig.recorder->period() / rig.recorder->rate(), to_seconds(rig.recorder->playback_latency_ns()) * 1e3,
+      to_seconds(rig.recorder->clock_offset_ns()) * 1e3);
+  std::printf("  strokes: %d per configuration on %s and %s, 1.0–2.0 m/s, one every 600 ms\n", strokes,
+              rig.bars[0].name.c_str(), rig.bars[1].name.c_str());
+  std::fflush(stdout);
+
+  std::vector<ConfigResult> results;
+  for (const std::string& preset : presets)
+    for (const std::string& align : aligns) {
+      deadline.check();
+      std::printf("  running: quality %s, align %s ...\n", preset.c_str(), align.c_str());
+      std::fflush(stdout);
+      results.push_back(run_config(rig, {preset, align}, strokes, options.device, deadline));
+      for (const std::string& line : results.back().kiosk_status) std::printf("    kiosk: %s\n", line.c_str());
+      std::fflush(stdout);
+    }
+  const double poll_ms = rig.watch->mean_poll_ms();
+  const std::uint64_t xruns = rig.recorder->xruns(), dropped = rig.recorder->dropped();
+
+  // The table and the CSV. The table has two columns the CSV has not: n, the strikes the
+  // cue was measured for, and the JACK xruns during the configuration's strokes.
+  std::printf("\n| source | preset   | align   | cue              | median ms | p99 ms   | max ms   "
+              "| strikes | false | missed |  n | xruns |\n");
+  std::printf("|--------|----------|---------|------------------|-----------|----------|----------"
+              "|---------|-------|--------|----|-------|\n");
+  const std::filesystem::path csv_path = options.out / "latency.csv";
+  std::ofstream csv(csv_path);
+  csv << "source,preset,align,cue,median_ms,p99_ms,max_ms,strikes,false_strikes,missed_strikes\n";
+  for (const ConfigResult& r : results)
+    for (const CueSamples& c : r.matched.cues) {
+      const Summary s = summarise(c.ms);
+      std::printf("| mouse  | %-8s | %-7s | %-16s | %9s | %8s | %8s | %7d | %5d | %6d | %2zu | %5llu |\n",
+                  r.config.preset.c_str(), r.config.align.c_str(), c.cue.c_str(), cell(s.median).c_str(),
+                  cell(s.p99).c_str(), cell(s.max).c_str(), r.matched.strikes, r.matched.false_strikes,
+                  r.matched.missed_strikes, s.n, static_cast<unsigned long long>(r.xruns));
+      csv << "mouse," << r.config.preset << ',' << r.config.align << ',' << c.cue << ',' << cell(s.median) << ','
+          << cell(s.p99) << ',' << cell(s.max) << ',' << r.matched.strikes << ',' << r.matched.false_strikes << ','
+          << r.matched.missed_strikes << '\n';
+    }
+  csv.close();
+  if (!csv) throw std::runtime_error("cannot write " + csv_path.string());
+  // Every strike, for a closer look (not part of the summary's contract).
+  const std::filesystem::path strikes_path = options.out / "latency_strikes.csv";
+  std::ofstream per(strikes_path);
+  per << "source,preset,align,stroke,bar,speed_m_per_s,contact_s,strike_ms,actuator_ms,note_ms,picture_ms\n";
+  for (const ConfigResult& r : results)
+    for (std::size_t i = 0; i < r.matched.rows.size(); ++i) {
+      const StrikeRow& row = r.matched.rows[i];
+      char t[48];
+      std::snprintf(t, sizeof t, "%.6f", to_seconds(row.contact.t));
+      per << "mouse," << r.config.preset << ',' << r.config.align << ',' << i << ','
+          << rig.bars[static_cast<std::size_t>(row.contact.bar)].target << ',' << row.contact.speed << ',' << t << ','
+          << cell(row.strike_ms) << ',' << cell(row.actuator_ms) << ',' << cell(row.note_ms) << ','
+          << cell(row.picture_ms) << '\n';
+    }
+  per.close();
+  if (!per) throw std::runtime_error("cannot write " + strikes_path.string());
+
+  std::printf(
+      "\nCue − true contact, ms. actuator-picture and note-actuator: signed differences per strike (positive: the\n"
+      "first named cue comes later); max = the sample of largest magnitude, sign kept. Cues are counted for the\n"
+      "strikes the kiosk logged within ±50 ms of a true contact.\n");
+  std::printf(
+      "  true contact: the injected pointer path (XTest motion every 1 ms, stamped on CLOCK_MONOTONIC when flushed)\n"
+      "    crossing the contact plane (bar top + mallet radius), interpolated between the two events around it.\n");
+  std::printf(
+      "  actuator, note: the strike's first sample on its channel as the JACK recorder heard it, at its cycle's time\n"
+      "    plus the playback latency (%.2f ms); over a bar still ringing, the first sample a linear predictor of\n"
+      "    the ring does not explain.\n",
+      to_seconds(rig.recorder->playback_latency_ns()) * 1e3);
+  std::printf(
+      "  picture: the first frame in the X server's framebuffer that shows the mallet at the bar (where the bounce\n"
+      "    starts; the bench's scene has its visual amplitude set to 0): the head's lowest white pixel within %d px\n"
+      "    of where it rests on the bar (rows %d, %d). Framebuffer polled every %.2f ms on average; detection\n"
+      "    resolution ±1 px / v = ±%.2f ms at 1.0 m/s. Xvfb has no display: a panel's scan-out comes on top.\n",
+      kPictureTolerancePx, results.empty() ? 0 : results[0].rest_row[0], results.empty() ? 0 : results[0].rest_row[1],
+      poll_ms, results.empty() ? 0.0 : results[0].resolution_ms);
+  std::error_code ec;
+  std::printf(
+      "  source mouse = the window system's pointer ([input] mouse = \"window\"). The evdev mouse is not measured:\n"
+      "    injecting it needs /dev/uinput%s.\n",
+      std::filesystem::exists("/dev/uinput", ec) ? " (present here, but the bench does not use it yet)"
+                                                 : ", which this machine lacks");
+  std::string disturbed;
+  for (const ConfigResult& r : results)
+    if (r.xruns > 0) disturbed += (disturbed.empty() ? "" : ", ") + r.config.preset + "/" + r.config.align;
+  std::printf(
+      "  JACK: %llu xruns in all (start-ups included), %llu cycles the recorder had no room for. This machine:\n"
+      "    %ld CPUs online, load average %s.\n",
+      static_cast<unsigned long long>(xruns), static_cast<unsigned long long>(dropped), sysconf(_SC_NPROCESSORS_ONLN),
+      load_average().c_str());
+  if (!disturbed.empty())
+    std::printf(
+        "  ! Audio rows of these ran with xruns (the machine could not keep JACK's cycles): %s.\n"
+        "    A late cycle costs the dummy driver that time, which the kiosk's audio clock does not see (its\n"
+        "    origin is fixed when its stream starts): its sounds come later by the sum, stroke after stroke.\n"
+        "    Strikes whose onset lies on such a seam are left out (n). Rerun on an idle machine for the\n"
+        "    kiosk's own figures.\n",
+        disturbed.c_str());
+  std::printf("wrote %s and %s\n", csv_path.c_str(), strikes_path.c_str());
+}
+
+}  // namespace mallet::app::latency
+
+namespace mallet::app {
+
+void add_bench_latency(CLI::App& bench) {
+  auto o = std::make_shared<latency::LatencyOptions>();
+  CLI::App* cmd = bench.add_subcommand(
+      "latency", "Measured: true contact → actuator, note and picture on the real windowed kiosk (Xvfb + JACK)");
+  cmd->footer(
+      "Starts its own X server (Xvfb, Debian package xvfb) and JACK server (jackd2, dummy driver), runs\n"
+      "`mallet run --windowed` under them once per quality preset (balanced, exact; --quick: balanced) and\n"
+      "[timing] align (asap, picture), strikes a metal and a wood bar with the X pointer (XTest; a straight\n"
+      "downswing at 1.0-2.0 m/s, 20 strokes per run, 6 with --quick) and measures, per strike, from the true\n"
+      "contact (the injected path crossing the bar's contact plane) to:\n"
+      "  actuator, note  the strike's first sample on each channel, recorded by a JACK client of the bench's\n"
+      "                  own. JACK's dummy driver is paced by a real-time timer, so its sample clock is wall\n"
+      "                  time; ALSA's file plugin (the other card-free path) is not paced: PortAudio writes into\n"
+      "                  it as fast as it can, so sample indices there carry no wall time.\n"
+      "  picture         the first frame in the X server's framebuffer showing the mallet at the bar (where the\n"
+      "                  bounce starts; the bench's scene copy has no visual vibration so nothing lifts it).\n"
+      "Output: a table on stdout and OUT/latency.csv (OUT defaults to the current directory), one row per\n"
+      "source x preset x align x cue (OUT/latency_strikes.csv has every stroke):\n"
+      "  source,preset,align,cue,median_ms,p99_ms,max_ms,strikes,false_strikes,missed_strikes\n"
+      "cue: actuator, note, picture (cue time - true contact), and the signed asynchronies actuator-picture\n"
+      "and note-actuator (per strike, first named minus second named; their max_ms is the value of largest\n"
+      "magnitude, sign kept). strikes: true contacts the kiosk logged a strike for within +-50 ms;\n"
+      "false_strikes: logged strikes with no true contact within +-50 ms; missed_strikes: true contacts with\n"
+      "none. A value that could not be measured is nan. source is \"mouse\" (the window system's pointer);\n"
+      "the evdev mouse cannot be injected without /dev/uinput.\n"
+      "Everything it starts is stopped on exit, on errors and on Ctrl+C. Exit status 1 when a server or the\n"
+      "kiosk cannot run here (the message names what is missing).");
+  cmd->add_option("--out", o->out, "Output directory for latency.csv (default: the current directory)")
+      ->capture_default_str();
+  cmd->add_flag("--quick", o->quick, "The balanced preset only, 6 strokes per run (a check that it works; ~1 min)");
+  cmd->add_option("--strokes", o->strokes, "Strokes per configuration (default 20, 6 with --quick)")
+      ->check(CLI::Range(2, 500));
+  cmd->add_option("--device", o->device, "The kiosk's Vulkan device (substring of its name; default: its own choice)");
+  cmd->callback([o] { latency::run_bench_latency(*o); });
+}
+
+}  // namespace mallet::app

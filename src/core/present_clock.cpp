@@ -1,0 +1,99 @@
+#include "core/present_clock.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace mallet {
+
+const char* to_string(PresentPacing p) {
+  switch (p) {
+    case PresentPacing::fifo: return "fifo";
+    case PresentPacing::mailbox: return "mailbox";
+    case PresentPacing::immediate: return "immediate";
+  }
+  return "fifo";
+}
+
+bool parse_present_pacing(std::string_view text, PresentPacing& out) {
+  for (PresentPacing p : {PresentPacing::fifo, PresentPacing::mailbox, PresentPacing::immediate})
+    if (text == to_string(p)) {
+      out = p;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+Nanos period_of(double hz) { return static_cast<Nanos>(std::llround(1e9 / std::clamp(hz, 1.0, 1000.0))); }
+}  // namespace
+
+PresentClock::PresentClock(double refresh_hz, PresentPacing pacing, Nanos frame_cost_ns)
+    : pacing_(static_cast<int>(pacing)),
+      period_ns_(period_of(refresh_hz)),
+      refresh_ns_(period_of(refresh_hz)),
+      cost_ns_(frame_cost_ns) {}
+
+void PresentClock::set_refresh_hz(double hz) {
+  period_ns_.store(period_of(hz), std::memory_order_relaxed);
+  refresh_ns_.store(period_of(hz), std::memory_order_relaxed);
+}
+
+bool PresentClock::unpaced() const {
+  return pacing() == PresentPacing::fifo &&
+         period_ns_.load(std::memory_order_relaxed) * 10 < refresh_ns_.load(std::memory_order_relaxed) * 6;
+}
+
+void PresentClock::frame_started(Nanos t) {
+  const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
+  anchor_ns_.store(t, std::memory_order_relaxed);
+  if (last < 0 || t <= last) return;
+  // The period follows the measured frame interval slowly (a display that does not pace
+  // FIFO, such as a virtual X server, shows frames as fast as they come); an interval of
+  // several periods (a hiccup, a minimised window) is not a period.
+  const Nanos period = period_ns_.load(std::memory_order_relaxed);
+  const Nanos interval = t - last;
+  if (interval > 3 * period) return;
+  period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
+}
+
+Nanos PresentClock::next_start(Nanos t) const {
+  const Nanos period = period_ns_.load(std::memory_order_relaxed);
+  const Nanos anchor = anchor_ns_.load(std::memory_order_relaxed);
+  if (t <= anchor) return anchor;
+  const Nanos k = (t - anchor + period - 1) / period;  // whole periods: exact on the int64 clock
+  return anchor + k * period;
+}
+
+Nanos PresentClock::present_of_frame_started(Nanos start) const {
+  const Nanos period = period_ns_.load(std::memory_order_relaxed);
+  const Nanos cost = cost_ns_.load(std::memory_order_relaxed);
+  switch (pacing()) {
+    case PresentPacing::fifo: return unpaced() ? start + period : start + 2 * period;
+    case PresentPacing::mailbox: return next_start(start + cost);
+    case PresentPacing::immediate: return start + cost;
+  }
+  return start + 2 * period;
+}
+
+Nanos PresentClock::first_shown(Nanos t, Nanos not_before) const {
+  const Nanos period = period_ns_.load(std::memory_order_relaxed);
+  // FIFO frames start on the grid; the others start as soon as the previous one is done.
+  Nanos start = pacing() == PresentPacing::fifo ? next_start(t) : t;
+  Nanos shown = present_of_frame_started(start);
+  if (shown < not_before) {
+    const Nanos frames = (not_before - shown + period - 1) / period;
+    shown += frames * period;
+  }
+  return shown;
+}
+
+std::string PresentClock::describe() const {
+  char buf[96];
+  const double ms = static_cast<double>(period_ns()) * 1e-6;
+  std::snprintf(buf, sizeof buf, "%s%s, frame period %.1f ms (%.1f Hz)", to_string(pacing()),
+                unpaced() ? " (not paced by the display)" : "", ms, 1e3 / ms);
+  return buf;
+}
+
+}  // namespace mallet

@@ -1,0 +1,70 @@
+#pragma once
+// When a picture reaches the screen. The bounce is evaluated at the present time of the
+// frame that shows it (Eq. 1 on the time since the impact), and with [timing] align =
+// "picture" the actuator and the note are scheduled to be heard together with the first
+// frame that shows a strike. Both ask this clock, so the two can never disagree.
+//
+// The model, per present mode (frames are recorded right after the previous one's acquire):
+//  * fifo: frame starts follow the display's refresh grid; a frame started at s is on
+//    screen at s + 2 periods (it waits behind the frame already queued, then for vblank);
+//  * mailbox: the next frame starts within one frame's cost and is shown at the first
+//    refresh after it is done;
+//  * immediate: shown as soon as it is done (tearing).
+// The grid's period and phase are learnt from the frame starts the window reports
+// (frame_started); without a window (simulate --causal) they come from --display-hz. A
+// FIFO swapchain whose frames come much faster than the display's refresh is not paced by
+// it (a virtual X server: no vblank at all): its frames are shown as soon as they are done,
+// one frame after they start (measured with bench latency: 2–7 ms, not two refreshes).
+// Written by the render thread, read by the input threads: every field is one atomic.
+#include <atomic>
+#include <string>
+#include <string_view>
+
+#include "core/time.hpp"
+
+namespace mallet {
+
+enum class PresentPacing { fifo, mailbox, immediate };
+
+const char* to_string(PresentPacing p);
+//! "fifo", "mailbox" or "immediate"; nothing for any other text.
+bool parse_present_pacing(std::string_view text, PresentPacing& out);
+
+class PresentClock {
+ public:
+  explicit PresentClock(double refresh_hz = 60.0, PresentPacing pacing = PresentPacing::fifo,
+                        Nanos frame_cost_ns = 3'000'000);
+
+  //! The render thread: a frame began recording at `t` (after its acquire). Refines the
+  //! grid's phase and, from the interval since the previous start, its period.
+  void frame_started(Nanos t);
+  void set_pacing(PresentPacing pacing) { pacing_.store(static_cast<int>(pacing), std::memory_order_relaxed); }
+  void set_refresh_hz(double hz);
+  void set_frame_cost(Nanos cost_ns) { cost_ns_.store(cost_ns, std::memory_order_relaxed); }
+
+  //! When the frame that begins recording at `start` reaches the screen.
+  Nanos present_of_frame_started(Nanos start) const;
+  //! The present time of the first frame that can show something decided at `t` and is
+  //! on screen no earlier than `not_before` (a predicted strike's contact time).
+  Nanos first_shown(Nanos t, Nanos not_before) const;
+
+  Nanos period_ns() const { return period_ns_.load(std::memory_order_relaxed); }
+  //! FIFO frames that come at under 60 % of the refresh period: nothing paces them.
+  bool unpaced() const;
+  PresentPacing pacing() const { return static_cast<PresentPacing>(pacing_.load(std::memory_order_relaxed)); }
+  //! "fifo, 60.0 Hz (measured 16.7 ms)": for the operator page.
+  std::string describe() const;
+
+ private:
+  Nanos next_start(Nanos t) const;  //!< the first frame start at or after t
+
+  std::atomic<int> pacing_;
+  std::atomic<Nanos> period_ns_;
+  std::atomic<Nanos> refresh_ns_;      //!< the display's nominal refresh period
+  std::atomic<Nanos> anchor_ns_{0};    //!< a frame start on the grid
+  std::atomic<Nanos> last_start_{-1};
+  std::atomic<Nanos> cost_ns_;
+  static_assert(std::atomic<Nanos>::is_always_lock_free);
+};
+
+}  // namespace mallet

@@ -1,0 +1,63 @@
+// The present model the bounce and align = "picture" share: frames on the refresh grid
+// (FIFO), back to back (mailbox, immediate), the grid learnt from the frame starts.
+#include <gtest/gtest.h>
+
+#include "core/present_clock.hpp"
+
+namespace mallet {
+namespace {
+
+constexpr Nanos kMs = 1'000'000;
+
+TEST(PresentClock, FifoShowsAChangeTwoRefreshesAfterTheNextFrameStart) {
+  PresentClock c(100.0, PresentPacing::fifo);  // 10 ms grid
+  c.frame_started(1000 * kMs);
+  EXPECT_EQ(c.period_ns(), 10 * kMs);
+  EXPECT_FALSE(c.unpaced());
+  // Decided at 1003 ms: the next frame starts at 1010 and is on screen at 1030.
+  EXPECT_EQ(c.first_shown(1003 * kMs, 0), 1030 * kMs);
+  // Decided exactly on a frame start: that frame shows it.
+  EXPECT_EQ(c.first_shown(1010 * kMs, 0), 1030 * kMs);
+  EXPECT_EQ(c.present_of_frame_started(1010 * kMs), 1030 * kMs);
+  // A predicted contact later than that: the first frame presented at or after it.
+  EXPECT_EQ(c.first_shown(1003 * kMs, 1041 * kMs), 1050 * kMs);
+  // Before the anchor: the anchor's frame.
+  EXPECT_EQ(c.first_shown(990 * kMs, 0), 1020 * kMs);
+}
+
+TEST(PresentClock, MailboxAndImmediateShowAfterOneFrameOfWork) {
+  PresentClock m(100.0, PresentPacing::mailbox, 3 * kMs);
+  m.frame_started(0);
+  EXPECT_EQ(m.first_shown(4 * kMs, 0), 10 * kMs);   // done at 7 ms, shown at the 10 ms refresh
+  EXPECT_EQ(m.first_shown(8 * kMs, 0), 20 * kMs);   // done at 11 ms: the next refresh
+  PresentClock i(100.0, PresentPacing::immediate, 3 * kMs);
+  i.frame_started(0);
+  EXPECT_EQ(i.first_shown(4 * kMs, 0), 7 * kMs);
+}
+
+TEST(PresentClock, LearnsThePeriodFromFrameStartsAndIgnoresHiccups) {
+  PresentClock c(60.0, PresentPacing::fifo);
+  Nanos t = 0;
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 5 * kMs);  // a display that is not paced: 200 fps
+  EXPECT_NEAR(static_cast<double>(c.period_ns()), 5e6, 0.05e6);
+  const Nanos before = c.period_ns();
+  c.frame_started(t += 500 * kMs);  // minimised for half a second: not a period
+  EXPECT_EQ(c.period_ns(), before);
+  // 200 fps on a 60 Hz display: nothing paces FIFO (a virtual X server); a frame is shown
+  // when it is done, one frame after it starts. The grid is anchored at the latest start.
+  EXPECT_TRUE(c.unpaced());
+  EXPECT_EQ(c.first_shown(t + 1, 0), t + 2 * before);
+}
+
+TEST(PresentClock, ParsesTheThreePresentModes) {
+  PresentPacing p = PresentPacing::fifo;
+  EXPECT_TRUE(parse_present_pacing("mailbox", p));
+  EXPECT_EQ(p, PresentPacing::mailbox);
+  EXPECT_TRUE(parse_present_pacing("immediate", p));
+  EXPECT_STREQ(to_string(p), "immediate");
+  EXPECT_FALSE(parse_present_pacing("vsync", p));
+  EXPECT_EQ(p, PresentPacing::immediate);
+}
+
+}  // namespace
+}  // namespace mallet
