@@ -172,15 +172,17 @@ std::int64_t onset_of(const std::vector<float>& channel) {
   return -1;
 }
 
-//! One straight strike on bar 2 at 1.2 m/s, sampled at 60 Hz (a window system's mouse).
-fs::path write_one_strike(const fs::path& dir, const Scene& scene) {
+//! One straight strike on bar 2 at 1.1 m/s (its contact between two samples), sampled at
+//! `rate_hz` from 50 ms (60 Hz: a window system's mouse; 100 Hz: the Wii Remote's camera).
+fs::path write_one_strike(const fs::path& dir, const Scene& scene, double rate_hz) {
   const fs::path csv = dir / "one.csv";
   std::ofstream f(csv);
   f.precision(17);
   f << "t,x,y\n";
   const double plane = scene.targets[2].top_y + scene.mallet_radius_m;
   const double x = 0.5 * (scene.targets[2].x_min + scene.targets[2].x_max);
-  for (int k = 0; k <= 12; ++k) f << 0.05 + k / 60.0 << ',' << x << ',' << plane + 0.1 - 1.2 * (k / 60.0) << '\n';
+  for (int k = 0; k <= static_cast<int>(0.2 * rate_hz); ++k)
+    f << 0.05 + k / rate_hz << ',' << x << ',' << plane + 0.1 - 1.1 * (k / rate_hz) << '\n';
   return csv;
 }
 
@@ -189,12 +191,13 @@ struct CausalRun {
   std::vector<float> actuator, acoustic;
 };
 
-CausalRun run_causal(const fs::path& dir, const std::string& name, const std::string& settings, double delay_ms) {
+CausalRun run_causal(const fs::path& dir, const std::string& name, const std::string& settings, double delay_ms,
+                     double rate_hz = 60.0) {
   const Scene scene = config::load_scene(test::percussion_scene());
   std::ofstream(dir / (name + ".toml")) << settings;
   SimulateOptions o;
   o.scene = test::percussion_scene();
-  o.input = write_one_strike(dir, scene);
+  o.input = write_one_strike(dir, scene, rate_hz);
   o.out_dir = dir / name;
   o.input_space = InputSpace::world;
   o.config = dir / (name + ".toml");
@@ -208,7 +211,7 @@ CausalRun run_causal(const fs::path& dir, const std::string& name, const std::st
 
 TEST(SimulateCausal, AsapSoundsWhenTheSampleAfterTheContactArrives) {
   const fs::path dir = test::scratch_dir();
-  const CausalRun r = run_causal(dir, "asap", "[timing]\nalign = \"asap\"\n", 8.0);
+  const CausalRun r = run_causal(dir, "asap", "[timing]\nalign = \"asap\"\npredict_horizon_ms = 0\n", 8.0);
   EXPECT_EQ(r.events.header, (std::vector<std::string>{"t", "target", "instrument", "material", "note", "velocity",
                                                         "contact_t", "sound_t", "shown_t", "predicted"}));
   ASSERT_EQ(r.events.rows.size(), 1u);
@@ -236,11 +239,27 @@ TEST(SimulateCausal, PictureAlignmentSoundsWithTheFrameThatShowsTheBounce) {
   EXPECT_EQ(onset_of(r.acoustic), onset_of(r.actuator));
 }
 
+TEST(SimulateCausal, APredictedStrikeSoundsAtItsPredictedContactBeforeTheSampleShowsIt) {
+  const fs::path dir = test::scratch_dir();
+  // The 100 Hz camera, each sample known at once: the sample 0.9 ms before the contact
+  // predicts the constant-speed downswing's crossing (the next sample is 9.1 ms after it).
+  const CausalRun r = run_causal(dir, "predict", "[timing]\npredict_horizon_ms = 10\n", 0.0, 100.0);
+  ASSERT_EQ(r.events.rows.size(), 1u);
+  EXPECT_EQ(r.events.rows[0][9], "1");
+  const double contact = r.events.number(0, 6), sound = r.events.number(0, 7);
+  const double plane_crossing = 0.05 + 0.1 / 1.1;  // the true contact
+  EXPECT_NEAR(contact, plane_crossing, 1e-4);
+  EXPECT_NEAR(sound, contact, 1e-9);  // scheduled at the predicted contact, not at the next sample
+  EXPECT_LT(sound, 0.15);  // the sample that would have shown it
+  EXPECT_NEAR(static_cast<double>(onset_of(r.actuator)), sound * 48000, 1.0);
+  EXPECT_NEAR(r.events.number(0, 5), 1.1, 0.011);  // the predicted speed, within 1 %
+}
+
 TEST(SimulateCausal, WithoutCausalTheTimingSettingsChangeNothing) {
   const fs::path dir = test::scratch_dir();
   const Scene scene = config::load_scene(test::percussion_scene());
   const Scripted s = write_two_strikes(dir, scene);
-  std::ofstream(dir / "timing.toml") << "[timing]\nalign = \"picture\"\ndisplay_latency_ms = 20\n";
+  std::ofstream(dir / "timing.toml") << "[timing]\nalign = \"picture\"\ndisplay_latency_ms = 20\npredict_horizon_ms = 20\n";
   auto run = [&](const std::string& name, bool timing) {
     SimulateOptions o;
     o.scene = test::percussion_scene();
