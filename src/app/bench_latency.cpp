@@ -745,10 +745,10 @@ void run_bench_latency(const LatencyOptions& options) {
   if (!disturbed.empty())
     std::printf(
         "  ! Audio rows of these ran with xruns (the machine could not keep JACK's cycles): %s.\n"
-        "    A late cycle costs the dummy driver that time, which the kiosk's audio clock does not see (its\n"
-        "    origin is fixed when its stream starts): its sounds come later by the sum, stroke after stroke.\n"
-        "    Strikes whose onset lies on such a seam are left out (n). Rerun on an idle machine for the\n"
-        "    kiosk's own figures.\n",
+        "    A late cycle costs the dummy driver that time; the kiosk's audio stream re-anchors its clock\n"
+        "    when its callback finds itself behind (OutputCounters::resyncs), so the loss does not add up,\n"
+        "    but a strike near a late cycle is heard late. Strikes whose onset lies on such a seam are left\n"
+        "    out (n). Rerun on an idle machine for the kiosk's own figures.\n",
         disturbed.c_str());
   std::printf("wrote %s and %s\n", csv_path.c_str(), strikes_path.c_str());
 }

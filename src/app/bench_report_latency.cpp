@@ -13,6 +13,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/bench_report.hpp"
+#include "app/csv_table.hpp"
 #include "app/strike_route.hpp"
 #include "core/quality.hpp"
 #include "input/wiimote/report_tracker.hpp"
@@ -117,6 +118,32 @@ double maximum(const std::vector<double>& v) { return v.empty() ? 0 : *std::max_
 
 }  // namespace
 
+//! The measured end-to-end figures of `mallet bench latency`, when a latency.csv from it lies
+//! in the report's folder: the model above against what a real windowed kiosk did.
+static void include_measured_latency(const ReportOptions& o, ReportSections& out) {
+  const std::filesystem::path csv = o.out / "latency.csv";
+  std::error_code ec;
+  if (!std::filesystem::exists(csv, ec)) {
+    out.skipped.push_back("measured latency: run `mallet bench latency --out " + o.out.string() +
+                          "` before the report to include it");
+    return;
+  }
+  const CsvTable t = read_csv_table(csv);
+  TextTable measured{"Measured end to end (mallet bench latency): true contact → cue, the real windowed kiosk",
+                     {"source", "preset", "align", "cue", "median ms", "p99 ms", "max ms", "strikes", "false",
+                      "missed"},
+                     {},
+                     ""};
+  for (const std::vector<std::string>& row : t.rows) measured.rows.push_back(row);
+  measured.note =
+      "Measured, not modelled: Xvfb (no vblank, no panel) and a JACK dummy server as the sound card (2.7 ms "
+      "cycles plus 5.3 ms playback latency). Where it differs from the model above: the model's FIFO frame waits "
+      "for a 60 Hz vblank, Xvfb has none, so the picture comes 2–5 ms after the contact instead of 25–33 ms; "
+      "the audio then comes after the picture, by the sound card's own buffering, which the model leaves out "
+      "and which align = \"picture\" cannot shorten (it can only delay a cue).";
+  out.tables.push_back(measured);
+}
+
 void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSections& out) {
   if (scene.targets.empty()) return;
   TextTable audio{"Latency budget: IR report received → strike → its first audio sample in the output buffer",
@@ -187,6 +214,7 @@ void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSe
                 r);
   video.note = note;
   out.tables.push_back(video);
+  include_measured_latency(o, out);
 }
 
 }  // namespace mallet::app

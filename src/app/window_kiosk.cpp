@@ -568,33 +568,57 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",
            {1.0f, 1.0f, 1.0f, 0.35f});
   if (states_->state() != KioskState::operator_page) return;
-  char lines[10][240];
+  char buf[240];
+  std::vector<std::string> lines;
   const double uptime = to_seconds(now - started_);
-  std::snprintf(lines[0], sizeof lines[0], "Mallet: operator page   quality: %s", to_string(stage_->config.quality));
-  std::snprintf(lines[1], sizeof lines[1], "%s", input_line().c_str());
-  std::snprintf(lines[2], sizeof lines[2], "%s", stage_->audio_status.c_str());
-  std::snprintf(lines[3], sizeof lines[3], "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms,
-                std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
-  std::snprintf(lines[4], sizeof lines[4], "volume %.0f %%  (Up / Down)", volume_ * 100);
-  std::snprintf(lines[5], sizeof lines[5], "actuator gain %.2f  (Left / Right)", gain_);
-  std::snprintf(lines[6], sizeof lines[6], "R recalibrate    T latency test    Q quit    Esc close");
+  std::snprintf(buf, sizeof buf, "Mallet: operator page   quality: %s", to_string(stage_->config.quality));
+  lines.emplace_back(buf);
+  lines.push_back(input_line());
+  lines.push_back(stage_->audio_status);
+  std::snprintf(buf, sizeof buf, "frame: %.1f ms   uptime: %.0f h %02.0f min", frame_ms, std::floor(uptime / 3600),
+                std::fmod(std::floor(uptime / 60), 60.0));
+  lines.emplace_back(buf);
+  std::snprintf(buf, sizeof buf, "volume %.0f %%  (Up / Down)", volume_ * 100);
+  lines.emplace_back(buf);
+  std::snprintf(buf, sizeof buf, "actuator gain %.2f  (Left / Right)", gain_);
+  lines.emplace_back(buf);
+  lines.emplace_back("R recalibrate    T latency test    Q quit    Esc close");
   const int wall = stage_->route->loop().wall_material();
-  std::snprintf(lines[7], sizeof lines[7], "scene: %s  (S next)%s%s%s",
-                std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "",
-                wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "",
+  std::snprintf(buf, sizeof buf, "scene: %s  (S next)%s%s%s", std::filesystem::path(stage_->scene.file).filename().c_str(),
+                wall >= 0 ? "   wall: " : "", wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "",
                 wall >= 0 ? "  (M next)" : "");
-  std::snprintf(lines[8], sizeof lines[8], "%s",
-                stage_->remote
-                    ? (stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
-                       stage_->calibration_status_sensitivity).c_str()
-                                                       : "calibration: R runs the screen with the mouse (not saved)");
-  std::snprintf(lines[9], sizeof lines[9], "%s", timing_line().c_str());
-  const float line = px * 1.4f, pw = std::min(w - 2 * px, px * 40), ph = line * 11;
-  const float x0 = (w - pw) / 2, y0 = (h - ph) / 2;
+  lines.emplace_back(buf);
+  lines.push_back(stage_->remote ? stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
+                                       stage_->calibration_status_sensitivity
+                                 : "calibration: R runs the screen with the mouse (not saved)");
+  lines.push_back(timing_line());
+  const float pw = std::min(w - 2 * px, px * 40);
+  // Long lines (how the input is read and why, the timing figures) wrap at a comma or a
+  // semicolon onto indented continuation lines; a glyph is about half the pixel height wide.
+  std::vector<std::string> page;
+  const auto fits = static_cast<std::size_t>(std::max(20.0f, (pw - 2 * px) / (px * 0.5f)));
+  for (std::string text : lines) {
+    std::string indent;
+    while (text.size() > fits) {
+      std::size_t cut = std::string::npos;
+      for (const char* sep : {"; ", ", ", " ("})
+        if (const std::size_t at = text.rfind(sep, fits - 1); at != std::string::npos && at > 8 &&
+                                                               (cut == std::string::npos || at > cut))
+          cut = at;
+      if (cut == std::string::npos) break;
+      const bool keep_paren = text.compare(cut, 2, " (") == 0;
+      page.push_back(indent + text.substr(0, keep_paren ? cut : cut + 1));
+      text = text.substr(cut + (keep_paren ? 1 : 2));
+      indent = "    ";
+    }
+    page.push_back(indent + text);
+  }
+  const float line = px * 1.4f, ph = line * static_cast<float>(page.size() + 1);
+  const float x0 = (w - pw) / 2, y0 = std::max(0.0f, (h - ph) / 2);
   o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  for (int i = 0; i < 10; ++i)
-    o.text(x0 + px, y0 + line * static_cast<float>(i + 1), lines[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
+  for (std::size_t i = 0; i < page.size(); ++i)
+    o.text(x0 + px, y0 + line * static_cast<float>(i + 1), page[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
 }
 
 int WindowKiosk::run() {

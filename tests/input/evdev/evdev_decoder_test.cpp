@@ -3,6 +3,7 @@
 // own timestamp of its frame; SYN_DROPPED discards the incomplete frames; the pointer is
 // clamped to the screen, warped, scaled by a constant speed (no acceleration), and its time
 // shifted by the clock offset; absolute axes map their range onto the screen.
+#include "input_event_maker.hpp"
 #include "input/evdev/evdev_decoder.hpp"
 
 #include <algorithm>
@@ -25,16 +26,7 @@ std::filesystem::path recording() {
 //! The first frame's kernel time in the recording: 93784.000500 s (26 h of uptime).
 constexpr Nanos kRecordingStartNs = 93'784'000'500'000;
 
-//! One event at `t_us` microseconds.
-input_event ev(std::int64_t t_us, std::uint16_t type, std::uint16_t code, std::int32_t value) {
-  input_event e{};
-  e.input_event_sec = static_cast<decltype(e.input_event_sec)>(t_us / 1'000'000);
-  e.input_event_usec = static_cast<decltype(e.input_event_usec)>(t_us % 1'000'000);
-  e.type = type;
-  e.code = code;
-  e.value = value;
-  return e;
-}
+using test::ev;
 input_event rel_x(std::int64_t t_us, int v) { return ev(t_us, EV_REL, REL_X, v); }
 input_event rel_y(std::int64_t t_us, int v) { return ev(t_us, EV_REL, REL_Y, v); }
 input_event syn(std::int64_t t_us) { return ev(t_us, EV_SYN, SYN_REPORT, 0); }

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "input_event_maker.hpp"
 #include "fake_libevdev.hpp"
 #include "input/evdev/evdev_mouse.hpp"
 
@@ -24,15 +25,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kNode = "/dev/null";  // a character device that open() and poll() accept
 
-input_event ev(std::int64_t t_us, std::uint16_t type, std::uint16_t code, std::int32_t value) {
-  input_event e{};
-  e.input_event_sec = static_cast<decltype(e.input_event_sec)>(t_us / 1'000'000);
-  e.input_event_usec = static_cast<decltype(e.input_event_usec)>(t_us % 1'000'000);
-  e.type = type;
-  e.code = code;
-  e.value = value;
-  return e;
-}
+using test::ev;
 
 void push_move(std::int64_t t_us, int dx, int dy) {
   if (dx) fake_libevdev::push(ev(t_us, EV_REL, REL_X, dx));
