@@ -138,7 +138,7 @@ static void include_measured_latency(const ReportOptions& o, ReportSections& out
   measured.note =
       "Measured, not modelled: Xvfb (no vblank, no panel) and a JACK dummy server as the sound card (2.7 ms "
       "cycles plus 5.3 ms playback latency). Where it differs from the model above: the model's FIFO frame waits "
-      "for a 60 Hz vblank, Xvfb has none, so the picture comes 2–5 ms after the contact instead of 25–33 ms; "
+      "for a 60 Hz vblank, Xvfb has none, so the picture comes 2–5 ms after the contact (balanced; 10–17 ms with exact's 4x MSAA on every frame) instead of 25–33 ms; "
       "the audio then comes after the picture, by the sound card's own buffering, which the model leaves out "
       "and which align = \"picture\" cannot shorten (it can only delay a cue).";
   out.tables.push_back(measured);
