@@ -8,6 +8,9 @@ MousePointer::MousePointer(const Scene& scene, const AppConfig& config, audio::A
                            const PresentClock* picture)
     : scene_(scene), route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, false, true}) {
   pending_.reserve(1024);
+  route_.on_strike = [this](const Strike& s) {
+    if (on_strike) on_strike(s);
+  };
 }
 
 void MousePointer::on_samples(std::span<const PointerSample> samples) {

@@ -13,6 +13,7 @@
 // Strikes happen only while playing (set_playing(true)); switching on starts a new stroke.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -34,6 +35,8 @@ class MousePointer {
   //! The source's sink (its reading thread): each sample is known to the route when it
   //! is handed over.
   void on_samples(std::span<const PointerSample> samples);
+  //! Called on the reading thread after each strike was delivered. Set before the source starts.
+  std::function<void(const Strike&)> on_strike;
 
   // --- main thread
   void set_playing(bool playing);
