@@ -27,6 +27,7 @@
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "core/config/scene_config.hpp"
+#include "input/wiimote/reports.hpp"
 
 namespace mallet::app::latency {
 
@@ -298,6 +299,7 @@ std::vector<Bar> choose_bars(const Scene& scene, const Mapping& map) {
 struct KioskLog {
   std::mutex mutex;
   bool started = false;
+  std::optional<Nanos> replay_origin;  //!< the recording's time 0 on the kiosk's clock
   std::vector<Nanos> strikes;
   std::vector<std::string> status;
 
@@ -305,6 +307,10 @@ struct KioskLog {
     std::lock_guard lock(mutex);
     if (const std::size_t at = text.find("strike t="); at != std::string_view::npos) {
       if (const std::optional<Nanos> t = parse_time(text.substr(at + 9))) strikes.push_back(*t);
+      return;
+    }
+    if (const std::size_t at = text.find("recording's time 0 is t="); at != std::string_view::npos) {
+      if (!replay_origin) replay_origin = parse_time(text.substr(at + 24));
       return;
     }
     if (text.find("mallet run:") != std::string_view::npos && !started) {
@@ -334,6 +340,8 @@ struct KioskLog {
 
 struct Config {
   std::string preset, align;
+  std::string source = "mouse";  //!< or "remote": a recording played as a live Wii Remote
+  std::filesystem::path replay_file;  //!< for "remote"
 };
 
 struct ConfigResult {
@@ -358,6 +366,7 @@ struct Rig {
   std::unique_ptr<FakePointer> hand;
   std::unique_ptr<ScreenReader> eye;
   std::unique_ptr<PictureWatch> watch;
+  int rest_row[2] = {-1, -1};  //!< where the head rests on each bar (a mouse run's warm-up)
 };
 
 //! The hand (the sphere's centre) at world (x, y): the pointer at that window pixel.
@@ -378,7 +387,8 @@ std::string settings_text(const Config& c) {
   t += "device = \"system\"   # the JACK host API's device, on the bench's own JACK server\n";
   t += "sample_rate_hz = " + std::to_string(kRate) + "\n";
   t += "[audio.routing]\nchannels = 2\nacoustic = 0\nactuator = 1\n";
-  t += "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
+  if (c.source == "remote") t += "[input]\nsource = \"replay\"\nreplay_file = \"" + c.replay_file.string() + "\"\n";
+  else t += "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
   t += "[timing]\nalign = \"" + c.align + "\"\n";
   t += "[attract]\nidle_after_s = 86400.0   # the ghost never takes over\n";
   t += "[render]\npresent_mode = \"fifo\"\n";
@@ -403,8 +413,168 @@ std::optional<std::string> child_preload() {
                            "); its last lines:\n" + kiosk.tail(15));
 }
 
-ConfigResult run_config(Rig& rig, const Config& config, int strokes, const std::string& device,
+//! The remote's strokes, as a recording (the `mallet wiimote monitor --record` format) the
+//! kiosk plays as a live remote (`[input] source = "replay"`): one report every 10 ms (the
+//! camera's 100 Hz), the camera's view mirrored onto the screen (the kiosk's mapping when it
+//! has no calibration), whole camera pixels. After `lead` of a hovering hand (the kiosk
+//! starts and takes it for a visitor), `strokes` downswings alternating between the bars,
+//! one every 600 ms plus 3.3 ms more each time, so that contacts fall anywhere between two
+//! camera frames. Times relative to the recording's time 0.
+struct RemoteScript {
+  std::vector<Recording::Contact> contacts;
+  Nanos first_stroke = 0, end = 0;
+};
+
+RemoteScript write_remote_script(const Rig& rig, const std::filesystem::path& file, int strokes, Nanos lead) {
+  const double above_m = 0.04, below_m = 0.03;
+  const double speeds[] = {1.0, 1.5, 2.0, 1.25, 1.75};
+  struct Stroke {
+    Nanos start;
+    int bar;
+    double v;
+  };
+  std::vector<Stroke> plan;
+  RemoteScript script;
+  for (int k = 0; k < strokes; ++k) {
+    const Nanos start = lead + k * 600 * kMs + (k * 3'300'000) % (10 * kMs);
+    const int bar = k % 2;
+    const double v = speeds[static_cast<std::size_t>(k) % 5];
+    plan.push_back({start, bar, v});
+    script.contacts.push_back({start + static_cast<Nanos>(std::llround(above_m / v * 1e9)), bar, v});
+  }
+  script.first_stroke = plan.empty() ? lead : plan.front().start;
+  script.end = lead + strokes * 600 * kMs + 300 * kMs;
+  // The hand at t: hovering above the bar of the stroke to come (moving over in 100 ms,
+  // 250 ms before it), or in a stroke: down at v to below_m under the contact plane, held
+  // 80 ms, back up in 70 ms.
+  auto hand_at = [&](Nanos t) -> Vec2 {
+    std::size_t next = 0;
+    while (next < plan.size() && plan[next].start <= t) ++next;
+    if (next > 0) {  // in or after stroke next − 1
+      const Stroke& s = plan[next - 1];
+      const Bar& b = rig.bars[static_cast<std::size_t>(s.bar)];
+      const double top = b.contact_y_m + above_m, bottom = b.contact_y_m - below_m;
+      const Nanos down = static_cast<Nanos>(std::llround((top - bottom) / s.v * 1e9));
+      const Nanos since = t - s.start;
+      if (since < down) return {b.x_m, top - s.v * to_seconds(since)};
+      if (since < down + 80 * kMs) return {b.x_m, bottom};
+      if (since < down + 150 * kMs) return {b.x_m, bottom + (top - bottom) * to_seconds(since - down - 80 * kMs) / 0.07};
+    }
+    const Bar& to = rig.bars[static_cast<std::size_t>(next < plan.size() ? plan[next].bar : 0)];
+    const Bar& from = rig.bars[static_cast<std::size_t>(next > 0 ? plan[next - 1].bar : 0)];
+    const Nanos move_at = (next < plan.size() ? plan[next].start : script.end) - 250 * kMs;
+    const double f = std::clamp(to_seconds(t - move_at) / 0.1, 0.0, 1.0);
+    // A visitor arrives: a 1 cm sway (past the kiosk's dead band, so it leaves the attract
+    // mode and its ghost stops playing), three whole periods ending 2 s before the first stroke.
+    const double sway = t < lead - 2 * kNanosPerSecond ? 0.01 * std::sin(2 * M_PI * to_seconds(t) / 2.0) : 0.0;
+    return {from.x_m + (to.x_m - from.x_m) * f + sway, to.contact_y_m + above_m};
+  };
+  std::ofstream out(file);
+  input::wiimote::ReplayWriter writer(out);
+  for (Nanos t = 0; t <= script.end; t += 10 * kMs) {
+    const Vec2 screen = rig.scene.screen_to_world.unmap(hand_at(t));
+    const int cx = std::clamp(static_cast<int>(std::lround((1.0 - screen.x) * 1023)), 0, 1023);
+    const int cy = std::clamp(static_cast<int>(std::lround(screen.y * 767)), 0, 767);
+    writer.write(t, input::wiimote::extended_ir_report(cx, cy));
+  }
+  out.close();
+  if (!out) throw std::runtime_error("bench latency: cannot write " + file.string());
+  return script;
+}
+
+//! A run's recorded cues matched to its true contacts; stops the kiosk.
+ConfigResult finish_run(Rig& rig, Child& kiosk, KioskLog& log, Recording& rec, AudioTrack& track, Nanos begin,
+                        Nanos end, std::uint64_t xruns_before, ConfigResult& result) {
+  rig.recorder->stop_recording();
+  // Each contact's first new sample on each channel, from 50 ms before it to 300 ms after
+  // (or to the next contact's window), not counting the seams of late cycles.
+  const std::vector<Gap> gaps = track.irregular(rig.recorder->period());
+  for (std::size_t k = 0; k < rec.contacts.size(); ++k) {
+    const Nanos c = rec.contacts[k].t;
+    const Nanos to =
+        k + 1 < rec.contacts.size() ? std::min(c + kCueAfter, rec.contacts[k + 1].t - kCueBefore) : c + kCueAfter;
+    const std::size_t i0 = track.index_at(c - kCueBefore), i1 = track.index_at(to);
+    for (int channel : {0, 1})
+      if (const std::optional<std::size_t> i =
+              find_onset(track.channels[static_cast<std::size_t>(channel)], i0, i1, {}, gaps))
+        (channel == 1 ? rec.actuator : rec.note).push_back(track.time_of(*i));
+  }
+  for (const PictureEvent& p : rig.watch->take()) rec.picture[static_cast<std::size_t>(p.strip)].push_back(p.t);
+  {
+    std::lock_guard lock(log.mutex);
+    for (Nanos t : log.strikes)
+      if (t >= begin - kStrikeWindow && t <= end) rec.strikes.push_back(t);
+  }
+  result.xruns = rig.recorder->xruns() - xruns_before;
+  kiosk.stop(std::chrono::milliseconds(3000));
+  result.matched = match_recording(rec);
+  // Where each false strike lay, for a closer look: its time from the run's first true contact.
+  for (Nanos t : rec.strikes) {
+    Nanos nearest = -1;
+    for (const Recording::Contact& c : rec.contacts)
+      if (nearest < 0 || std::llabs(c.t - t) < std::llabs(nearest - t)) nearest = c.t;
+    if (nearest < 0 || std::llabs(nearest - t) > kStrikeWindow)
+      std::printf("    false strike at %+.1f ms from the first contact (nearest contact %+.1f ms away)\n",
+                  rec.contacts.empty() ? 0.0 : ms_of(t - rec.contacts.front().t), nearest < 0 ? 0.0 : ms_of(t - nearest));
+  }
+  const double px_m = std::fabs(rig.map.y_of_row(0) - rig.map.y_of_row(1));
+  result.resolution_ms = px_m / 1.0 * 1e3;  // the slowest stroke, 1.0 m/s
+  return result;
+}
+
+//! The remote's run: the kiosk plays the script from its start; this listens and looks.
+ConfigResult run_remote(Rig& rig, Child& kiosk, KioskLog& log, const RemoteScript& script, ConfigResult& result,
                         const Deadline& deadline) {
+  const Nanos waited_from = monotonic_now();
+  std::optional<Nanos> origin;
+  while (!origin) {
+    deadline.check();
+    if (!kiosk.running()) kiosk_failed(kiosk, "exited before its replay started");
+    if (monotonic_now() > waited_from + 20 * kNanosPerSecond) kiosk_failed(kiosk, "never said when its replay started");
+    {
+      std::lock_guard lock(log.mutex);
+      origin = log.replay_origin;
+    }
+    sleep_ms(20);
+  }
+  for (int i = 0; i < 2; ++i) {
+    result.rest_row[i] = rig.rest_row[i];
+    rig.watch->set_rest_row(i, rig.rest_row[i]);
+  }
+  const Nanos first = *origin + script.first_stroke;
+  if (monotonic_now() > first - 300 * kMs)
+    kiosk_failed(kiosk, "was not up 300 ms before the recording's first stroke (" +
+                            std::to_string(to_seconds(monotonic_now() - *origin)) + " s after the replay started)");
+  Recording rec;
+  rec.picture.resize(rig.bars.size());
+  for (const Recording::Contact& c : script.contacts) rec.contacts.push_back({*origin + c.t, c.bar, c.speed});
+  sleep_until(first - 200 * kMs);
+  AudioTrack track;
+  rig.recorder->start_recording(track);
+  rig.watch->take();
+  const Nanos begin = monotonic_now();
+  const std::uint64_t xruns_before = rig.recorder->xruns();
+  while (monotonic_now() < *origin + script.end) {
+    deadline.check();
+    if (!kiosk.running()) kiosk_failed(kiosk, "exited during the strokes");
+    rig.recorder->drain(track);
+    sleep_ms(50);
+  }
+  const Nanos end = monotonic_now();
+  rig.recorder->drain(track);
+  return finish_run(rig, kiosk, log, rec, track, begin, end, xruns_before, result);
+}
+
+ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const std::string& device,
+                        const Deadline& deadline) {
+  Config config = config_in;
+  const Nanos lead = 8 * kNanosPerSecond;  // the kiosk is up within it (asserted below)
+  RemoteScript script;
+  if (config.source == "remote") {
+    if (rig.rest_row[0] < 0) throw std::logic_error("bench latency: a remote run needs a mouse run's warm-up first");
+    config.replay_file = rig.temp.path() / ("remote-" + config.preset + "-" + config.align + ".replay");
+    script = write_remote_script(rig, config.replay_file, strokes, lead);
+  }
   ConfigResult result;
   result.config = config;
   const std::filesystem::path settings = rig.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
@@ -469,6 +639,7 @@ ConfigResult run_config(Rig& rig, const Config& config, int strokes, const std::
     std::lock_guard lock(log->mutex);
     result.kiosk_status = log->status;
   }
+  if (config.source == "remote") return run_remote(rig, kiosk, *log, script, result, deadline);
 
   // Take over from the attract mode's ghost: a first sample anchors, a second moves.
   rig.hand->move_to(kWidth / 2, kHeight / 6);
@@ -533,6 +704,7 @@ ConfigResult run_config(Rig& rig, const Config& config, int strokes, const std::
                               (rest ? std::to_string(*rest) : std::string("none")) + ", head centre row " +
                               std::to_string(static_cast<int>(centre)) + ")");
     result.rest_row[i] = *rest;
+    rig.rest_row[i] = *rest;
     rig.watch->set_rest_row(static_cast<int>(i), *rest);
     sleep_ms(350);
   }
@@ -560,32 +732,7 @@ ConfigResult run_config(Rig& rig, const Config& config, int strokes, const std::
   sleep_ms(400);
   const Nanos end = monotonic_now();
   rig.recorder->drain(track);
-  rig.recorder->stop_recording();
-  // Each contact's first new sample on each channel, from 50 ms before it to 300 ms after
-  // (or to the next contact's window), not counting the seams of late cycles.
-  const std::vector<Gap> gaps = track.irregular(rig.recorder->period());
-  for (std::size_t k = 0; k < rec.contacts.size(); ++k) {
-    const Nanos c = rec.contacts[k].t;
-    const Nanos to =
-        k + 1 < rec.contacts.size() ? std::min(c + kCueAfter, rec.contacts[k + 1].t - kCueBefore) : c + kCueAfter;
-    const std::size_t i0 = track.index_at(c - kCueBefore), i1 = track.index_at(to);
-    for (int channel : {0, 1})
-      if (const std::optional<std::size_t> i =
-              find_onset(track.channels[static_cast<std::size_t>(channel)], i0, i1, {}, gaps))
-        (channel == 1 ? rec.actuator : rec.note).push_back(track.time_of(*i));
-  }
-  for (const PictureEvent& p : rig.watch->take()) rec.picture[static_cast<std::size_t>(p.strip)].push_back(p.t);
-  {
-    std::lock_guard lock(log->mutex);
-    for (Nanos t : log->strikes)
-      if (t >= begin - kStrikeWindow && t <= end) rec.strikes.push_back(t);
-  }
-  result.xruns = rig.recorder->xruns() - xruns_before;
-  kiosk.stop(std::chrono::milliseconds(3000));
-  result.matched = match_recording(rec);
-  const double px_m = std::fabs(rig.map.y_of_row(0) - rig.map.y_of_row(1));
-  result.resolution_ms = px_m / 1.0 * 1e3;  // the slowest stroke, 1.0 m/s
-  return result;
+  return finish_run(rig, kiosk, *log, rec, track, begin, end, xruns_before, result);
 }
 
 std::string load_average() {
@@ -616,7 +763,8 @@ void run_bench_latency(const LatencyOptions& options) {
   const std::vector<std::string> presets =
       options.quick ? std::vector<std::string>{"balanced"} : std::vector<std::string>{"balanced", "exact"};
   const std::vector<std::string> aligns = {"asap", "picture"};
-  const std::size_t configs = presets.size() * aligns.size();
+  const std::vector<std::string> sources = {"mouse", "remote"};
+  const std::size_t configs = presets.size() * aligns.size() * sources.size();
   // Start-up ≈ 15 s, a configuration ≈ 10 s + 0.6 s a stroke: the bound is well above that.
   Deadline deadline{monotonic_now() + (40 + static_cast<Nanos>(configs) * (60 + strokes)) * kNanosPerSecond};
   std::filesystem::create_directories(options.out);
@@ -659,14 +807,15 @@ void run_bench_latency(const LatencyOptions& options) {
 
   std::vector<ConfigResult> results;
   for (const std::string& preset : presets)
-    for (const std::string& align : aligns) {
-      deadline.check();
-      std::printf("  running: quality %s, align %s ...\n", preset.c_str(), align.c_str());
-      std::fflush(stdout);
-      results.push_back(run_config(rig, {preset, align}, strokes, options.device, deadline));
-      for (const std::string& line : results.back().kiosk_status) std::printf("    kiosk: %s\n", line.c_str());
-      std::fflush(stdout);
-    }
+    for (const std::string& align : aligns)
+      for (const std::string& source : sources) {  // the mouse first: its warm-up finds where the head rests
+        deadline.check();
+        std::printf("  running: %s, quality %s, align %s ...\n", source.c_str(), preset.c_str(), align.c_str());
+        std::fflush(stdout);
+        results.push_back(run_config(rig, {preset, align, source, {}}, strokes, options.device, deadline));
+        for (const std::string& line : results.back().kiosk_status) std::printf("    kiosk: %s\n", line.c_str());
+        std::fflush(stdout);
+      }
   const double poll_ms = rig.watch->mean_poll_ms();
   const std::uint64_t xruns = rig.recorder->xruns(), dropped = rig.recorder->dropped();
 
@@ -682,11 +831,11 @@ void run_bench_latency(const LatencyOptions& options) {
   for (const ConfigResult& r : results)
     for (const CueSamples& c : r.matched.cues) {
       const Summary s = summarise(c.ms);
-      std::printf("| mouse  | %-8s | %-7s | %-16s | %9s | %8s | %8s | %7d | %5d | %6d | %2zu | %5llu |\n",
-                  r.config.preset.c_str(), r.config.align.c_str(), c.cue.c_str(), cell(s.median).c_str(),
+      std::printf("| %-6s | %-8s | %-7s | %-16s | %9s | %8s | %8s | %7d | %5d | %6d | %2zu | %5llu |\n",
+                  r.config.source.c_str(), r.config.preset.c_str(), r.config.align.c_str(), c.cue.c_str(), cell(s.median).c_str(),
                   cell(s.p99).c_str(), cell(s.max).c_str(), r.matched.strikes, r.matched.false_strikes,
                   r.matched.missed_strikes, s.n, static_cast<unsigned long long>(r.xruns));
-      csv << "mouse," << r.config.preset << ',' << r.config.align << ',' << c.cue << ',' << cell(s.median) << ','
+      csv << r.config.source << ',' << r.config.preset << ',' << r.config.align << ',' << c.cue << ',' << cell(s.median) << ','
           << cell(s.p99) << ',' << cell(s.max) << ',' << r.matched.strikes << ',' << r.matched.false_strikes << ','
           << r.matched.missed_strikes << '\n';
     }
@@ -701,7 +850,7 @@ void run_bench_latency(const LatencyOptions& options) {
       const StrikeRow& row = r.matched.rows[i];
       char t[48];
       std::snprintf(t, sizeof t, "%.6f", to_seconds(row.contact.t));
-      per << "mouse," << r.config.preset << ',' << r.config.align << ',' << i << ','
+      per << r.config.source << ',' << r.config.preset << ',' << r.config.align << ',' << i << ','
           << rig.bars[static_cast<std::size_t>(row.contact.bar)].target << ',' << row.contact.speed << ',' << t << ','
           << cell(row.strike_ms) << ',' << cell(row.actuator_ms) << ',' << cell(row.note_ms) << ','
           << cell(row.picture_ms) << '\n';
@@ -730,13 +879,18 @@ void run_bench_latency(const LatencyOptions& options) {
       poll_ms, results.empty() ? 0.0 : results[0].resolution_ms);
   std::error_code ec;
   std::printf(
+      "  source remote = a recording played as a live Wii Remote ([input] source = \"replay\": the real device\n"
+      "    start-up, reading thread, IR tracker and strike route; 100 Hz reports, contacts anywhere between two);\n"
+      "    its true contact = the recorded path's crossing, placed on the kiosk's clock by the replay's start line.\n");
+  std::printf(
       "  source mouse = the window system's pointer ([input] mouse = \"window\"). The evdev mouse is not measured:\n"
       "    injecting it needs /dev/uinput%s.\n",
       std::filesystem::exists("/dev/uinput", ec) ? " (present here, but the bench does not use it yet)"
                                                  : ", which this machine lacks");
   std::string disturbed;
   for (const ConfigResult& r : results)
-    if (r.xruns > 0) disturbed += (disturbed.empty() ? "" : ", ") + r.config.preset + "/" + r.config.align;
+    if (r.xruns > 0)
+      disturbed += (disturbed.empty() ? "" : ", ") + r.config.source + "/" + r.config.preset + "/" + r.config.align;
   std::printf(
       "  JACK: %llu xruns in all (start-ups included), %llu cycles the recorder had no room for. This machine:\n"
       "    %ld CPUs online, load average %s.\n",
@@ -763,8 +917,8 @@ void add_bench_latency(CLI::App& bench) {
       "latency", "Measured: true contact → actuator, note and picture on the real windowed kiosk (Xvfb + JACK)");
   cmd->footer(
       "Starts its own X server (Xvfb, Debian package xvfb) and JACK server (jackd2, dummy driver), runs\n"
-      "`mallet run --windowed` under them once per quality preset (balanced, exact; --quick: balanced) and\n"
-      "[timing] align (asap, picture), strikes a metal and a wood bar with the X pointer (XTest; a straight\n"
+      "`mallet run --windowed` under them once per source (mouse, remote), quality preset (balanced, exact;\n"
+      "--quick: balanced) and [timing] align (asap, picture), strikes a metal and a wood bar with the X pointer (XTest; a straight\n"
       "downswing at 1.0-2.0 m/s, 20 strokes per run, 6 with --quick) and measures, per strike, from the true\n"
       "contact (the injected path crossing the bar's contact plane) to:\n"
       "  actuator, note  the strike's first sample on each channel, recorded by a JACK client of the bench's\n"
@@ -780,8 +934,9 @@ void add_bench_latency(CLI::App& bench) {
       "and note-actuator (per strike, first named minus second named; their max_ms is the value of largest\n"
       "magnitude, sign kept). strikes: true contacts the kiosk logged a strike for within +-50 ms;\n"
       "false_strikes: logged strikes with no true contact within +-50 ms; missed_strikes: true contacts with\n"
-      "none. A value that could not be measured is nan. source is \"mouse\" (the window system's pointer);\n"
-      "the evdev mouse cannot be injected without /dev/uinput.\n"
+      "none. A value that could not be measured is nan. source: \"mouse\" (the window system's pointer) or\n"
+      "\"remote\" (a recording of 100 Hz IR reports the bench writes, played by the kiosk as a live Wii Remote:\n"
+      "[input] source = \"replay\"); the evdev mouse cannot be injected without /dev/uinput.\n"
       "Everything it starts is stopped on exit, on errors and on Ctrl+C. Exit status 1 when a server or the\n"
       "kiosk cannot run here (the message names what is missing).");
   cmd->add_option("--out", o->out, "Output directory for latency.csv (default: the current directory)")

@@ -23,15 +23,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::vector<std::uint8_t> ir_report(int x, int y) {
-  std::vector<std::uint8_t> b = {0x33, 0x00, 0x00, 0x80, 0x80, 0x80};
-  b.push_back(static_cast<std::uint8_t>(x & 0xff));
-  b.push_back(static_cast<std::uint8_t>(y & 0xff));
-  b.push_back(static_cast<std::uint8_t>(((y >> 8) & 0x03) << 6 | ((x >> 8) & 0x03) << 4 | 4));
-  for (int i = 0; i < 3; ++i) b.insert(b.end(), {0xff, 0xff, 0xff});
-  return b;
-}
-
 std::string ms(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.3f", v);
@@ -69,7 +60,7 @@ Measured measure(const Scene& scene, const AppConfig& config, int strikes) {
       const Nanos t = kNanosPerSecond + f * 10'000'000LL;
       const double y = contact_y + 0.05 - 2.0 * (f * 0.01 + phase_s);  // 2 m/s down
       const Vec2 screen = v.unmap({x, y});
-      const auto report = ir_report(std::clamp(static_cast<int>(std::lround(screen.x * 1023)), 0, 1023),
+      const auto report = input::wiimote::extended_ir_report(std::clamp(static_cast<int>(std::lround(screen.x * 1023)), 0, 1023),
                                     std::clamp(static_cast<int>(std::lround(screen.y * 767)), 0, 767));
       const auto t0 = Clock::now();
       const input::wiimote::ReportOutcome r = tracker.feed(t, report);

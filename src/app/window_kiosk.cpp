@@ -344,6 +344,10 @@ void WindowKiosk::poll_remote(Nanos now) {
     states_->remote_connected(now, up);
     std::fprintf(stderr, up ? "<5>Wii Remote %s connected\n" : "<4>Wii Remote %s lost: %s\n",
                  remote_identity(w.device).c_str(), w.problem.c_str());
+    // A recording's timeline on the kiosk's clock (`mallet bench latency` maps its strokes' true
+    // contacts with it).
+    if (up && s.replay)
+      std::fprintf(stderr, "<6>replay: the recording's time 0 is t=%s\n", format_seconds(s.replay->last_origin()).c_str());
   }
   if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
     // Start-up: no valid calibration, or one made with another remote → calibrate now.

@@ -15,6 +15,8 @@ class ReplayTransport final : public Transport {
   ReplayTransport(const std::vector<RecordedReport>& data, Nanos period_ns, Clock& clock)
       : data_(data), period_ns_(period_ns), clock_(clock), origin_ns_(clock.now()) {}
 
+  Nanos origin() const { return origin_ns_; }  //!< when the recording's time 0 plays
+
   bool write(std::span<const std::uint8_t> report) override {
     if (report.size() < 2) return true;
     if (report[0] == 0x15) answers_.push_back({0x20, 0x00, 0x00, 0x08, 0x00, 0x00, 0xc8});  // IR on, battery full
@@ -85,7 +87,9 @@ OpenResult ReplayFinder::open(const std::string& path) {
     r.error = "no such recording " + path;
     return r;
   }
-  r.transport = std::make_unique<ReplayTransport>(data_, period_ns_, *clock_);
+  auto transport = std::make_unique<ReplayTransport>(data_, period_ns_, *clock_);
+  origin_->store(transport->origin(), std::memory_order_release);
+  r.transport = std::move(transport);
   return r;
 }
 

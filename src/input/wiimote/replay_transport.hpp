@@ -7,7 +7,9 @@
 // kiosk path as a live remote: the kiosk's `input.source = "replay"` (demos, soak runs,
 // bug reports played back). The recording's own acks and status reports are skipped: the
 // host's start-up gets fresh ones.
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <deque>
 #include <filesystem>
 #include <string>
@@ -31,12 +33,16 @@ class ReplayFinder final : public DeviceFinder {
   OpenResult open(const std::string& path) override;
 
   const HidDeviceInfo& device() const { return device_; }
+  //! When the recording's time 0 was last played (the latest open), on the Clock; −1
+  //! before the first. Any thread: a benchmark maps the recording's times onto the kiosk's.
+  Nanos last_origin() const { return origin_->load(std::memory_order_acquire); }
 
  private:
   std::vector<RecordedReport> data_;  //!< the data reports, times relative to the first
   Nanos period_ns_ = 0;               //!< one loop
   HidDeviceInfo device_;
   Clock* clock_;
+  std::shared_ptr<std::atomic<Nanos>> origin_ = std::make_shared<std::atomic<Nanos>>(-1);
 };
 
 }  // namespace mallet::input::wiimote

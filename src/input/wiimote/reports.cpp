@@ -527,4 +527,13 @@ void ReplayWriter::write(Nanos t_ns, std::span<const std::uint8_t> report) {
   *out_ << format_replay_line(t_ns, report) << '\n';
 }
 
+std::vector<std::uint8_t> extended_ir_report(int x, int y) {
+  std::vector<std::uint8_t> b = {0x33, 0x00, 0x00, 0x80, 0x80, 0x80};
+  b.push_back(static_cast<std::uint8_t>(x & 0xff));
+  b.push_back(static_cast<std::uint8_t>(y & 0xff));
+  b.push_back(static_cast<std::uint8_t>(((y >> 8) & 0x03) << 6 | ((x >> 8) & 0x03) << 4 | 4));
+  for (int i = 0; i < 3; ++i) b.insert(b.end(), {0xff, 0xff, 0xff});
+  return b;
+}
+
 }  // namespace mallet::input::wiimote

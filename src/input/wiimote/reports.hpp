@@ -287,6 +287,10 @@ struct Recording {
 Recording parse_replay(std::string_view text, const std::string& name);
 Recording read_replay(const std::filesystem::path& path);
 
+//! A 0x33 report (buttons + accelerometer + extended IR) with one dot of size 4 at camera
+//! pixel (x, y) and the other three slots empty: what benchmarks synthesise as a remote.
+std::vector<std::uint8_t> extended_ir_report(int x, int y);
+
 //! "T_NS HEX" without a newline.
 std::string format_replay_line(Nanos t_ns, std::span<const std::uint8_t> report);
 
