@@ -465,7 +465,7 @@ RemoteScript write_remote_script(const Rig& rig, const std::filesystem::path& fi
     const Nanos move_at = (next < plan.size() ? plan[next].start : script.end) - 250 * kMs;
     const double f = std::clamp(to_seconds(t - move_at) / 0.1, 0.0, 1.0);
     // A visitor arrives: a 1 cm sway (past the kiosk's dead band, so it leaves the attract
-    // mode and its ghost stops playing), three whole periods ending 2 s before the first stroke.
+    // mode and its ghost stops playing), whole periods ending 2 s before the first stroke.
     const double sway = t < lead - 2 * kNanosPerSecond ? 0.01 * std::sin(2 * M_PI * to_seconds(t) / 2.0) : 0.0;
     return {from.x_m + (to.x_m - from.x_m) * f + sway, to.contact_y_m + above_m};
   };
@@ -568,7 +568,7 @@ ConfigResult run_remote(Rig& rig, Child& kiosk, KioskLog& log, const RemoteScrip
 ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const std::string& device,
                         const Deadline& deadline) {
   Config config = config_in;
-  const Nanos lead = 8 * kNanosPerSecond;  // the kiosk is up within it (asserted below)
+  const Nanos lead = 12 * kNanosPerSecond;  // the kiosk is up within it (asserted below), a loaded CI too
   RemoteScript script;
   if (config.source == "remote") {
     if (rig.rest_row[0] < 0) throw std::logic_error("bench latency: a remote run needs a mouse run's warm-up first");
