@@ -466,7 +466,8 @@ RemoteScript write_remote_script(const Rig& rig, const std::filesystem::path& fi
     const double f = std::clamp(to_seconds(t - move_at) / 0.1, 0.0, 1.0);
     // A visitor arrives: a 1 cm sway (past the kiosk's dead band, so it leaves the attract
     // mode and its ghost stops playing), whole periods ending 2 s before the first stroke.
-    const double sway = t < lead - 2 * kNanosPerSecond ? 0.01 * std::sin(2 * M_PI * to_seconds(t) / 2.0) : 0.0;
+    const double sway =
+        t < lead - 2 * kNanosPerSecond ? 0.01 * std::sin(2 * M_PI * to_seconds(t) / 2.0) : 0.0;
     return {from.x_m + (to.x_m - from.x_m) * f + sway, to.contact_y_m + above_m};
   };
   std::ofstream out(file);

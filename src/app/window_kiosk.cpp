@@ -295,6 +295,9 @@ void WindowKiosk::choose_mouse(Stage& stage) {
       input::evdev::EvdevMouse::open(in.mouse_device.empty() ? input::evdev::kAutoDevice : in.mouse_device, mc);
   if (!opened.mouse) {
     stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
+    // Asked for by name: said as a warning; the window system's events keep the kiosk playable.
+    if (in.mouse == "evdev")
+      std::fprintf(stderr, "<4>[input] mouse = \"evdev\" could not be opened: %s\n", opened.error.c_str());
     return;
   }
   stage.evdev = std::move(opened.mouse);
@@ -347,7 +350,8 @@ void WindowKiosk::poll_remote(Nanos now) {
     // A recording's timeline on the kiosk's clock (`mallet bench latency` maps its strokes' true
     // contacts with it).
     if (up && s.replay)
-      std::fprintf(stderr, "<6>replay: the recording's time 0 is t=%s\n", format_seconds(s.replay->last_origin()).c_str());
+      std::fprintf(stderr, "<6>replay: the recording's time 0 is t=%s\n",
+                   format_seconds(s.replay->last_origin()).c_str());
   }
   if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
     // Start-up: no valid calibration, or one made with another remote → calibrate now.
@@ -588,12 +592,13 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   lines.emplace_back(buf);
   lines.emplace_back("R recalibrate    T latency test    Q quit    Esc close");
   const int wall = stage_->route->loop().wall_material();
-  std::snprintf(buf, sizeof buf, "scene: %s  (S next)%s%s%s", std::filesystem::path(stage_->scene.file).filename().c_str(),
-                wall >= 0 ? "   wall: " : "", wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "",
+  const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "";
+  std::snprintf(buf, sizeof buf, "scene: %s  (S next)%s%s%s",
+                std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "", wall_name,
                 wall >= 0 ? "  (M next)" : "");
   lines.emplace_back(buf);
-  lines.push_back(stage_->remote ? stage_->calibration_status + (stage_->calibration_status_sensitivity.empty() ? "" : ", ") +
-                                       stage_->calibration_status_sensitivity
+  const std::string& tuned = stage_->calibration_status_sensitivity;
+  lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
                                  : "calibration: R runs the screen with the mouse (not saved)");
   lines.push_back(timing_line());
   const float pw = std::min(w - 2 * px, px * 40);

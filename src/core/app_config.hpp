@@ -72,7 +72,8 @@ struct InputConfig {
   std::string replay_file;  //!< for "replay"; relative to the settings file's folder
   //! How the mouse is read: "auto" (its event node through evdev, at the device's own
   //! rate, stamped by the kernel; the window system's events when no node can be opened),
-  //! "evdev" (the node only) or "window" (the window system's cursor events only).
+  //! "evdev" (the node; a warning when it cannot be opened, and the window system's events
+  //! keep the kiosk playable) or "window" (the window system's cursor events only).
   std::string mouse = "auto";
   std::string mouse_device;  //!< an evdev node (/dev/input/eventN); empty = the first mouse
 };
