@@ -190,6 +190,42 @@ TEST(StrikeRoute, AStimulusGetsTheSameThreeCuesAsAHandsStrike) {
   EXPECT_NEAR(static_cast<double>(onset), 50e-3 * 48000, 1.0);
 }
 
+TEST(StrikeRoute, TheHeadlessStudysStimulusIsTheRoutesStimulus) {
+  // The study presents its stimuli through HeadlessLoop::present (headless) or the window's
+  // route (StrikeRoute::present): the same strike, the same samples.
+  const Scene& scene = test::percussion();
+  const AppConfig config;
+  const Impact stimulus = test::strike(11, 120 * kMs, 0.8);
+  AudioRig rig = make_audio_rig(scene, config, config.audio.sample_rate_hz);
+  StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false});
+  route.present(stimulus, stimulus.t_ns);
+  const std::vector<float> by_route = actuator_of(*rig.engine, config, 48000 / 2);
+
+  HeadlessLoop study(scene, config, HeadlessLoop::kNoAttract);
+  std::vector<Strike> delivered;
+  std::vector<float> by_study;
+  study.on_strike = [&](const Strike& s, bool ghost) {
+    EXPECT_FALSE(ghost);
+    delivered.push_back(s);
+  };
+  study.on_audio = [&](std::span<const float> block) {
+    for (std::size_t i = static_cast<std::size_t>(config.audio.routing.actuator); i < block.size();
+         i += static_cast<std::size_t>(study.channels()))
+      by_study.push_back(block[i]);
+  };
+  study.present(stimulus);
+  study.drain_audio(500 * kMs);
+  ASSERT_EQ(delivered.size(), 1u);
+  EXPECT_TRUE(delivered[0].stimulus);
+  EXPECT_EQ(delivered[0].heard_ns, stimulus.t_ns);
+  const std::int64_t onset = first_non_zero(by_route);
+  ASSERT_GT(onset, 0);
+  EXPECT_EQ(first_non_zero(by_study), onset);
+  for (std::int64_t n = onset; n < onset + 4800; ++n)
+    ASSERT_NEAR(by_study[static_cast<std::size_t>(n)], by_route[static_cast<std::size_t>(n)], 1e-6) << n;
+  EXPECT_EQ(study.visual_offset_m(stimulus.t_ns + 20 * kMs), route.view().vibration.offset_m(stimulus.t_ns + 20 * kMs));
+}
+
 TEST(StrikeRoute, TheWallsMaterialRequestAppliesFromTheNextSample) {
   const Scene& wall = test::wall();
   StrikeRoute route(wall, AppConfig{}, nullptr, nullptr, RouteOptions{audio::Producer::main, false, false});
