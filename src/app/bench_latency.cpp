@@ -20,10 +20,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <toml++/toml.h>
+
 #include "app/bench_latency_child.hpp"
 #include "app/bench_latency_jack.hpp"
 #include "app/bench_latency_onset.hpp"
 #include "app/bench_latency_x11.hpp"
+#include "app/bench_report.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "core/config/scene_config.hpp"
@@ -107,9 +110,7 @@ Summary summarise(std::vector<double> ms) {
   std::sort(ms.begin(), ms.end());
   const std::size_t n = ms.size();
   s.median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-  // Nearest rank: the smallest sample with at least 99 % of the samples at or below it.
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n)));
-  s.p99 = ms[std::clamp<std::size_t>(rank, 1, n) - 1];
+  s.p99 = nearest_rank(ms, 0.99);
   s.max = std::fabs(ms.front()) > std::fabs(ms.back()) ? ms.front() : ms.back();
   return s;
 }
@@ -180,14 +181,6 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  if (!in) throw std::runtime_error("cannot read " + p.string());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 void write_text(const std::filesystem::path& p, const std::string& text) {
   std::ofstream out(p);
   out << text;
@@ -195,56 +188,31 @@ void write_text(const std::filesystem::path& p, const std::string& text) {
 }
 
 //! The shipped percussion scene with no visual vibration: a copy of the scene and of its
-//! materials file with every visual amplitude_s set to 0 (the actuator and the acoustic
-//! parameters as shipped). The bounce lifts the head a few mm right after the contact,
-//! which would delay the picture's "mallet at the bar"; without it, the first frame that
-//! shows the head at the bar is the frame where the bounce starts.
-//! The quoted value of a top-level `key = "value"` line, if the line is one.
-std::optional<std::string> quoted_value(const std::string& line, const std::string& key) {
-  const std::size_t k = line.find_first_not_of(" \t");
-  if (k == std::string::npos || line.compare(k, key.size(), key) != 0) return std::nullopt;
-  const std::size_t eq = line.find_first_not_of(" \t", k + key.size());
-  if (eq == std::string::npos || line[eq] != '=') return std::nullopt;
-  const std::size_t open = line.find('"', eq), close = open == std::string::npos ? open : line.find('"', open + 1);
-  if (close == std::string::npos) return std::nullopt;
-  return line.substr(open + 1, close - open - 1);
-}
-
-//! `line` with the number after every `amplitude_s =` replaced by 0.0.
-std::string without_amplitude(std::string line) {
-  const std::string key = "amplitude_s";
-  for (std::size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + key.size())) {
-    std::size_t i = line.find_first_not_of(" \t", at + key.size());
-    if (i == std::string::npos || line[i] != '=') continue;
-    i = line.find_first_not_of(" \t", i + 1);
-    if (i == std::string::npos) break;
-    const std::size_t end = line.find_first_not_of("+-0123456789.eE_", i);
-    line.replace(i, (end == std::string::npos ? line.size() : end) - i, "0.0");
-  }
-  return line;
-}
-
+//! materials file with every material's visual amplitude_s set to 0 (the actuator and the
+//! acoustic parameters as shipped). The bounce lifts the head a few mm right after the
+//! contact, which would delay the picture's "mallet at the bar"; without it, the first
+//! frame that shows the head at the bar is the frame where the bounce starts.
 std::filesystem::path still_scene(const std::filesystem::path& dir) {
   const std::filesystem::path shipped = default_scene();
-  std::filesystem::path materials = shipped.parent_path() / "../materials.toml";
-  std::filesystem::path instruments = shipped.parent_path() / "../instruments.toml";
-  std::string body, line;
-  std::istringstream scene_in(slurp(shipped));
-  while (std::getline(scene_in, line)) {
-    if (const auto v = quoted_value(line, "materials_file")) materials = shipped.parent_path() / *v;
-    else if (const auto w = quoted_value(line, "instruments_file")) instruments = shipped.parent_path() / *w;
-    else body += line + "\n";
-  }
-  // Top-level keys go before the first table.
-  const std::string scene = "materials_file = \"" + (dir / "materials.toml").string() + "\"\ninstruments_file = \"" +
-                            instruments.lexically_normal().string() + "\"\n" + body;
-  std::string still_materials;
-  std::istringstream materials_in(slurp(materials.lexically_normal()));
-  while (std::getline(materials_in, line)) still_materials += without_amplitude(line) + "\n";
-  write_text(dir / "materials.toml", still_materials);
+  toml::table scene = toml::parse_file(shipped.string());
+  const auto beside = [&](std::string_view key, const char* shipped_default) {
+    return (shipped.parent_path() / scene[key].value_or(std::string(shipped_default))).lexically_normal();
+  };
+  const std::filesystem::path materials = beside("materials_file", "../materials.toml");
+  scene.insert_or_assign("materials_file", (dir / "materials.toml").string());
+  scene.insert_or_assign("instruments_file", beside("instruments_file", "../instruments.toml").string());
+  toml::table still = toml::parse_file(materials.string());
+  if (toml::table* all = still["material"].as_table())
+    for (auto& [name, material] : *all)
+      if (toml::table* visual = material.as_table() ? (*material.as_table())["visual"].as_table() : nullptr)
+        visual->insert_or_assign("amplitude_s", 0.0);
+  std::ostringstream materials_text, scene_text;
+  materials_text << still;
+  scene_text << scene;
+  write_text(dir / "materials.toml", materials_text.str());
   std::filesystem::create_directories(dir / "scenes");
   const std::filesystem::path file = dir / "scenes" / "percussion.toml";
-  write_text(file, scene);
+  write_text(file, scene_text.str());
   return file;
 }
 

@@ -28,6 +28,7 @@
 //    reached by any level: with σ 0.5 px the exact solver's own speed error is 43 % p99 on
 //    fast strikes, and the p99 latency is set by strokes no extrapolation can call.
 #include "app/bench_prediction.hpp"
+#include "app/bench_report.hpp"
 
 #include <iostream>
 #include <memory>
@@ -50,13 +51,6 @@ namespace {
 
 //! A strike is the true contact's if it is on the same bar within this of the contact.
 constexpr Nanos kMatchWindowNs = 25'000'000;
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
 
 double ms(Nanos dt) { return static_cast<double>(dt) * 1e-6; }
 
@@ -112,23 +106,25 @@ PredictionBenchRow run_row(const Scene& scene, const ContactConfig& contact, con
       if (strikes[i].impact.predicted) ++row.predicted;
     }
   }
-  row.latency_median_ms = percentile(latency, 0.5);
-  row.latency_p99_ms = percentile(latency, 0.99);
-  row.latency_max_ms = percentile(latency, 1.0);
-  row.schedule_error_p1_ms = percentile(schedule, 0.01);
-  row.schedule_error_p99_ms = percentile(schedule, 0.99);
+  row.latency_median_ms = nearest_rank(latency, 0.5);
+  row.latency_p99_ms = nearest_rank(latency, 0.99);
+  row.latency_max_ms = nearest_rank(latency, 1.0);
+  row.schedule_error_p1_ms = nearest_rank(schedule, 0.01);
+  row.schedule_error_p99_ms = nearest_rank(schedule, 0.99);
   const double per = row.contacts > 0 ? 100.0 / row.contacts : 0.0;
   row.false_pct = false_strikes * per;
   row.missed_pct = missed * per;
-  row.speed_error_p99_pct = percentile(speed, 0.99);
-  row.speed_error_p99_fast_pct = percentile(speed_fast, 0.99);
+  row.speed_error_p99_pct = nearest_rank(speed, 0.99);
+  row.speed_error_p99_fast_pct = nearest_rank(speed_fast, 0.99);
   return row;
 }
 
 }  // namespace
 
 std::vector<PredictionLevel> prediction_levels() {
-  return {{"eager", prediction_eager()}, {"balanced", prediction_balanced()}, {"exact", prediction_exact()}};
+  std::vector<PredictionLevel> levels;
+  for (std::string_view name : kPredictionConfidences) levels.push_back({std::string(name), *prediction_confidence(name)});
+  return levels;
 }
 
 std::vector<PredictionBenchRow> measure_prediction_trade(const Scene& scene, const ContactConfig& contact,

@@ -1,5 +1,7 @@
 // `mallet bench report`: runs the speed-against-accuracy measurements in one process run
 // (audio, renderer, pointer filter, latency budget) and writes the report with its plots.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <utility>
@@ -107,6 +109,13 @@ void run(const ReportOptions& o) {
 }
 
 }  // namespace
+
+double nearest_rank(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
 
 void add_bench_report(CLI::App& bench) {
   auto o = std::make_shared<ReportOptions>();

@@ -82,6 +82,10 @@ std::vector<PointerTradeRow> measure_pointer_trade(const Scene& scene, std::uint
 //! A supersampled image box-filtered down by `factor` in linear light (bench_render.cpp).
 render::Image downsample_linear_light(const render::Image& image, int factor);
 
+//! The nearest-rank percentile (p in (0, 1]): the smallest sample with at least p of the
+//! samples at or below it; 0 for none. The benches' medians, p99s and maxima.
+double nearest_rank(std::vector<double> v, double p);
+
 //! MSAA samples per pixel as the renderer takes them: 2, 4 or 8; anything else 1 (bench_render.cpp).
 VkSampleCountFlagBits samples_of(int n);
 

@@ -65,9 +65,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   render::WindowOptions wo;
   wo.width = static_cast<int>(ho.size.width);
   wo.height = static_cast<int>(ho.size.height);
-  wo.present_mode = o.present_mode == "mailbox"     ? render::PresentMode::mailbox
-                    : o.present_mode == "immediate" ? render::PresentMode::immediate
-                                                    : render::PresentMode::fifo;
+  parse_present_pacing(o.present_mode, wo.present_mode);  // CLI11 refused any other name
   wo.title = "Mallet — " + o.input.filename().string();
   render::WindowTarget window(ctx, wo);
   render::RenderSettings rs = ho.settings;

@@ -52,9 +52,7 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
   wo.fullscreen = !windowed;
   wo.hide_cursor = !windowed;
   wo.monitor = r.monitor;
-  wo.present_mode = r.present_mode == "mailbox"     ? render::PresentMode::mailbox
-                    : r.present_mode == "immediate" ? render::PresentMode::immediate
-                                                    : render::PresentMode::fifo;
+  parse_present_pacing(r.present_mode, wo.present_mode);  // the loader refused any other name
   return wo;
 }
 

@@ -51,9 +51,6 @@ class StrikeLoop {
     return {texture_ ? texture_->cursor() : mallet_.displayed_centre(hand), vibration_};
   }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
-  const StrikeDetector::PredictionCounters& prediction_counters() const { return mallet_.prediction_counters(); }
-  //! Where the solver holds the head for a hand: on the surface while below a contact plane.
-  Vec2 held(Vec2 hand) const { return mallet_.displayed_centre(hand); }
   //! The Speed technique's gain of the last displacement (1 outside texture scenes).
   double gain() const { return texture_ ? texture_->gain() : 1.0; }
 

@@ -88,7 +88,6 @@ class StrikeRoute {
   // --- the feeding thread
   StrikeLoop& loop() { return loop_; }
   const StrikeLoop& loop() const { return loop_; }
-  const TimingConfig& timing() const { return timing_; }
 
  private:
   Strike deliver(const Impact& impact, Nanos known, bool stimulus);

@@ -32,6 +32,13 @@ PredictionConfig prediction_eager() {
   return c;
 }
 
+std::optional<PredictionConfig> prediction_confidence(std::string_view name) {
+  if (name == "eager") return prediction_eager();
+  if (name == "balanced") return prediction_balanced();
+  if (name == "exact") return prediction_exact();
+  return std::nullopt;
+}
+
 ContactPredictor::ContactPredictor(PredictionConfig config) : config_(config) {}
 
 void ContactPredictor::add(Nanos t_ns, Vec2 hand) {
@@ -193,6 +200,9 @@ const char* to_string(PredictionVerdict v) {
 std::optional<PredictedContact> ContactPredictor::predict(const std::vector<ContactZone>& zones) {
   verdict_ = PredictionVerdict::off;
   if (!(config_.horizon_ms > 0)) return std::nullopt;
+  // Nothing to strike (a texture scene): no fit on the reading thread's every sample.
+  verdict_ = PredictionVerdict::no_crossing;
+  if (zones.empty()) return std::nullopt;
   verdict_ = PredictionVerdict::few_samples;
   const std::optional<Fit> f = fit();
   const std::optional<Nanos> interval = expected_interval_ns();

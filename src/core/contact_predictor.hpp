@@ -40,6 +40,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -75,6 +76,11 @@ PredictionConfig prediction_balanced();
 PredictionConfig prediction_exact();
 //! Every test loosened: the earliest strikes, at a cost in speed and timing (a bench level).
 PredictionConfig prediction_eager();
+
+//! The confidence levels by name ([timing] predict_confidence), the most eager first.
+inline constexpr std::array<std::string_view, 3> kPredictionConfidences{"eager", "balanced", "exact"};
+//! The level named so (its horizon 10 ms); nothing for any other name.
+std::optional<PredictionConfig> prediction_confidence(std::string_view name);
 
 //! A crossing announced before it happens.
 struct PredictedContact {

@@ -51,6 +51,18 @@ void Mallet::disarm(const ContactZone& zone, double hand_y) {
   rearm_y_ = std::max(hand_y, zone.plane_y) + config_.rearm_height_m;
 }
 
+Impact Mallet::impact_on(const ContactZone& zone, Nanos t_ns, double speed_m_per_s, double x_m) const {
+  const Target& target = scene_->targets[static_cast<std::size_t>(zone.target)];
+  Impact out;
+  out.t_ns = t_ns;
+  out.target = target.id;
+  out.material = materials_[static_cast<std::size_t>(target.id)];
+  out.note = target.note;
+  out.speed_m_per_s = speed_m_per_s;
+  out.x_m = x_m;
+  return out;
+}
+
 const ContactZone* Mallet::zone_at(double x) const {
   const ContactZone* best = nullptr;
   for (const ContactZone& z : zones_)
@@ -102,16 +114,9 @@ std::optional<Impact> Mallet::update(Nanos t_ns, Vec2 hand) {
           v = config_.max_impact_speed_m_per_s;
           ++counters_.clamped_speed;
         }
-        const Target& target = scene_->targets[hit->target];
-        Impact out;
-        out.t_ns = last_->t_ns + static_cast<Nanos>(std::llround(hit_s * static_cast<double>(dt)));
-        out.target = target.id;
-        out.material = materials_[static_cast<std::size_t>(target.id)];
-        out.note = target.note;
-        out.speed_m_per_s = v;
-        out.x_m = a.x + (hand.x - a.x) * hit_s;
         ++counters_.impacts;
-        impact = out;
+        impact = impact_on(*hit, last_->t_ns + static_cast<Nanos>(std::llround(hit_s * static_cast<double>(dt))), v,
+                           a.x + (hand.x - a.x) * hit_s);
       }
     }
   }

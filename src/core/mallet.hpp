@@ -87,6 +87,10 @@ class Mallet {
   //! moves the re-arm height down to the plane's, as after any strike.
   void disarm(const ContactZone& zone, double hand_y);
 
+  //! The strike on `zone`'s bar at t, with its current material and note: what update()
+  //! emits, and what a predicted strike carries (speed already clamped by the caller).
+  Impact impact_on(const ContactZone& zone, Nanos t_ns, double speed_m_per_s, double x_m) const;
+
   //! The material a target's strikes carry from now on (the wall's material switch);
   //! ignored unless both indices are valid. Initially each target's configured material.
   void set_material(int target, int material);

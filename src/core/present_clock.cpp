@@ -46,7 +46,6 @@ bool PresentClock::unpaced() const {
 
 void PresentClock::frame_started(Nanos t) {
   const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
-  anchor_ns_.store(t, std::memory_order_relaxed);
   if (last < 0 || t <= last) return;
   // The period follows the measured frame interval slowly (a display that does not pace
   // FIFO, such as a virtual X server, shows frames as fast as they come); an interval of
@@ -59,7 +58,7 @@ void PresentClock::frame_started(Nanos t) {
 
 Nanos PresentClock::next_start(Nanos t) const {
   const Nanos period = period_ns_.load(std::memory_order_relaxed);
-  const Nanos anchor = anchor_ns_.load(std::memory_order_relaxed);
+  const Nanos anchor = std::max<Nanos>(0, last_start_.load(std::memory_order_relaxed));
   if (t <= anchor) return anchor;
   const Nanos k = (t - anchor + period - 1) / period;  // whole periods: exact on the int64 clock
   return anchor + k * period;
@@ -67,7 +66,7 @@ Nanos PresentClock::next_start(Nanos t) const {
 
 Nanos PresentClock::present_of_frame_started(Nanos start) const {
   const Nanos period = period_ns_.load(std::memory_order_relaxed);
-  const Nanos cost = cost_ns_.load(std::memory_order_relaxed);
+  const Nanos cost = cost_ns_;
   switch (pacing()) {
     case PresentPacing::fifo: return unpaced() ? start + period : start + 2 * period;
     case PresentPacing::mailbox: return next_start(start + cost);

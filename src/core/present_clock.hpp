@@ -40,7 +40,6 @@ class PresentClock {
   void frame_started(Nanos t);
   void set_pacing(PresentPacing pacing) { pacing_.store(static_cast<int>(pacing), std::memory_order_relaxed); }
   void set_refresh_hz(double hz);
-  void set_frame_cost(Nanos cost_ns) { cost_ns_.store(cost_ns, std::memory_order_relaxed); }
 
   //! When the frame that begins recording at `start` reaches the screen.
   Nanos present_of_frame_started(Nanos start) const;
@@ -61,9 +60,8 @@ class PresentClock {
   std::atomic<int> pacing_;
   std::atomic<Nanos> period_ns_;
   std::atomic<Nanos> refresh_ns_;      //!< the display's nominal refresh period
-  std::atomic<Nanos> anchor_ns_{0};    //!< a frame start on the grid
-  std::atomic<Nanos> last_start_{-1};
-  std::atomic<Nanos> cost_ns_;
+  std::atomic<Nanos> last_start_{-1};  //!< the latest frame start: the grid's anchor (0 before any)
+  const Nanos cost_ns_;  //!< one frame's work (mailbox, immediate)
   static_assert(std::atomic<Nanos>::is_always_lock_free);
 };
 

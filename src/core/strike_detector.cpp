@@ -3,7 +3,7 @@
 namespace mallet {
 
 StrikeDetector::StrikeDetector(const Scene& scene, ContactConfig contact, PredictionConfig prediction)
-    : scene_(&scene), contact_(contact), mallet_(scene, contact), predictor_(prediction) {}
+    : contact_(contact), mallet_(scene, contact), predictor_(prediction) {}
 
 void StrikeDetector::reset() {
   mallet_.reset();
@@ -36,18 +36,12 @@ std::optional<Impact> StrikeDetector::update(Nanos t_ns, Vec2 hand) {
   const std::optional<PredictedContact> p = predictor_.predict(mallet_.zones());
   if (!p || p->speed_m_per_s < contact_.min_impact_speed_m_per_s) return std::nullopt;
   const ContactZone& zone = mallet_.zones()[p->zone];
-  const Target& target = scene_->targets[static_cast<std::size_t>(zone.target)];
-  Impact out;
-  out.t_ns = p->t_ns;
-  out.target = target.id;
-  out.material = mallet_.material_of(target.id);
-  out.note = target.note;
-  out.speed_m_per_s = p->speed_m_per_s;
-  if (out.speed_m_per_s > contact_.max_impact_speed_m_per_s) {
-    out.speed_m_per_s = contact_.max_impact_speed_m_per_s;
+  double speed = p->speed_m_per_s;
+  if (speed > contact_.max_impact_speed_m_per_s) {
+    speed = contact_.max_impact_speed_m_per_s;
     ++prediction_counters_.clamped_speed;
   }
-  out.x_m = p->x_m;
+  Impact out = mallet_.impact_on(zone, p->t_ns, speed, p->x_m);
   out.predicted = true;
   mallet_.disarm(zone, hand.y);
   pending_zone_ = p->zone;

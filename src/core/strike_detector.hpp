@@ -54,7 +54,6 @@ class StrikeDetector {
  private:
   void confirm(Vec2 hand);
 
-  const Scene* scene_;
   ContactConfig contact_;
   Mallet mallet_;
   ContactPredictor predictor_;

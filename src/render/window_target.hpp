@@ -22,7 +22,8 @@ struct GLFWwindow;
 
 namespace mallet::render {
 
-enum class PresentMode { fifo, mailbox, immediate };
+//! The present mode asked for: core's, which also models when its frames are shown.
+using PresentMode = PresentPacing;
 
 struct WindowOptions {
   int width = 1280, height = 720;

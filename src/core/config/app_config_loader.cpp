@@ -1,6 +1,7 @@
 #include "core/config/app_config_loader.hpp"
 
 #include "core/config/toml_reader.hpp"
+#include "core/present_clock.hpp"
 #include "core/quality.hpp"
 
 namespace mallet::config {
@@ -151,9 +152,7 @@ AppConfig read(const toml::table& root, const std::string& file) {
     t->require_range("predict_horizon_ms", horizon, 0, 50);
     const double clearance = t->number_or("predict_clearance_m", g.predict.clearance_m);
     t->require_range("predict_clearance_m", clearance, 0, 0.05);
-    if (confidence == "eager") g.predict = prediction_eager();
-    else if (confidence == "balanced") g.predict = prediction_balanced();
-    else if (confidence == "exact") g.predict = prediction_exact();
+    if (const std::optional<PredictionConfig> level = prediction_confidence(confidence)) g.predict = *level;
     else t->fail("predict_confidence", "expected \"eager\", \"balanced\" or \"exact\", got \"" + confidence + "\"");
     g.predict_confidence = confidence;
     g.predict.horizon_ms = horizon;
@@ -171,7 +170,7 @@ AppConfig read(const toml::table& root, const std::string& file) {
   if (auto t = top.optional_table("render")) {
     RenderConfig& r = c.render;
     r.present_mode = t->string_or("present_mode", r.present_mode);
-    if (r.present_mode != "fifo" && r.present_mode != "mailbox" && r.present_mode != "immediate")
+    if (PresentPacing p; !parse_present_pacing(r.present_mode, p))
       t->fail("present_mode", "expected \"fifo\", \"mailbox\" or \"immediate\", got \"" + r.present_mode + "\"");
     r.msaa = t->string_or("msaa", r.msaa);
     if (r.msaa != "auto" && r.msaa != "1" && r.msaa != "2" && r.msaa != "4" && r.msaa != "8")

@@ -65,13 +65,14 @@ std::string file_kind(mode_t mode) {
 struct NodeResult {
   std::unique_ptr<EvdevNode> node;
   std::string error;
+  bool unreadable = false;  //!< open() itself failed (permissions, a vanished node), not the kind of node
 };
 
 //! Opens `path` non-blocking (libevdev_next_event then answers -EAGAIN instead of waiting,
 //! and the thread waits in poll(), where stop() can wake it). Checks it is an evdev node.
 NodeResult open_evdev(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return {nullptr, open_error(path, errno)};
+  if (fd < 0) return {nullptr, open_error(path, errno), true};
   struct stat st {};
   const bool stat_ok = ::fstat(fd, &st) == 0;
   if (!stat_ok || !S_ISCHR(st.st_mode)) {
@@ -150,6 +151,11 @@ NodeResult open_auto(const std::filesystem::path& dir) {
   return open_pointer(scan.mice.front().path);
 }
 
+//! `spec`: a node's path, or "auto" (the first mouse in `dir`).
+NodeResult open_spec(const std::string& spec, const std::filesystem::path& dir) {
+  return spec == kAutoDevice ? open_auto(dir) : open_pointer(spec);
+}
+
 //! The number of "eventN", or -1 for any other name.
 long event_number(const std::string& name) {
   if (!name.starts_with("event") || name.size() == 5 || name.size() > 14) return -1;
@@ -181,21 +187,9 @@ MouseScan scan_mice(const std::filesystem::path& dir) {
   }
   std::sort(nodes.begin(), nodes.end());
   for (const auto& [n, path] : nodes) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
-      if (scan.unreadable++ == 0) scan.first_error = open_error(path.string(), errno);
-      continue;
-    }
-    struct stat st {};
-    libevdev* dev = nullptr;
-    if (::fstat(fd, &st) == 0 && S_ISCHR(st.st_mode) && libevdev_new_from_fd(fd, &dev) == 0) {
-      if (is_mouse(dev)) {
-        const char* name = libevdev_get_name(dev);
-        scan.mice.push_back({path.string(), name ? name : ""});
-      }
-      libevdev_free(dev);
-    }
-    ::close(fd);
+    const NodeResult r = open_evdev(path.string());
+    if (r.unreadable && scan.unreadable++ == 0) scan.first_error = r.error;
+    if (r.node && is_mouse(r.node->dev())) scan.mice.push_back(r.node->info);
   }
   return scan;
 }
@@ -211,7 +205,7 @@ EvdevOpenResult EvdevMouse::open(const std::string& device, EvdevMouseConfig con
   config.reopen_interval_ns = std::max<Nanos>(config.reopen_interval_ns, 1'000'000);
   config.poll_timeout_ms = std::clamp(config.poll_timeout_ms, 1, 1000);
   const std::string spec = device.empty() ? kAutoDevice : device;
-  NodeResult opened = spec == kAutoDevice ? open_auto(config.search_dir) : open_pointer(spec);
+  NodeResult opened = open_spec(spec, config.search_dir);
   if (!opened.node) return {nullptr, opened.error};
   std::unique_ptr<EvdevMouse> mouse(new EvdevMouse(spec, std::move(config), std::move(opened.node)));
   if (mouse->wake_fd_ < 0) return {nullptr, "cannot create an eventfd for the mouse's reading thread"};
@@ -378,7 +372,7 @@ void EvdevMouse::run(PointerSink sink) {
       if (!node_) {
         const Nanos now = monotonic_now();
         if (now >= next_attempt_ns) {
-          NodeResult opened = spec_ == kAutoDevice ? open_auto(config_.search_dir) : open_pointer(spec_);
+          NodeResult opened = open_spec(spec_, config_.search_dir);
           if (opened.node) {
             ++reconnects_;
             attach(std::move(opened.node));
