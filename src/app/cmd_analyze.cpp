@@ -1,5 +1,6 @@
 #include <cstdio>
 
+#include "app/settings_source.hpp"
 #include "app/analyze.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
@@ -13,7 +14,8 @@ void register_analyze(CLI::App& app) {
   struct Options {
     std::filesystem::path dir;
     std::filesystem::path scene = default_scene();
-    std::optional<std::filesystem::path> config;
+    std::optional<std::filesystem::path> config = default_settings();
+    std::optional<std::filesystem::path> config_dir;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -25,9 +27,9 @@ void register_analyze(CLI::App& app) {
       "scene's material table. A_fit = a / v (visual, seconds) or a / (gain·v) (actuator).");
   cmd->add_option("--dir", o->dir, "Directory written by mallet simulate")->required()->check(CLI::ExistingDirectory);
   cmd->add_option("--scene", o->scene, "Scene the simulation used (for its material table)")->capture_default_str();
-  cmd->add_option("--config", o->config, "Settings the simulation used (gain, routing)");
+  add_settings_options(*cmd, o->config, o->config_dir);  // those the simulation used (gain, routing)
   cmd->callback([o] {
-    const AppConfig config = o->config ? config::load_app_config(*o->config) : AppConfig{};
+    const AppConfig config = command_settings(o->config, o->config_dir, "analyze");
     const Scene scene = config::load_scene(o->scene);
     const auto results = analyze_simulation(o->dir, config.audio.routing.actuator);
     std::printf("%-14s %-9s %7s | %-39s | %-39s\n", "impact t (s)", "material", "v (m/s)",

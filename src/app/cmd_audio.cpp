@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "app/settings_source.hpp"
 #include "app/audio_setup.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
@@ -23,7 +24,8 @@ namespace {
 
 struct AudioTestOptions {
   std::string channel;  // "actuator" or "acoustic"
-  std::optional<std::filesystem::path> config;
+  std::optional<std::filesystem::path> config = default_settings();
+  std::optional<std::filesystem::path> config_dir;
   std::filesystem::path scene;
   double seconds = 1.5;
   int target = 3;  // a wood bar of the shipped scene (G5 on the xylophone)
@@ -48,7 +50,7 @@ void print_devices() {
 void run_audio_test(const AudioTestOptions& o) {
   if (!(o.seconds > 0 && o.seconds <= 60)) throw CLI::ValidationError("--seconds", "must be in (0, 60]");
   if (!(o.speed_m_per_s > 0 && o.speed_m_per_s <= 10)) throw CLI::ValidationError("--speed", "must be in (0, 10]");
-  const AppConfig config = o.config ? config::load_app_config(*o.config) : AppConfig{};
+  const AppConfig config = command_settings(o.config, o.config_dir, "audio test");
   const Scene scene = config::load_scene(o.scene);
   if (o.target < 0 || static_cast<std::size_t>(o.target) >= scene.targets.size())
     throw CLI::ValidationError("--target", "no bar " + std::to_string(o.target) + " in " + scene.file + " (0.." +
@@ -136,7 +138,7 @@ void register_audio(CLI::App& app) {
   test->add_option("--channel", o->channel, "Which signal to play")
       ->required()
       ->check(CLI::IsMember({"actuator", "acoustic"}));
-  test->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  add_settings_options(*test, o->config, o->config_dir);
   test->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   test->add_option("--seconds", o->seconds, "How long the stream runs")->capture_default_str();
   test->add_option("--target", o->target, "Bar id to strike (`mallet scene describe`; 3 = a wood bar)")

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/settings_source.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/render_setup.hpp"
@@ -21,7 +22,8 @@ namespace {
 struct RenderCliOptions {
   std::filesystem::path scene = default_scene();
   std::filesystem::path input;
-  std::optional<std::filesystem::path> config;
+  std::optional<std::filesystem::path> config = default_settings();
+  std::optional<std::filesystem::path> config_dir;
   std::string input_space = "screen";
   std::string size = "1280x720";
   std::optional<double> at_s;
@@ -102,7 +104,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
 
 void run_render(const RenderCliOptions& o) {
   // Everything that can be wrong with the input is found before the GPU is touched.
-  const AppConfig config = o.config ? config::load_app_config(*o.config) : AppConfig{};
+  const AppConfig config = command_settings(o.config, o.config_dir, "render");
   const Scene scene = config::load_scene(o.scene);
   const input::Trajectory trajectory = input::read_trajectory_csv(o.input);
   const Replay replay(scene, config, trajectory,
@@ -176,7 +178,7 @@ void register_render(CLI::App& app) {
       "Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--input", o->input, "Trajectory CSV (t,x,y)")->required();
-  cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_option("--input-space", o->input_space, "screen: x,y normalised 0..1; world: sphere centre in metres")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();

@@ -4,6 +4,7 @@
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/kiosk.hpp"
+#include "app/settings_source.hpp"
 
 namespace mallet::app {
 
@@ -28,9 +29,7 @@ void register_run(CLI::App& app) {
                   "Scene file (default: [scenes] start of the settings, a file in the scenes/ folder next to "
                   "them: percussion.toml)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--config", o->config,
-                  "Settings file (default: " +
-                      (o->config ? o->config->string() : std::string("built-in, same as config/mallet.toml")) + ")");
+  add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
   cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (its close button quits)");
   cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")->capture_default_str();

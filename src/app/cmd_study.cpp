@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "app/settings_source.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/study_session.hpp"
@@ -77,7 +78,7 @@ void register_study(CLI::App& app) {
   cmd->add_option("--answers", o->answers, "Answer script; without it a simulated observer answers");
   cmd->add_option("--audio", o->audio, "Also write this run's stimuli to a WAV file (channels as [audio.routing])");
   cmd->add_option("--scene", o->scene, "Scene file (its materials and bars)")->capture_default_str()->check(CLI::ExistingFile);
-  cmd->add_option("--config", o->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (--answers or the simulated observer)");
   cmd->add_flag("--windowed", window->windowed, "With a display: a window instead of fullscreen");
   cmd->add_option("--size", window->size, "The window's size with --windowed")->capture_default_str();

@@ -8,6 +8,8 @@
 #include <string>
 #include <variant>
 
+#include "app/data_paths.hpp"
+#include "app/settings_source.hpp"
 #include "app/commands.hpp"
 #include "app/wiimote_monitor.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -99,7 +101,8 @@ void on_interrupt(int) { g_interrupted.store(true); }
 
 struct MonitorCli {
   MonitorOptions options;
-  std::optional<std::filesystem::path> config;
+  std::optional<std::filesystem::path> config = default_settings();
+  std::optional<std::filesystem::path> config_dir;
   std::optional<std::filesystem::path> replay;
   std::string device;
 };
@@ -107,7 +110,7 @@ struct MonitorCli {
 void run_monitor(const MonitorCli& cli) {
   if (!(cli.options.seconds >= 0 && cli.options.seconds <= 1e7))
     throw CLI::ValidationError("--seconds", "must be >= 0 (0 = until Ctrl+C)");
-  const AppConfig config = cli.config ? config::load_app_config(*cli.config) : AppConfig{};
+  const AppConfig config = command_settings(cli.config, cli.config_dir, "wiimote monitor");
   if (cli.replay) {
     set_exit_status(run_replay_monitor(*cli.replay, config.tracking, cli.options, stdout));
     return;
@@ -168,8 +171,7 @@ void add_monitor(CLI::App& wiimote) {
       ->excludes("--record");
   cmd->add_option("--device", cli->device, "A part of the remote's hidraw path or serial (default: [wiimote].device)")
       ->type_name("TEXT");
-  cmd->add_option("--config", cli->config, "Settings file ([wiimote], [tracking]); default: the built-in values")
-      ->type_name("FILE");
+  add_settings_options(*cmd, cli->config, cli->config_dir);  // [wiimote], [tracking]
   cmd->callback([cli] { run_monitor(*cli); });
 }
 

@@ -1,4 +1,7 @@
 #pragma once
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 namespace mallet::app {
@@ -9,6 +12,12 @@ void register_commands(CLI::App& app);
 //! The status the last command asked to exit with (0 unless it said otherwise).
 int exit_status();
 void set_exit_status(int status);
+
+//! A line for stderr once the command has succeeded (which settings it used): said after
+//! its work, so that a command refusing bad input still says exactly one line.
+void say_when_done(std::string line);
+//! The lines said so far (main prints them when the command ends with status 0).
+const std::vector<std::string>& lines_when_done();
 
 void register_simulate(CLI::App& app);
 void register_scene(CLI::App& app);
@@ -21,6 +30,8 @@ void register_calibrate(CLI::App& app);
 void register_render(CLI::App& app);
 void register_run(CLI::App& app);
 void register_study(CLI::App& app);
+void register_config(CLI::App& app);
+void register_doctor(CLI::App& app);
 
 //! `mallet bench` subcommands, each in its own file.
 void add_bench_audio(CLI::App& bench);

@@ -10,7 +10,9 @@
 #include "app/data_paths.hpp"
 #include "app/render_setup.hpp"
 #include "app/headless_loop.hpp"
+#include "app/kiosk_setup.hpp"
 #include "app/kiosk_text.hpp"
+#include "app/metrics_file.hpp"
 #include "app/window_kiosk.hpp"
 #include "audio/wav_file.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -33,13 +35,17 @@ fs::path new_out_dir() {
   return fs::current_path() / name;
 }
 
-int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& config, const std::string& why) {
+int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::string& why) {
+  const Scene& scene = setup.scene;
+  const AppConfig& config = setup.config;
   if (!(o.seconds > 0 && o.seconds <= 24 * 3600)) throw FileError("--seconds", 0, 0, "must be in (0, 86400]");
   const fs::path out = o.out_dir.empty() ? new_out_dir() : o.out_dir;
   fs::create_directories(out);
   std::ofstream log(out / "log.txt");
   auto say = [&](const std::string& line) { log << line << '\n'; };
   say("mallet run (headless: " + why + ")");
+  say(setup.settings_line);
+  for (const std::string& p : setup.problems) say("warning: " + p);
   say("scene: " + scene.file);
 
   // Nobody is there: the attract loop plays from the start, on a simulated 60 Hz clock.
@@ -47,7 +53,21 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
   const int rate = loop.sample_rate_hz();
   audio::WavWriter wav(out / "audio.wav", loop.channels(), rate);
   loop.on_audio = [&](std::span<const float> block) { wav.write(block); };
-  loop.on_strike = [&](const Strike& s, bool) { say(strike_line(scene, s.impact)); };
+  // [metrics]: counted from what the log says (a strike line each, the frames below), on the
+  // simulated clock; the headless run is not a start of the kiosk (no restart count).
+  KioskMetrics metrics;
+  metrics.version = mallet_version();
+  seed_strike_labels(scene, metrics.strikes);
+  auto warn = [&](const std::string& line) {
+    say("warning: " + line);
+    std::fprintf(stderr, "mallet run: warning: %s\n", line.c_str());
+  };
+  MetricsFile metrics_file(std::nullopt, warn, [&](const std::string& line) { say(line); });
+  metrics_file.configure(config.metrics);
+  loop.on_strike = [&](const Strike& s, bool) {
+    say(strike_line(scene, s.impact));
+    count_strike(scene, s.impact, metrics.strikes);
+  };
 
   HeadlessOptions ho;
   ho.size = parse_size(o.size, "--size");
@@ -73,6 +93,9 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
     state.overlay = &overlay;
     renderer.draw(state);
     ++frames;
+    metrics.count_frame(frame);
+    metrics.uptime_ns = t;
+    if (metrics_file.due(t)) metrics_file.write(metrics, t);
   }
   const std::uint64_t strikes = loop.counters().ghost_strikes + loop.counters().visitor_strikes;
   const std::int64_t audio_pos = static_cast<std::int64_t>(loop.counters().audio_frames);
@@ -85,6 +108,8 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
                 static_cast<long long>(audio_pos), rate);
   say(summary);
   if (vk_messages) say("error: " + std::to_string(vk_messages) + " Vulkan validation message(s)");
+  metrics.uptime_ns = end;  // the run's simulated span, as its "ran" line says
+  if (metrics_file.enabled() && metrics_file.write(metrics, end)) say("metrics: " + metrics_file.path().string());
   log.close();
   std::printf("mallet run: headless (%s)\n%s\n", why.c_str(), summary);
   for (const char* f : {"screenshot.png", "audio.wav", "log.txt"}) std::printf("wrote %s\n", (out / f).c_str());
@@ -96,14 +121,17 @@ int run_headless(const KioskOptions& o, const Scene& scene, const AppConfig& con
 int run_kiosk(const KioskOptions& options) {
   if (options.idle_after_s && !(*options.idle_after_s > 0 && *options.idle_after_s <= 86400))
     throw FileError("--idle-after", 0, 0, "must be in (0, 86400] seconds");
-  const AppConfig config = options.config ? config::load_app_config(*options.config) : AppConfig{};
+  KioskSetup setup = load_kiosk_setup(options);
   KioskOptions o = options;
-  if (o.scene.empty()) o.scene = scene_file(options.config, config.scenes.start);
-  Scene scene = config::load_scene(o.scene);
-  if (o.headless) return run_headless(o, scene, config, "--headless");
-  if (!render::WindowSystem::display_available())
-    return run_headless(o, scene, config, "no display: DISPLAY and WAYLAND_DISPLAY are unset");
-  return run_window_kiosk(o, scene, config);
+  o.scene = setup.scene.file;  // a reload re-reads the scene it runs
+  const bool window = !o.headless && render::WindowSystem::display_available();
+  // The kiosk's stderr goes to the journal: its priorities; a headless run's to a person.
+  const std::string info = window ? "<6>" : "mallet run: ", warning = window ? "<4>" : "mallet run: warning: ";
+  std::fprintf(stderr, "%s%s\n", info.c_str(), setup.settings_line.c_str());
+  for (const std::string& p : setup.problems) std::fprintf(stderr, "%s%s\n", warning.c_str(), p.c_str());
+  if (o.headless) return run_headless(o, setup, "--headless");
+  if (!window) return run_headless(o, setup, "no display: DISPLAY and WAYLAND_DISPLAY are unset");
+  return run_window_kiosk(o, std::move(setup));
 }
 
 }  // namespace mallet::app

@@ -12,7 +12,8 @@ namespace mallet::app {
 
 struct KioskOptions {
   std::filesystem::path scene;                  //!< empty = [scenes] start of the settings
-  std::optional<std::filesystem::path> config;
+  std::optional<std::filesystem::path> config;      //!< the settings file (none: built-in defaults)
+  std::optional<std::filesystem::path> config_dir;  //!< its drop-ins (none: FILE.d)
   bool headless = false;
   bool windowed = false;
   double seconds = 10.0;                        //!< headless: how long the loop runs

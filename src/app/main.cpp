@@ -42,5 +42,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "mallet: %s\n", e.what());
     return 1;
   }
-  return mallet::app::exit_status();
+  const int status = mallet::app::exit_status();
+  if (status == 0)
+    for (const std::string& line : mallet::app::lines_when_done()) std::fprintf(stderr, "%s\n", line.c_str());
+  return status;
 }

@@ -1,3 +1,4 @@
+#include "app/settings_source.hpp"
 #include "app/study_session.hpp"
 
 #include <algorithm>
@@ -80,7 +81,7 @@ StudyPlan plan_study(const StudyOptions& o) {
                     "\"" + o.participant + "\" must be 1-64 letters, digits, '_', '-' or '.'");
   StudyPlan p;
   p.participant = o.participant;
-  p.config = o.config ? config::load_app_config(*o.config) : AppConfig{};
+  p.config = command_settings(o.config, o.config_dir, "study");
   p.base = config::load_scene(o.scene);
   p.protocol = load_study_protocol(o.protocol, p.base.materials, p.base.targets.size());
   const int rate = p.config.audio.sample_rate_hz;

@@ -32,6 +32,7 @@ struct StudyOptions {
   std::optional<std::filesystem::path> out;      //!< results CSV; default: the protocol's `output`
   std::filesystem::path scene;
   std::optional<std::filesystem::path> config;   //!< mallet.toml; built-in defaults if absent
+  std::optional<std::filesystem::path> config_dir;  //!< its drop-ins (none: FILE.d)
   std::optional<std::filesystem::path> answers;  //!< answer script; absent: the simulated observer
   std::optional<std::filesystem::path> audio;    //!< WAV of this run's stimuli (both channels)
   std::function<void(int rows_this_run)> after_row;  //!< called after each row is durable

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -14,7 +15,9 @@
 #include "app/audio_setup.hpp"
 #include "app/calibration_screen.hpp"
 #include "app/data_paths.hpp"
+#include "app/doctor.hpp"
 #include "app/kiosk_text.hpp"
+#include "app/metrics_file.hpp"
 #include "app/mouse_pointer.hpp"
 #include "app/remote_pointer.hpp"
 #include "app/render_setup.hpp"
@@ -26,7 +29,9 @@
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/kiosk_metrics.hpp"
 #include "core/kiosk_states.hpp"
+#include "core/operator_knobs.hpp"
 #include "input/clock.hpp"
 #include "input/evdev/evdev_mouse.hpp"
 #include "input/wiimote/hid_transport.hpp"
@@ -43,6 +48,12 @@ namespace {
 
 std::atomic<bool> g_reload{false};
 void on_sighup(int) { g_reload.store(true); }
+std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_stop_signal = 0;
+void on_stop(int signal) {
+  g_stop_signal = signal;
+  g_stop.store(true);
+}
 
 KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   KioskStatesConfig k;
@@ -54,6 +65,11 @@ KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
 struct Stage {
   AppConfig config;
   Scene scene;
+  //! Strikes by target and material, recorded by every route of this stage (any thread).
+  std::unique_ptr<StrikeTally> tally;
+  std::string settings_line;                          //!< where the settings came from
+  std::vector<std::filesystem::path> scene_choices;  //!< the usable [scenes] choices (S)
+  std::vector<std::string> problems;                  //!< drop-ins and scene choices refused
   AudioRig rig;
   std::unique_ptr<audio::PortAudioOutput> output;
   std::string audio_status;
@@ -111,9 +127,16 @@ class WindowKiosk {
   void poll_remote(Nanos now);
   void calibration_frame(Nanos now, std::optional<Vec2> mouse_screen);
   std::string input_line() const;
+  //! Operator page D: `mallet doctor`'s checks, with what the kiosk knows of the devices it
+  //! holds (its renderer, audio output and remote) instead of opening them again.
+  void run_doctor_checks(double frame_ms);
   std::string timing_line() const;  //!< the strike route's policy and the figures it uses
   //! Strikes delivered since start, over every route and every reload.
   std::uint64_t strikes() const;
+  //! Once a frame: the frame, the state and the tracking into metrics_; the file when due.
+  void feed_metrics(Nanos now);
+  void write_metrics(Nanos now);  //!< the gauges and totals read now, then the file
+  void retire_metrics(const Stage& old);  //!< a reload: keep the replaced stage's counts
 
   KioskOptions options_;
   ProductWindow win_;
@@ -129,6 +152,8 @@ class WindowKiosk {
   static constexpr int kLatencyTestPulses = 10;
   std::vector<Nanos> latency_test_;  //!< the test's instants still to come or on screen
   std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
+  std::vector<std::string> doctor_;        //!< the page's doctor lines (D); empty: the page's own
+  bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
@@ -139,6 +164,13 @@ class WindowKiosk {
   std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
   std::uint64_t callbacks_at_beat_ = 0;
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
+  // [metrics]: what the kiosk counts, and the file it writes them to.
+  KioskMetrics metrics_;
+  MetricsFile metrics_file_{state_dir(), [](const std::string& line) { std::fprintf(stderr, "<4>%s\n", line.c_str()); },
+                            [](const std::string& line) { std::fprintf(stderr, "<5>%s\n", line.c_str()); }};
+  StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
+  std::uint64_t xruns_retired_ = 0;   //!< by the audio outputs a reload replaced
+  Nanos metrics_frame_at_ = 0;        //!< the last drawn frame's time
 };
 
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
@@ -163,6 +195,10 @@ void WindowKiosk::build(KioskSetup setup) {
   auto stage = std::make_unique<Stage>();
   stage->config = std::move(setup.config);
   stage->scene = std::move(setup.scene);
+  stage->tally = std::make_unique<StrikeTally>(stage->scene);
+  stage->settings_line = std::move(setup.settings_line);
+  stage->scene_choices = std::move(setup.scene_choices);
+  stage->problems = std::move(setup.problems);
   const AppConfig& c = stage->config;
   stage->renderer = std::make_unique<render::SceneRenderer>(*win_.ctx, stage->scene, models_dir(),
                                                             win_.window->format(), render_settings(*win_.ctx, c.render),
@@ -170,6 +206,7 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->route = std::make_unique<StrikeRoute>(stage->scene, c, stage->rig.engine.get(), &win_.window->present_clock(),
                                                RouteOptions{audio::Producer::main, false, true});
+  stage->route->on_strike = [t = stage->tally.get()](const Strike& s) { t->record(s.impact); };
   choose_input(*stage);  // a bad replay file throws here, before anything running is touched
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
@@ -180,8 +217,15 @@ void WindowKiosk::build(KioskSetup setup) {
   ghost_.reset();
   calibration_.reset();
   if (stage_) strikes_before_ = strikes();
+  if (stage_) retire_metrics(*stage_);
   stage_ = std::move(stage);
+  seed_strike_labels(stage_->scene, strikes_retired_);
+  metrics_file_.configure(stage_->config.metrics);
+  // The operator who reloaded from the page (S, or a SIGHUP while it is open) stays on it,
+  // as after M, the volume or the gain.
+  const bool on_page = states_ && states_->state() == KioskState::operator_page;
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
+  if (on_page) states_->operator_chord(now);
   states_->input_source(now, stage_->source);
   if (stage_->device) {
     states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
@@ -258,7 +302,10 @@ void WindowKiosk::choose_input(Stage& stage) {
   Stage* s = &stage;
   // The reading thread: strikes go from there through the strike route (RemotePointer);
   // this only pulses the rumble when configured.
-  stage.remote->on_strike = [s](const Impact&) { s->device->on_impact(); };
+  stage.remote->on_strike = [s](const Impact& i) {
+    s->tally->record(i);
+    s->device->on_impact();
+  };
   stage.device->set_sample_sink(
       [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
 }
@@ -303,6 +350,7 @@ void WindowKiosk::choose_mouse(Stage& stage) {
   stage.evdev = std::move(opened.mouse);
   stage.mouse = std::make_unique<MousePointer>(stage.scene, stage.config, *stage.rig.engine,
                                                &win_.window->present_clock());
+  stage.mouse->on_strike = [t = stage.tally.get()](const Strike& s) { t->record(s.impact); };
   if (last_cursor_) stage.evdev->warp(last_cursor_->x, last_cursor_->y);
   stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
 }
@@ -310,6 +358,38 @@ void WindowKiosk::choose_mouse(Stage& stage) {
 std::uint64_t WindowKiosk::strikes() const {
   return strikes_before_ + stage_->route->strikes() + (stage_->remote ? stage_->remote->strikes() : 0) +
          (stage_->mouse ? stage_->mouse->strikes() : 0);
+}
+
+void WindowKiosk::feed_metrics(Nanos now) {
+  if (frames_ > metrics_.frames()) {  // this iteration drew a frame (at most one)
+    metrics_.count_frame(now - metrics_frame_at_);
+    metrics_frame_at_ = now;
+  }
+  metrics_.observe_state(states_->state(), states_->since(), states_->last_movement());
+  // Lost only where it matters: a visitor plays, the remote runs, its camera sees no LED.
+  metrics_.observe_tracking(stage_->device && stage_->link_up && states_->visitor_plays() && !states_->tracking(), now);
+  if (metrics_file_.due(now)) write_metrics(now);
+}
+
+void WindowKiosk::write_metrics(Nanos now) {
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  metrics_.strikes = strikes_retired_;
+  stage_->tally->add_to(metrics_.strikes);
+  metrics_.audio_xruns = xruns_retired_ + (stage_->output ? stage_->output->counters().xruns : 0);
+  metrics_.audio_output_latency_s = stage_->output ? stage_->output->output_latency_s() : kUnknown;
+  metrics_.remote_connected = stage_->device && stage_->link_up;
+  metrics_.remote_battery_ratio = kUnknown;
+  if (stage_->device)
+    if (const std::optional<std::uint8_t> b = stage_->device->state().remote.battery)
+      metrics_.remote_battery_ratio = std::min(1.0, *b / 200.0);  // 0xC8 on fresh cells (reports.hpp)
+  metrics_.uptime_ns = now - started_;
+  metrics_.version = mallet_version();
+  metrics_file_.write(metrics_, now);
+}
+
+void WindowKiosk::retire_metrics(const Stage& old) {
+  old.tally->add_to(strikes_retired_);  // its input threads have stopped: the counts are final
+  if (old.output) xruns_retired_ += old.output->counters().xruns;
 }
 
 std::string WindowKiosk::input_line() const {
@@ -382,6 +462,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (states_->state() != KioskState::calibration) {
     // Abandoned (the operator chord): the previous calibration stays, and so does the
     // configured sensitivity if the tuner was trying another.
+    if (calibration_) std::fprintf(stderr, "<5>operator: calibration abandoned, the previous one stays\n");
     if (calibration_ && calibration_->tuning() && stage_->device)
       stage_->device->request_sensitivity(kiosk_sensitivity(stage_->config, stage_->calibration));
     calibration_.reset();
@@ -423,6 +504,37 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   calibration_.reset();
 }
 
+void WindowKiosk::run_doctor_checks(double frame_ms) {
+  KioskDeviceFacts facts;
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(win_.ctx->physical_device(), &props);
+  facts.vulkan = judge_renderer(win_.ctx->device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
+                                win_.window->extent().width, win_.window->extent().height, frame_ms);
+  facts.vulkan.found += " (the kiosk's frames)";
+  facts.audio = stage_->output ? DoctorCheck{"audio", CheckLevel::ok, stage_->audio_status, ""}
+                               : DoctorCheck{"audio", CheckLevel::fail, stage_->audio_status,
+                                             "connect the sound card and check `aplay -l`; `mallet audio devices`"};
+  facts.wiimote = {"wiimote", CheckLevel::ok, input_line(), ""};
+  if (stage_->device) {
+    const input::wiimote::WiimoteState w = stage_->device->state();
+    if (w.link == input::wiimote::LinkState::running) facts.connected_remote = remote_identity(w.device);
+    else facts.wiimote = {"wiimote", CheckLevel::fail, input_line(), "press 1+2 on the remote; change its batteries"};
+  } else if (stage_->config.input.source == "wiimote") {
+    facts.wiimote.level = CheckLevel::fail;
+  }
+  DoctorOptions o;
+  o.config = options_.config;
+  o.config_dir = options_.config_dir;
+  const std::vector<DoctorCheck> checks = run_doctor_with(o, facts);
+  doctor_.clear();
+  int failing = 0;
+  for (const DoctorCheck& c : checks) {
+    doctor_.push_back(format_check(c));
+    failing += c.level == CheckLevel::fail;
+  }
+  std::fprintf(stderr, "<5>operator: doctor, %d check(s) failing\n", failing);
+}
+
 void WindowKiosk::apply_volume() {
   const double attract = states_ && states_->attract_volume() ? stage_->config.attract.volume : 1.0;
   stage_->rig.engine->set_acoustic_volume(volume_ * attract);
@@ -441,15 +553,31 @@ void WindowKiosk::handle_keys(Nanos now) {
     if (states_->state() != KioskState::operator_page) continue;  // visitors' keys do nothing
     switch (key) {
       case GLFW_KEY_ESCAPE: states_->operator_page_closed(now); break;
-      case GLFW_KEY_Q: states_->quit_requested(now); break;
-      case GLFW_KEY_R: states_->recalibrate(now); break;  // the screen itself starts in the frame
-      case GLFW_KEY_UP: volume_ = std::min(1.0, volume_ + 0.05); break;
-      case GLFW_KEY_DOWN: volume_ = std::max(0.0, volume_ - 0.05); break;
-      case GLFW_KEY_RIGHT: gain_ = std::min(1.0, gain_ + 0.02); break;
-      case GLFW_KEY_LEFT: gain_ = std::max(0.0, gain_ - 0.02); break;
+      case GLFW_KEY_Q:
+        std::fprintf(stderr, "<5>operator: quit\n");
+        states_->quit_requested(now);
+        break;
+      case GLFW_KEY_R:  // the screen itself starts in the frame
+        std::fprintf(stderr, "<5>operator: recalibrate\n");
+        states_->recalibrate(now);
+        break;
+      case GLFW_KEY_UP:
+      case GLFW_KEY_DOWN:
+        volume_ = knob_step(volume_, kVolumeKnob, key == GLFW_KEY_UP);
+        std::fprintf(stderr, "<5>operator: volume %.0f %%\n", volume_ * 100);
+        break;
+      case GLFW_KEY_RIGHT:
+      case GLFW_KEY_LEFT:
+        gain_ = knob_step(gain_, kGainKnob, key == GLFW_KEY_RIGHT);
+        std::fprintf(stderr, "<5>operator: actuator gain %.2f\n", gain_);
+        break;
       case GLFW_KEY_M: next_wall_material(); break;
       case GLFW_KEY_S: next_scene(); break;
       case GLFW_KEY_T: start_latency_test(now); break;
+      case GLFW_KEY_D:
+        if (doctor_.empty()) doctor_asked_ = true;
+        else doctor_.clear();  // D again: back to the page
+        break;
       default: break;
     }
   }
@@ -462,7 +590,8 @@ void WindowKiosk::next_wall_material() {
   const int m = stage_->route->loop().wall_material();
   if (stage_->remote) stage_->remote->set_wall_material(m);
   if (stage_->mouse) stage_->mouse->set_wall_material(m);
-  std::fprintf(stderr, "<5>wall material: %s\n", stage_->scene.materials[static_cast<std::size_t>(m)].name.c_str());
+  std::fprintf(stderr, "<5>operator: wall material %s\n",
+               stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
 }
 
 void WindowKiosk::start_latency_test(Nanos now) {
@@ -495,14 +624,15 @@ void WindowKiosk::latency_test_frame(Nanos present) {
 }
 
 void WindowKiosk::next_scene() {
-  const std::vector<std::string>& choices = stage_->config.scenes.choices;
+  // Only the choices that loaded (the others are listed on the page with their reasons).
+  const std::vector<std::filesystem::path>& choices = stage_->scene_choices;
   if (choices.empty()) return;
   // The next choice after the running scene's file (the first if it is not one of them).
   std::size_t next = 0;
   for (std::size_t i = 0; i < choices.size(); ++i)
-    if (scene_file(options_.config, choices[i]) == std::filesystem::path(stage_->scene.file)) next = (i + 1) % choices.size();
+    if (choices[i] == std::filesystem::path(stage_->scene.file)) next = (i + 1) % choices.size();
   const std::filesystem::path previous = options_.scene;
-  options_.scene = scene_file(options_.config, choices[next]);
+  options_.scene = choices[next];
   std::fprintf(stderr, "<5>switching to the scene %s\n", options_.scene.c_str());
   reload();
   if (std::filesystem::path(stage_->scene.file) != options_.scene) options_.scene = previous;  // refused: stays
@@ -525,9 +655,12 @@ void WindowKiosk::reload() {
     vkDeviceWaitIdle(win_.ctx->device());
     volume_ = setup->config.audio.volume;
     gain_ = setup->config.actuator.gain;
+    const std::vector<std::string> problems = setup->problems;
+    const std::string settings = setup->settings_line;
     build(std::move(*setup));
-    std::fprintf(stderr, "<5>reloaded the settings and the scene\n");
-  } catch (const FileError& e) {  // e.g. a model the new scene names is broken
+    std::fprintf(stderr, "<5>reloaded the settings and the scene (%s)\n", settings.c_str());
+    for (const std::string& p : problems) std::fprintf(stderr, "<4>%s\n", p.c_str());
+  } catch (const std::exception& e) {  // e.g. a model the new scene names is broken: whatever is thrown
     std::fprintf(stderr, "<4>reload refused, the running configuration stays: %s\n", e.what());
   }
 }
@@ -575,7 +708,14 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->overlay().mouse_notice)
     o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",
            {1.0f, 1.0f, 1.0f, 0.35f});
-  if (states_->state() != KioskState::operator_page) return;
+  if (states_->state() != KioskState::operator_page) {
+    doctor_.clear();
+    return;
+  }
+  if (doctor_asked_) {
+    doctor_asked_ = false;
+    run_doctor_checks(frame_ms);
+  }
   char buf[240];
   std::vector<std::string> lines;
   const double uptime = to_seconds(now - started_);
@@ -590,9 +730,9 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   lines.emplace_back(buf);
   std::snprintf(buf, sizeof buf, "actuator gain %.2f  (Left / Right)", gain_);
   lines.emplace_back(buf);
-  lines.emplace_back("R recalibrate    T latency test    Q quit    Esc close");
+  lines.emplace_back("R recalibrate    T latency test    D doctor    Q quit    Esc close");
   const int wall = stage_->route->loop().wall_material();
-  const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].name.c_str() : "";
+  const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str() : "";
   std::snprintf(buf, sizeof buf, "scene: %s  (S next)%s%s%s",
                 std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "", wall_name,
                 wall >= 0 ? "  (M next)" : "");
@@ -601,6 +741,13 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
                                  : "calibration: R runs the screen with the mouse (not saved)");
   lines.push_back(timing_line());
+  lines.push_back(stage_->settings_line);
+  for (const std::string& p : stage_->problems) lines.push_back("! " + p);
+  if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
+    lines.resize(1);
+    lines.insert(lines.end(), doctor_.begin(), doctor_.end());
+    lines.emplace_back("D back to the page    Esc close");
+  }
   const float pw = std::min(w - 2 * px, px * 40);
   // Long lines (how the input is read and why, the timing figures) wrap at a comma or a
   // semicolon onto indented continuation lines; a glyph is about half the pixel height wide.
@@ -634,6 +781,7 @@ int WindowKiosk::run() {
   const Nanos quit_after = static_cast<Nanos>(std::llround(options_.quit_after_s * 1e9));
   Nanos last_frame = monotonic_now();
   next_log_ = last_frame + 60 * kNanosPerSecond;
+  metrics_frame_at_ = last_frame;
   double frame_ms = 0;
   for (;;) {
     glfwPollEvents();
@@ -649,8 +797,14 @@ int WindowKiosk::run() {
     handle_keys(now);
     if (win_.window->close_requested()) {
       glfwSetWindowShouldClose(win_.window->window(), GLFW_FALSE);
+      std::fprintf(stderr, "<5>window close requested (%s)\n",
+                   options_.windowed ? "the operator page opens" : "refused outside the operator page");
       if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes from the page
       states_->window_close_requested(now);
+    }
+    if (g_stop.load()) {  // systemd's stop (SIGTERM), or Ctrl+C: a clean end, as the operator's Q
+      std::fprintf(stderr, "<5>mallet run: %s received, stopping\n", g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM");
+      break;
     }
     if (states_->should_quit() || (quit_after > 0 && now - started_ >= quit_after)) break;
 
@@ -712,10 +866,12 @@ int WindowKiosk::run() {
     if (win_.window->draw(*stage_->renderer, state)) ++frames_;
     if (frames_ == 1) notifier_.ready();
     heartbeat(now);
+    feed_metrics(now);
   }
   notifier_.stopping();
   std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
                static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes()));
+  if (metrics_file_.enabled()) write_metrics(monotonic_now());  // the final counts, as the line above
   vkDeviceWaitIdle(win_.ctx->device());
   if (stage_->device) stage_->device->stop();
   if (stage_->evdev) stage_->evdev->stop();
@@ -737,23 +893,16 @@ void watch_for_reload() {
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART;
   sigaction(SIGHUP, &sa, nullptr);
+  sa.sa_handler = on_stop;
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
 }
 
 bool reload_requested() { return g_reload.exchange(false); }
 
-std::optional<KioskSetup> load_setup(const KioskOptions& o, std::string& why) {
-  try {
-    KioskSetup s{o.config ? config::load_app_config(*o.config) : AppConfig{}, config::load_scene(o.scene)};
-    return s;
-  } catch (const FileError& e) {
-    why = e.what();
-    return std::nullopt;
-  }
-}
-
-int run_window_kiosk(const KioskOptions& options, Scene scene, AppConfig config) {
+int run_window_kiosk(const KioskOptions& options, KioskSetup setup) {
   watch_for_reload();
-  WindowKiosk kiosk(options, KioskSetup{std::move(config), std::move(scene)});
+  WindowKiosk kiosk(options, std::move(setup));
   return kiosk.run();
 }
 

@@ -24,8 +24,9 @@
 // the page: Up/Down volume, Left/Right actuator gain, R recalibrate, Q quit, Esc close.
 // Visitors cannot leave the app: the window's close request is refused outside the page.
 //
-// SIGHUP reloads the settings and the scene; an invalid new file is refused with its
-// reason on stderr and the running configuration stays.
+// SIGHUP reloads the settings (with their drop-ins) and the scene; an invalid new file is
+// refused with its reason on stderr and the running configuration stays. SIGTERM (systemd's
+// stop) ends the loop as the operator's Q does: a closing log line and exit status 0.
 //
 // Faults: a Wii Remote that is gone → Attract with the remote-missing hint, reconnected by
 // WiimoteDevice (it never gives up); a lost audio device is survived (silent, retried by PortAudioOutput); an
@@ -36,25 +37,18 @@
 #include <optional>
 
 #include "app/kiosk.hpp"
+#include "app/kiosk_setup.hpp"
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
 
 namespace mallet::app {
 
-//! Returns the process's exit status: 0 for an operator's quit.
-int run_window_kiosk(const KioskOptions& options, Scene scene, AppConfig config);
+//! Returns the process's exit status: 0 for an operator's quit, or for a stop systemd asks
+//! for (SIGTERM).
+int run_window_kiosk(const KioskOptions& options, KioskSetup setup);
 
 //! Installs the SIGHUP handler; reload_requested() reports (and clears) a pending request.
 void watch_for_reload();
 bool reload_requested();
-
-struct KioskSetup {
-  AppConfig config;
-  Scene scene;
-};
-
-//! Loads the settings and scene as `mallet run` does. On a bad file: nothing, and `why`
-//! holds its one-line error.
-std::optional<KioskSetup> load_setup(const KioskOptions& options, std::string& why);
 
 }  // namespace mallet::app

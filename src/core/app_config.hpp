@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_error.hpp"
 #include "core/ir_camera_settings.hpp"
 #include "core/ir_tracker.hpp"
 #include "core/mallet.hpp"
@@ -117,6 +118,16 @@ struct RenderConfig {
 struct ScenesConfig {
   std::string start = "percussion.toml";
   std::vector<std::string> choices{"percussion.toml", "texture.toml", "wall.toml"};
+  //! Where the settings named them (empty file: the built-in defaults), so that a scene file
+  //! that is missing is reported against the line that names it.
+  FilePlace start_at, choices_at;
+};
+
+//! [metrics]: the kiosk's metrics in Prometheus' text format (core/kiosk_metrics.hpp), for
+//! node_exporter's textfile collector.
+struct MetricsConfig {
+  std::string textfile;      //!< the file to replace; empty = off; relative: to the settings file's folder
+  double interval_s = 15.0;  //!< how often it is replaced (node_exporter's default scrape is 15 s)
 };
 
 //! Where speed is traded for accuracy: a preset of knobs (core/quality.hpp).
@@ -140,6 +151,7 @@ struct AppConfig {
   AttractConfig attract;
   ScenesConfig scenes;
   TimingConfig timing;
+  MetricsConfig metrics;
 };
 
 }  // namespace mallet

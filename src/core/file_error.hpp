@@ -8,8 +8,16 @@
 
 namespace mallet {
 
+//! Where in a file something was written (line and column 1-based; 0 = unknown).
+struct FilePlace {
+  std::string file;
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+};
+
 class FileError : public std::runtime_error {
  public:
+  FileError(const FilePlace& at, const std::string& message) : FileError(at.file, at.line, at.column, message) {}
   FileError(std::string file, std::uint32_t line, std::uint32_t column, const std::string& message)
       : std::runtime_error(format(file, line, column, message)),
         file_(std::move(file)),

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_error.hpp"
 #include "core/material.hpp"
 #include "core/screen_to_world.hpp"
 #include "core/speed_technique.hpp"
@@ -85,6 +86,20 @@ struct Scene {
   //! Drawn behind everything, sRGB 0..1 (the second paper's scenes: grey). Unset: a dark room.
   std::optional<std::array<double, 3>> background_srgb;
   std::string mallet_model = "mallet_head.glb";  //!< glTF in models/ drawn as the mallet head / cursor
+  //! Where each model file was named (file, line, dotted key), so that a broken model is
+  //! reported against the setting that chose it. Defaults are named at their table.
+  struct ModelRef {
+    std::string model;
+    FilePlace at;
+    std::string key;
+  };
+  std::vector<ModelRef> model_refs;
+  //! The first place that names `model`; nullptr if none is known.
+  const ModelRef* model_ref(const std::string& model) const {
+    for (const ModelRef& r : model_refs)
+      if (r.model == model) return &r;
+    return nullptr;
+  }
 
   const Material& material_of(const Target& t) const { return materials.at(t.material); }
 };

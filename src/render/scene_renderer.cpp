@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/file_error.hpp"
 #include "render/gltf_model.hpp"
 #include "render/vk_error.hpp"
 #include "shaders/overlay_frag.h"
@@ -176,7 +177,15 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   names.push_back(mallet_instance(scene, {}).model);
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
-  for (const std::string& name : names) load_model(models_dir / name, name);
+  for (const std::string& name : names) {
+    try {
+      load_model(models_dir / name, name);
+    } catch (const FileError& e) {  // say which setting chose the broken model
+      const Scene::ModelRef* ref = scene.model_ref(name);
+      if (!ref || ref->at.file.empty()) throw;
+      throw FileError(ref->at, ref->key + " = \"" + name + "\": " + e.what());
+    }
+  }
   for (const Instance& i : instruments_) {
     const Box& b = models_.at(i.model).bounds;
     if (b.empty()) continue;

@@ -124,6 +124,25 @@ TEST(WindowSmoke, SighupReloadsTheSettingsAndRefusesABrokenFile) {
   EXPECT_TRUE(wait_for(dir / "log.txt", "strike t=")) << slurp(dir / "log.txt");
 }
 
+TEST(WindowSmoke, SigtermIsACleanStopWithItsLineAndStatusZero) {
+  // systemd's `systemctl stop` sends SIGTERM: the kiosk ends as the operator's Q ends it.
+  const auto dir = test::scratch_dir();
+  const auto cfg = dir / "mallet.toml";
+  std::filesystem::copy_file(test::config_dir() / "mallet.toml", cfg);
+  const std::string launch = "(" + child_preload() + "xvfb-run -a -s '-screen 0 1024x768x24' " +
+                             std::string(MALLET_TEST_BINARY) + " run --windowed --size 320x180 --quit-after 60" +
+                             " --device llvmpipe --config " + cfg.string() + " > " + (dir / "log.txt").string() +
+                             " 2>&1; echo $? > " + (dir / "status").string() + ") &";
+  ASSERT_EQ(std::system(launch.c_str()), 0);
+  ASSERT_TRUE(wait_for(dir / "log.txt", "mallet run:")) << slurp(dir / "log.txt");
+  const std::string term = "pkill -TERM -f '^" + std::string(MALLET_TEST_BINARY) + " run .*" + cfg.string() + "'";
+  std::system(term.c_str());
+  ASSERT_TRUE(wait_for(dir / "status", "\n")) << slurp(dir / "log.txt");
+  EXPECT_EQ(slurp(dir / "status"), "0\n") << slurp(dir / "log.txt");
+  EXPECT_NE(slurp(dir / "log.txt").find("SIGTERM received, stopping"), std::string::npos) << slurp(dir / "log.txt");
+  EXPECT_NE(slurp(dir / "log.txt").find("mallet run: stopping after"), std::string::npos) << slurp(dir / "log.txt");
+}
+
 TEST(WindowSmoke, UnderSystemdTheKioskSaysReadyFeedsTheWatchdogAndSaysStopping) {
   const auto dir = test::scratch_dir();
   const auto socket_path = dir / "notify.sock";

@@ -1,14 +1,13 @@
 #include "core/config/app_config_loader.hpp"
 
+#include "core/config/app_config_table.hpp"
 #include "core/config/toml_reader.hpp"
 #include "core/present_clock.hpp"
 #include "core/quality.hpp"
 
 namespace mallet::config {
 
-namespace {
-
-AppConfig read(const toml::table& root, const std::string& file) {
+AppConfig read_app_config(const toml::table& root, const std::string& file) {
   AppConfig c;
   TableReader top(root, file);
   // The preset first: it only sets defaults, so every knob the file names overrides it.
@@ -184,24 +183,34 @@ AppConfig read(const toml::table& root, const std::string& file) {
   if (auto t = top.optional_table("scenes")) {
     ScenesConfig& sc = c.scenes;
     sc.start = t->string_or("start", sc.start);
-    if (t->has("choices")) sc.choices = t->strings("choices");
+    if (t->has("start")) sc.start_at = t->place("start");
+    if (t->has("choices")) sc.choices = t->strings("choices"), sc.choices_at = t->place("choices");
     for (const std::string& f : sc.choices)
       if (f.empty()) t->fail("choices", "a scene file name is empty");
     if (sc.start.empty()) t->fail("start", "must name a scene file");
+    t->finish();
+  }
+  if (auto t = top.optional_table("metrics")) {
+    MetricsConfig& m = c.metrics;
+    m.textfile = t->string_or("textfile", m.textfile);
+    if (!m.textfile.empty() && m.textfile.back() == '/')
+      t->fail("textfile", "names a folder; expected a file such as \"" + m.textfile + "mallet.prom\"");
+    if (!m.textfile.empty() && std::filesystem::path(m.textfile).is_relative())
+      m.textfile = (std::filesystem::path(file).parent_path() / m.textfile).string();
+    m.interval_s = t->number_or("interval_s", m.interval_s);
+    t->require_range("interval_s", m.interval_s, 1, 3600);
     t->finish();
   }
   top.finish();
   return c;
 }
 
-}  // namespace
-
 AppConfig load_app_config(const std::filesystem::path& path) {
-  return read(parse_file(path), path.string());
+  return read_app_config(parse_file(path), path.string());
 }
 
 AppConfig parse_app_config(std::string_view text, const std::string& name) {
-  return read(parse_text(text, name), name);
+  return read_app_config(parse_text(text, name), name);
 }
 
 }  // namespace mallet::config

@@ -34,6 +34,8 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
                         material_name.find("alumin") != std::string::npos;
   inst.bar_model = t.string_or("bar_model", metallic ? "metal_bar.glb" : "wood_bar.glb");
   inst.rail_model = t.string_or("rail_model", inst.name + "_rail.glb");
+  scene.model_refs.push_back({inst.bar_model, t.place("bar_model"), t.dotted("bar_model")});
+  scene.model_refs.push_back({inst.rail_model, t.place("rail_model"), t.dotted("rail_model")});
 
   const double x_start = t.number("x_start_m");
   const double top_y = t.number("top_y_m");
@@ -136,6 +138,7 @@ void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
   t.require_range("midi_program", inst.midi_program, 0, 127);
   inst.bar_model = t.string_or("model", "wall_panel.glb");
   inst.rail_model.clear();
+  scene.model_refs.push_back({inst.bar_model, t.place("model"), t.dotted("model")});
   const std::vector<std::string> names = t.strings("materials");
   if (names.empty()) t.fail("materials", "needs at least one material");
   for (const std::string& n : names) {
@@ -212,6 +215,7 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
     scene.background_srgb = std::array<double, 3>{bg[0], bg[1], bg[2]};
   }
   scene.mallet_model = top.string_or("mallet_model", scene.mallet_model);
+  scene.model_refs.push_back({scene.mallet_model, top.place("mallet_model"), top.dotted("mallet_model")});
 
   if (scene.kind == SceneKind::percussion) {
     for (TableReader& t : top.tables("instrument")) read_instrument(std::move(t), library, scene);

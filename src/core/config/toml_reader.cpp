@@ -57,11 +57,17 @@ std::string TableReader::dotted(std::string_view key) const {
   return key_path_ + "." + std::string(key);
 }
 
+FilePlace TableReader::place_of(const toml::node* node) const {
+  const toml::source_region& where = node ? node->source() : table_->source();
+  // A node merged in from a drop-in (settings_files.hpp) keeps the file it was written in.
+  return {where.path && !where.path->empty() ? *where.path : file_, where.begin.line, where.begin.column};
+}
+
+FilePlace TableReader::place(std::string_view key) const { return place_of(table_->get(key)); }
+
 void TableReader::fail_at(const toml::node* node, std::string_view key,
                           const std::string& message) const {
-  const toml::source_region& where = node ? node->source() : table_->source();
-  throw ConfigError(file_, where.begin.line, where.begin.column,
-                    dotted(key) + ": " + message);
+  throw ConfigError(place_of(node), dotted(key) + ": " + message);
 }
 
 void TableReader::fail(std::string_view key, const std::string& message) const {

@@ -55,6 +55,10 @@ class TableReader {
   void require_non_negative(std::string_view key, double value) const;
   void require_range(std::string_view key, double value, double lo, double hi) const;
 
+  //! Where `key` was written (the table itself if it is absent): its own file for a value
+  //! merged in from a drop-in.
+  FilePlace place(std::string_view key) const;
+
   const std::string& file() const { return file_; }
   std::string dotted(std::string_view key) const;
 
@@ -63,6 +67,7 @@ class TableReader {
   //! The array at `key`, each element read by `get` (nothing: refused as not `element`).
   template <typename T, typename Get>
   std::vector<T> array_of(std::string_view key, const char* elements, const char* element, Get get);
+  FilePlace place_of(const toml::node* node) const;
   [[noreturn]] void fail_at(const toml::node* node, std::string_view key,
                             const std::string& message) const;
 

@@ -1,0 +1,42 @@
+#pragma once
+// `mallet doctor`: everything a kiosk needs, checked in one go, one line a check (ok, warn,
+// fail; what was found; how to fix it). The command opens each device itself; the operator
+// page's D (a kiosk that already holds the display, the sound card and the remote) passes
+// what it knows of them instead and runs the rest of the checks the same way.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/app_config.hpp"
+#include "core/doctor_check.hpp"
+
+namespace mallet::app {
+
+struct DoctorOptions {
+  std::optional<std::filesystem::path> config;      //!< the settings file (default: the operator's)
+  std::optional<std::filesystem::path> config_dir;  //!< its drop-ins
+  std::string device;                               //!< Vulkan device (substring of its name)
+  double remote_wait_s = 4.0;                       //!< how long a found remote may take to start its camera
+};
+
+//! What the running kiosk already knows of its devices (the operator page).
+struct KioskDeviceFacts {
+  DoctorCheck vulkan;
+  DoctorCheck audio;
+  DoctorCheck wiimote;
+  std::optional<std::string> connected_remote;  //!< its identity, for the calibration check
+};
+
+//! Every check, each device opened and released again. Never throws: a probe that fails is a
+//! `fail` line.
+std::vector<DoctorCheck> run_doctor(const DoctorOptions& options);
+
+//! The checks that open no device (settings, scenes, models, soundfont, hidraw access,
+//! calibration, disk, service, watchdog), after the kiosk's own device facts.
+std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& options, const KioskDeviceFacts& facts);
+
+//! The same checks as JSON: {"checks": [{"name", "status", "found", "fix"}...], "ok": N, "warn": N, "fail": N}.
+std::string doctor_json(const std::vector<DoctorCheck>& checks);
+
+}  // namespace mallet::app

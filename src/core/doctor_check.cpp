@@ -1,0 +1,127 @@
+#include "core/doctor_check.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+
+namespace mallet {
+
+namespace {
+constexpr std::uint64_t kMiB = 1024ull * 1024ull;
+constexpr double kRefreshMs = 1000.0 / 60.0;
+constexpr std::int64_t kOldCalibrationDays = 90;  //!< a remote or a screen is often moved by then
+constexpr double kCalibrationErrorPx = 20.0;       //!< about a bar's half-width at 1080p
+
+std::string printf_text(const char* format, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, args...);
+  return buf;
+}
+}  // namespace
+
+const char* to_string(CheckLevel level) {
+  switch (level) {
+    case CheckLevel::ok: return "ok";
+    case CheckLevel::warn: return "warn";
+    case CheckLevel::fail: return "fail";
+  }
+  return "?";
+}
+
+std::string format_check(const DoctorCheck& c) {
+  std::string line = printf_text("%-5s %-12s %s", to_string(c.level), c.name.c_str(), c.found.c_str());
+  if (!c.fix.empty()) line += " -> fix: " + c.fix;
+  std::replace(line.begin(), line.end(), '\n', ' ');  // one line a check, whatever a probe said
+  return line;
+}
+
+int doctor_exit_status(const std::vector<DoctorCheck>& checks) {
+  for (const DoctorCheck& c : checks)
+    if (c.level == CheckLevel::fail) return 1;
+  return 0;
+}
+
+DoctorCheck judge_free_space(const std::string& where, std::uint64_t available) {
+  DoctorCheck c{"disk", CheckLevel::ok, printf_text("%.1f GiB free in %s", static_cast<double>(available) / (1024.0 * kMiB),
+                                                    where.c_str()), ""};
+  if (available < 100 * kMiB) {
+    c.level = CheckLevel::fail;
+    c.fix = "free space on that file system: study rows and calibrations can no longer be saved";
+  } else if (available < 1024 * kMiB) {
+    c.level = CheckLevel::warn;
+    c.fix = "free space on that file system (study results and the journal grow)";
+  }
+  return c;
+}
+
+DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t width, std::uint32_t height,
+                           double frame_ms) {
+  DoctorCheck c{"vulkan", CheckLevel::ok,
+                printf_text("%s%s, a %ux%u frame takes %.1f ms", device.c_str(), cpu ? " (software: the CPU draws)" : "",
+                            width, height, frame_ms),
+                ""};
+  const bool large = static_cast<std::uint64_t>(width) * height >= 1920ull * 1080ull;
+  if (frame_ms > kRefreshMs) {
+    c.level = CheckLevel::fail;
+    c.fix = "the kiosk cannot keep up with a 60 Hz display: install the GPU's Vulkan driver (mesa-vulkan-drivers "
+            "for Intel/AMD), or set quality = \"fast\" in mallet.toml";
+  } else if (cpu && large) {
+    c.level = CheckLevel::warn;
+    c.fix = "a software renderer on a large display costs a core: install the GPU's Vulkan driver "
+            "(mesa-vulkan-drivers for Intel/AMD) and check `vulkaninfo --summary`";
+  }
+  return c;
+}
+
+std::optional<std::int64_t> parse_utc(const std::string& iso) {
+  std::tm t{};
+  int y = 0, mo = 0, d = 0, h = 0, mi = 0, s = 0;
+  char z = 0;
+  if (std::sscanf(iso.c_str(), "%4d-%2d-%2dT%2d:%2d:%2d%c", &y, &mo, &d, &h, &mi, &s, &z) != 7 || z != 'Z')
+    return std::nullopt;
+  if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 23 || mi > 59 || s > 60) return std::nullopt;
+  t.tm_year = y - 1900;
+  t.tm_mon = mo - 1;
+  t.tm_mday = d;
+  t.tm_hour = h;
+  t.tm_min = mi;
+  t.tm_sec = s;
+  return static_cast<std::int64_t>(timegm(&t));
+}
+
+DoctorCheck judge_calibration(const std::string& path, const std::optional<Calibration>& cal,
+                              const std::string& problem, std::int64_t now, const std::optional<std::string>& remote) {
+  DoctorCheck c{"calibration", CheckLevel::ok, "", ""};
+  if (!problem.empty()) {
+    c.level = CheckLevel::warn;
+    c.found = problem;
+    c.fix = "the kiosk calibrates again when the remote connects; or Ctrl+Alt+O then R";
+    return c;
+  }
+  if (!cal) {
+    c.level = CheckLevel::warn;
+    c.found = "none yet (" + path + ")";
+    c.fix = "the kiosk asks for one when the Wii Remote connects; or Ctrl+Alt+O then R";
+    return c;
+  }
+  const std::optional<std::int64_t> made = parse_utc(cal->created_utc);
+  const std::int64_t days = made ? (now - *made) / 86400 : -1;
+  c.found = printf_text("%s, made %s (%s), max error %.1f px, remote %s", path.c_str(),
+                        cal->created_utc.empty() ? "at an unknown time" : cal->created_utc.c_str(),
+                        days >= 0 ? (std::to_string(days) + " days ago").c_str() : "age unknown",
+                        cal->max_error_screen_px, cal->remote.empty() ? "unknown" : cal->remote.c_str());
+  if (remote && !cal->remote.empty() && *remote != cal->remote) {
+    c.level = CheckLevel::warn;
+    c.found += "; the remote connected now is " + *remote;
+    c.fix = "the kiosk calibrates again at start-up with this remote; or Ctrl+Alt+O then R";
+  } else if (cal->max_error_screen_px > kCalibrationErrorPx) {
+    c.level = CheckLevel::warn;
+    c.fix = "recalibrate (Ctrl+Alt+O then R), holding the stick still on each target";
+  } else if (days > kOldCalibrationDays) {
+    c.level = CheckLevel::warn;
+    c.fix = "older than 90 days: recalibrate if the remote or the screen has moved (Ctrl+Alt+O then R)";
+  }
+  return c;
+}
+
+}  // namespace mallet

@@ -1,0 +1,50 @@
+#pragma once
+// `mallet doctor`'s findings: one check a line, `ok`, `warn` or `fail`, what was found and
+// how to fix it. The judgements that need no device live here (thresholds an operator can
+// read in one place, tested without a kiosk); the probes that look at devices are the app's.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/calibration_file.hpp"
+
+namespace mallet {
+
+enum class CheckLevel { ok, warn, fail };
+const char* to_string(CheckLevel level);
+
+struct DoctorCheck {
+  std::string name;   //!< short, stable: "vulkan", "audio", "wiimote", ... (the JSON key)
+  CheckLevel level = CheckLevel::ok;
+  std::string found;  //!< what was found, one line
+  std::string fix;    //!< how to fix it; empty when there is nothing to do
+};
+
+//! "fail  audio        no output device ... -> fix: ..." (one line, no newline).
+std::string format_check(const DoctorCheck& check);
+
+//! 0 when no check failed, 1 otherwise (`mallet doctor`'s exit status).
+int doctor_exit_status(const std::vector<DoctorCheck>& checks);
+
+//! Free space where results and state are written: below 100 MiB fails (a study row or a
+//! calibration can no longer be saved for long), below 1 GiB warns.
+DoctorCheck judge_free_space(const std::string& where, std::uint64_t available_bytes);
+
+//! The renderer: a CPU rasteriser (lavapipe) on a large display is a warning, with the frame
+//! time measured at that size; above one 60 Hz refresh (16.7 ms) it fails.
+DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t width, std::uint32_t height,
+                           double frame_ms);
+
+//! The calibration: none (the kiosk asks for one when a remote connects), how old it is,
+//! its largest reprojection error, and whether it was made with the remote connected now.
+//! `problem`: why the file could not be read (empty when it was, or is absent).
+DoctorCheck judge_calibration(const std::string& path, const std::optional<Calibration>& calibration,
+                              const std::string& problem, std::int64_t now_unix_s,
+                              const std::optional<std::string>& connected_remote);
+
+//! Seconds since the Unix epoch of an ISO 8601 UTC time ("2025-05-01T09:30:00Z"); none if
+//! it is not one.
+std::optional<std::int64_t> parse_utc(const std::string& iso);
+
+}  // namespace mallet

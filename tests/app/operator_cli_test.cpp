@@ -1,0 +1,172 @@
+// What an operator meets on the command line: the settings with their drop-ins (and
+// `mallet config show`), errors that point at the line that caused them, a scene choice that
+// is skipped instead of blocking the others, and `mallet doctor` on a machine without a
+// remote or a sound card.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "run_cli.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write(const fs::path& file, const std::string& text) {
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+}
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void no_display() {
+  unsetenv("DISPLAY");
+  unsetenv("WAYLAND_DISPLAY");
+}
+
+TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
+  const fs::path dir = test::scratch_dir();
+  write(dir / "mallet.toml", "[audio]\nvolume = 0.8\n[actuator]\ngain = 0.2\n");
+  write(dir / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
+  const test::CliResult r = test::run_mallet("config show --config " + (dir / "mallet.toml").string() + " 2>/dev/null");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("gain = 0.05  # from " + (dir / "mallet.toml.d" / "50-gain.toml").string() + ":2"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("volume = 0.8  # from " + (dir / "mallet.toml").string() + ":2"), std::string::npos)
+      << r.output;
+  // The output is TOML: Python's own parser reads it back.
+  write(dir / "shown.toml", r.output);
+  const std::string check = "python3 -c \"import tomllib,sys; d=tomllib.load(open(sys.argv[1],'rb'));"
+                            "assert d['actuator']['gain']==0.05 and d['audio']['volume']==0.8\" " +
+                            (dir / "shown.toml").string();
+  EXPECT_EQ(std::system(check.c_str()), 0);
+}
+
+TEST(ConfigShow, ABadDropInIsNamedWithItsLineAndExitsTwoWhileTheRestIsShown) {
+  const fs::path dir = test::scratch_dir();
+  write(dir / "mallet.toml", "[audio]\nvolume = 0.8\n");
+  write(dir / "d" / "10-bad.toml", "[audio]\nvolume = 12\n");
+  write(dir / "d" / "20-good.toml", "[actuator]\ngain = 0.3\n");
+  const test::CliResult r = test::run_mallet("config show --config " + (dir / "mallet.toml").string() +
+                                             " --config-dir " + (dir / "d").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find((dir / "d" / "10-bad.toml").string() + ":2:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("gain = 0.3  # from"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("volume = 0.8  # from"), std::string::npos) << r.output;
+}
+
+TEST(OperatorSettings, EveryCommandReadsTheDropInsAndSaysWhichFilesItUsed) {
+  const fs::path dir = test::scratch_dir();
+  fs::copy(test::config_dir(), dir / "config", fs::copy_options::recursive);
+  // A quieter actuator in a drop-in: `simulate`'s actuator channel must follow it, as the kiosk does.
+  write(dir / "config" / "mallet.toml.d" / "10-gain.toml", "[actuator]\ngain = 0.05\n");
+  const std::string settings = (dir / "config" / "mallet.toml").string();
+  const test::CliResult r = test::run_mallet("scene describe --scene " + test::percussion_scene().string() +
+                                             " > /dev/null; " + std::string(MALLET_TEST_BINARY) +
+                                             " render --config " + settings + " --input " +
+                                             (test::config_dir() / "trajectories" / "demo.csv").string() +
+                                             " --at 0.5 --size 64x36 --out " + (dir / "f.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("mallet render: settings: " + settings + " + 1 drop-in (10-gain.toml)"), std::string::npos)
+      << r.output;
+}
+
+TEST(OperatorSettings, AMissingStartSceneIsReportedAgainstTheSettingsLineThatNamesIt) {
+  no_display();
+  const fs::path dir = test::scratch_dir();
+  write(dir / "mallet.toml", "# the operator's settings\n[scenes]\nstart = \"gone.toml\"\n");
+  const test::CliResult r = test::run_mallet("run --headless --seconds 0.1 --config " + (dir / "mallet.toml").string() +
+                                             " --out " + (dir / "out").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("mallet: " + (dir / "mallet.toml").string() + ":3:9: scenes.start: \"gone.toml\": no such scene file"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(OperatorSettings, ABadSceneChoiceIsSkippedWithItsReasonAndTheKioskRuns) {
+  no_display();
+  const fs::path dir = test::scratch_dir();
+  write(dir / "mallet.toml", "[scenes]\nstart = \"percussion.toml\"\nchoices = [\"percussion.toml\", \"gone.toml\", \"wall.toml\"]\n");
+  const test::CliResult r = test::run_mallet("run --headless --seconds 0.2 --size 64x36 --config " +
+                                             (dir / "mallet.toml").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string log = read(dir / "out" / "log.txt");
+  EXPECT_NE(log.find("warning: scene choice skipped: " + (dir / "mallet.toml").string() + ":3:"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("\"gone.toml\": no such scene file"), std::string::npos) << log;
+  EXPECT_EQ(log.find("wall.toml\": no such"), std::string::npos) << log;
+}
+
+TEST(OperatorSettings, ABrokenModelNamesTheSceneKeyThatChoseIt) {
+  no_display();
+  const fs::path dir = test::scratch_dir();
+  fs::copy(test::config_dir(), dir / "config", fs::copy_options::recursive);
+  fs::copy(test::source_dir() / "models", dir / "models", fs::copy_options::recursive);
+  write(dir / "models" / "metal_bar.glb", "not a glTF file");
+  // The models are found through the data folder: this copy, with its settings and scenes.
+  const std::string cmd = "MALLET_DATA_DIR=" + dir.string() + " " + std::string(MALLET_TEST_BINARY) +
+                          " run --headless --seconds 0.1 --size 64x36 --out " + (dir / "out2").string() + " > " +
+                          (dir / "said.txt").string() + " 2>&1";
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(raw), 2) << read(dir / "said.txt");
+  const std::string said = read(dir / "said.txt");
+  EXPECT_NE(said.find((dir / "config" / "scenes" / "percussion.toml").string() + ":"), std::string::npos) << said;
+  EXPECT_NE(said.find(".bar_model = \"metal_bar.glb\": " + (dir / "models" / "metal_bar.glb").string()),
+            std::string::npos)
+      << said;
+}
+
+TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
+  no_display();
+  const fs::path dir = test::scratch_dir();
+  const test::CliResult r = test::run_mallet("doctor 2>/dev/null");
+  const char* names[] = {"vulkan", "audio", "wiimote", "settings", "models", "soundfont",
+                         "hidraw", "calibration", "disk", "service", "watchdog"};
+  std::istringstream lines(r.output);
+  std::string line;
+  std::vector<std::string> seen;
+  bool failed = false;
+  while (std::getline(lines, line)) {
+    const std::string level = line.substr(0, line.find(' '));
+    ASSERT_TRUE(level == "ok" || level == "warn" || level == "fail") << line;
+    failed |= level == "fail";
+    std::istringstream words(line);
+    std::string l, name;
+    words >> l >> name;
+    seen.push_back(name);
+    if (level != "ok") {
+      EXPECT_NE(line.find(" -> fix: "), std::string::npos) << "a problem comes with its fix: " << line;
+    }
+  }
+  EXPECT_EQ(seen, std::vector<std::string>(std::begin(names), std::end(names))) << r.output;
+  EXPECT_EQ(r.status, failed ? 1 : 0) << r.output;
+  // The shipped settings, scenes and models are all readable.
+  EXPECT_NE(r.output.find("ok    settings"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok    models"), std::string::npos) << r.output;
+  // The JSON says the same, and Python's parser reads it.
+  const test::CliResult j = test::run_mallet("doctor --json > " + (dir / "d.json").string() + " 2>/dev/null; exit $?");
+  EXPECT_EQ(j.status, r.status);
+  const std::string check =
+      "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
+      "assert [x['name'] for x in c]==['vulkan','audio','wiimote','settings','models','soundfont','hidraw',"
+      "'calibration','disk','service','watchdog'];"
+      "assert all(x['status'] in ('ok','warn','fail') for x in c);"
+      "assert d['fail']==sum(x['status']=='fail' for x in c) and d['ok']+d['warn']+d['fail']==len(c)\" " +
+      (dir / "d.json").string();
+  EXPECT_EQ(std::system(check.c_str()), 0);
+}
+
+}  // namespace
+}  // namespace mallet::app
