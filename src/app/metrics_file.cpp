@@ -117,14 +117,15 @@ bool MetricsFile::write(KioskMetrics& metrics, Nanos now) {
   try {
     write_file_atomically(path_, render_prometheus_text(metrics));
   } catch (const std::exception& e) {
-    // Said once, not every interval: a missing folder would otherwise fill the journal.
-    if (failing_ != e.what())
+    // Said once until a write succeeds, not every interval: a missing folder would
+    // otherwise fill the journal.
+    if (!failing_)
       warn_(std::string("[metrics] textfile: ") + e.what() + "; trying again every " + seconds_text(interval_ns_) + " s");
-    failing_ = e.what();
+    failing_ = true;
     return false;
   }
-  if (!failing_.empty()) note_("[metrics] textfile: writing " + path_.string() + " again");
-  failing_.clear();
+  if (failing_) note_("[metrics] textfile: writing " + path_.string() + " again");
+  failing_ = false;
   return true;
 }
 

@@ -83,7 +83,7 @@ class MetricsFile {
   std::uint64_t restarts_ = 0;
   bool attempted_ = false;
   Nanos next_ = 0;
-  std::string failing_;  //!< the last failure said, until a write succeeds
+  bool failing_ = false;  //!< a failure was said; the next success says so
 };
 
 }  // namespace mallet::app
