@@ -1,5 +1,5 @@
 #!/bin/bash
-# Takes docs/screens/{attract,play,operator,calibration,texture,wall}.png from the real kiosk (a debug
+# Takes docs/screens/{attract,play,operator,doctor,calibration,texture,wall}.png from the real kiosk (a debug
 # build) under Xvfb, driving it as a person would: the mouse (no Wii Remote attached, so
 # `input.source = "auto"` falls back to it) and the operator's keys, injected with xdotool.
 #   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
@@ -24,6 +24,9 @@ sleep 0.3
 shot play
 xdotool key ctrl+alt+o; sleep 1
 shot operator
+xdotool key d; sleep 4                     # the doctor's checks on the page (D), then back
+shot doctor
+xdotool key d; sleep 0.5
 xdotool key r; sleep 0.5                   # recalibrate: with the mouse as the dot
 for t in "128 72" "640 72" "1152 72"; do
   xdotool mousemove $t; sleep 0.1; xdotool mousemove_relative 1 0; sleep 2.2

@@ -529,7 +529,9 @@ void WindowKiosk::run_doctor_checks(double frame_ms) {
   doctor_.clear();
   int failing = 0;
   for (const DoctorCheck& c : checks) {
-    doctor_.push_back(format_check(c));
+    // On the page what was found; in the journal the whole line with its fix.
+    doctor_.push_back(format_check({c.name, c.level, c.found, ""}));
+    std::fprintf(stderr, "<5>doctor: %s\n", format_check(c).c_str());
     failing += c.level == CheckLevel::fail;
   }
   std::fprintf(stderr, "<5>operator: doctor, %d check(s) failing\n", failing);
@@ -746,6 +748,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
     lines.resize(1);
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
+    lines.emplace_back("Each check with its fix: journalctl -u mallet -g doctor");
     lines.emplace_back("D back to the page    Esc close");
   }
   const float pw = std::min(w - 2 * px, px * 40);
@@ -754,6 +757,10 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   std::vector<std::string> page;
   const auto fits = static_cast<std::size_t>(std::max(20.0f, (pw - 2 * px) / (px * 0.5f)));
   for (std::string text : lines) {
+    if (!doctor_.empty()) {  // a check a line, cut to the page; the whole line is in the log
+      page.push_back(text.size() > fits ? text.substr(0, fits - 3) + "..." : text);
+      continue;
+    }
     std::string indent;
     while (text.size() > fits) {
       std::size_t cut = std::string::npos;
