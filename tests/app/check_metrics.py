@@ -1,12 +1,14 @@
 #!/usr/bin/python3
-"""Checks a headless run's metrics file against its log.txt, with an independent parser.
+"""Checks a kiosk run's metrics file against its log, with an independent parser.
 
-usage: check_metrics.py METRICS_FILE LOG_TXT
+usage: check_metrics.py METRICS_FILE LOG
 
+LOG: a headless run's log.txt, or a window kiosk's stderr (journald priority prefixes).
 The file must parse with prometheus_client's own parser (Debian's python3-prometheus-client),
 hold every family the kiosk promises with its type, and count what the log says: the strikes
-summed over their labels equal the log's "strike " lines, and mallet_frames_total equals the
-frames of its "ran ..." line. Prints what it compared; exits 1 on the first difference.
+summed over their labels equal the log's strike lines, and mallet_frames_total equals the
+frames of its last line ("ran ... N frames, M strikes" headless; "stopping after N frames
+and M strikes" in a window). Prints what it compared; exits 1 on the first difference.
 """
 import re
 import sys
@@ -65,30 +67,32 @@ def main():
 
     with open(log_file, encoding="utf-8") as f:
         log = f.read().splitlines()
+    log = [re.sub(r"^<\d>", "", line) for line in log]  # the window kiosk's priorities
     log_strikes = sum(1 for line in log if line.startswith("strike "))
     log_by_label = {}
     for line in log:
         m = re.match(r"strike t=\S+ bar=\d+ (\S+) note=.* material=(\S+)$", line)
         if m:
             log_by_label[m.groups()] = log_by_label.get(m.groups(), 0) + 1
-    ran = [re.search(r"^ran [0-9.]+ s: (\d+) frames, (\d+) strikes", line) for line in log]
-    ran = [m for m in ran if m]
+    ran = [re.search(r"^(?:ran [0-9.]+ s: (\d+) frames, (\d+) strikes"
+                     r"|mallet run: stopping after (\d+) frames and (\d+) strikes)", line) for line in log]
+    ran = [[g for g in m.groups() if g is not None] for m in ran if m]
     if len(ran) != 1:
-        fail("%s has no single \"ran ... N frames\" line" % log_file)
-    log_frames, log_ran_strikes = int(ran[0].group(1)), int(ran[0].group(2))
+        fail("%s has no single \"ran ... N frames\" or \"stopping after N frames\" line" % log_file)
+    log_frames, log_ran_strikes = int(ran[0][0]), int(ran[0][1])
 
     print("metrics: %d families; strikes %d over %s; frames %d (histogram count %d); states %s"
           % (len(families), strikes_total, by_label, frames_total, frame_count, states))
-    print("log.txt: %d strike lines %s; ran: %d frames, %d strikes"
+    print("log: %d strike lines %s; last line: %d frames, %d strikes"
           % (log_strikes, log_by_label, log_frames, log_ran_strikes))
     if strikes_total != log_strikes or strikes_total != log_ran_strikes:
-        fail("mallet_strikes_total sums to %d, log.txt has %d strike lines and says %d strikes"
+        fail("mallet_strikes_total sums to %d, the log has %d strike lines and says %d strikes"
              % (strikes_total, log_strikes, log_ran_strikes))
     for labels, n in log_by_label.items():
         if by_label.get(labels) != n:
-            fail("mallet_strikes_total%s = %s, log.txt has %d" % (labels, by_label.get(labels), n))
+            fail("mallet_strikes_total%s = %s, the log has %d" % (labels, by_label.get(labels), n))
     if frames_total != log_frames:
-        fail("mallet_frames_total = %d, log.txt ran %d frames" % (frames_total, log_frames))
+        fail("mallet_frames_total = %d, the log says %d frames" % (frames_total, log_frames))
     if frame_count != frames_total or inf_bucket != [frames_total]:
         fail("mallet_frame_seconds counts %d (+Inf %s), frames %d" % (frame_count, inf_bucket, frames_total))
     if sorted(states) != ["attract", "calibration", "operator", "play"] or sum(states.values()) != 1:

@@ -1,6 +1,7 @@
-// [metrics] textfile: the headless run's file parses with Prometheus' own Python parser and
-// counts what its log.txt says; the writer survives a folder that is not there; restarts
-// are counted in the state folder; strikes are tallied from several threads without locks.
+// [metrics] textfile: the headless run's and the window kiosk's files parse with Prometheus'
+// own Python parser and count what their logs say; the writer survives a folder that is not
+// there; restarts are counted in the state folder; strikes are tallied from several threads
+// without locks.
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -70,6 +71,44 @@ TEST(MetricsFile, TheHeadlessRunsFileParsesAndCountsTheStrikesAndFramesOfItsLog)
   EXPECT_NE(text.find("mallet_state{state=\"attract\"} 1\n"), std::string::npos) << text;
   EXPECT_NE(text.find("mallet_restarts_total 0\n"), std::string::npos) << "the headless run is not a start:\n" << text;
   EXPECT_NE(text.find("mallet_uptime_seconds 4\n"), std::string::npos) << "the simulated clock:\n" << text;
+}
+
+//! The test's LD_PRELOAD without the validation layer (GLFW looks the loader up by name; see
+//! tests/CMakeLists.txt), for a child that opens a window.
+std::string child_preload() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  std::string kept, entry;
+  std::stringstream in(preload ? preload : "");
+  while (std::getline(in, entry, ':'))
+    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
+  return "LD_PRELOAD='" + kept + "' ";
+}
+
+TEST(MetricsFile, TheWindowKiosksFileCountsTheFramesAndStrikesItsLogSays) {
+  ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";
+  const fs::path dir = test::scratch_dir();
+  const fs::path prom = dir / "mallet.prom";
+  {
+    std::ofstream(dir / "mallet.toml") << "[metrics]\ntextfile = \"mallet.prom\"\ninterval_s = 1\n"
+                                       << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
+  }
+  // The ghost plays from the start (--idle-after 1); the run's length is the kiosk's own
+  // --quit-after, nothing here is timed.
+  const std::string cmd = child_preload() + "MALLET_STATE_DIR='" + (dir / "state").string() +
+                          "' xvfb-run -a -s '-screen 0 1024x768x24' " + MALLET_TEST_BINARY +
+                          " run --windowed --size 320x180 --idle-after 1 --quit-after 3 --device llvmpipe --config " +
+                          (dir / "mallet.toml").string() + " > " + (dir / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "log.txt");
+  ASSERT_TRUE(fs::exists(prom)) << "relative to the settings file's folder\n" << read_text(dir / "log.txt");
+  const test::CliResult check = run_command(python() + " " + (test::source_dir() / "tests/app/check_metrics.py").string() +
+                                            " " + prom.string() + " " + (dir / "log.txt").string());
+  std::printf("%s", check.output.c_str());
+  EXPECT_EQ(check.status, 0) << check.output << "\n" << read_text(dir / "log.txt");
+  // The first start of a kiosk with metrics: counted in its state folder, none before it.
+  EXPECT_EQ(read_text(dir / "state" / "kiosk-starts"), "1\n");
+  const std::string text = read_text(prom);
+  EXPECT_NE(text.find("mallet_restarts_total 0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("mallet_remote_connected 0\n"), std::string::npos) << "the mouse is the input:\n" << text;
 }
 
 TEST(MetricsFile, AFailedWriteIsOneLineAndIsTriedAgainAtTheNextInterval) {
