@@ -376,8 +376,9 @@ DoctorCheck check_watchdog() {
   const Ran last = run(std::string("journalctl --no-pager -q -o short-iso -n 1 -u ") + kUnit + " -g 'Watchdog timeout'");
   if (last.status != 0 || last.out.empty())
     return {"watchdog", CheckLevel::ok, "the watchdog has not stopped the kiosk (journal)", ""};
-  const Ran why = run(std::string("journalctl --no-pager -q -o cat -n 1 -u ") + kUnit + " -g 'heartbeat|stalled'");
-  return {"watchdog", CheckLevel::warn, "last stop: " + last.out + (why.out.empty() ? "" : "; last heartbeat: " + why.out),
+  // The kiosk says which of input, audio or render stalled when it stops feeding the watchdog.
+  const Ran why = run(std::string("journalctl --no-pager -q -o cat -n 1 -u ") + kUnit + " -g 'watchdog not fed'");
+  return {"watchdog", CheckLevel::warn, "last stop: " + last.out + (why.out.empty() ? "" : "; the kiosk said: " + why.out),
           "the kiosk stopped feeding the watchdog (input, audio or render stalled): `journalctl -u mallet` around "
           "that time"};
 }

@@ -161,6 +161,7 @@ class WindowKiosk {
   // Liveness: the watchdog is fed only while input, audio and render all make progress.
   SystemdNotifier notifier_ = SystemdNotifier::from_environment();
   Nanos next_watchdog_ = 0, next_log_ = 0;
+  bool starving_ = false;  //!< the watchdog was not fed at the last beat
   std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
   std::uint64_t callbacks_at_beat_ = 0;
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
@@ -682,7 +683,14 @@ void WindowKiosk::heartbeat(Nanos now) {
   // stand for input; the reading thread never blocks for long by design.
   const bool input_alive = polls_ > polls_at_beat_;
   if (beat_due) {
-    if (audio_alive && render_alive && input_alive) notifier_.watchdog();
+    const bool alive = audio_alive && render_alive && input_alive;
+    if (alive) notifier_.watchdog();
+    // Why the watchdog goes hungry, said once per stall: systemd's own line only says that it
+    // fired (`mallet doctor` shows this line as the watchdog's last reason).
+    if (!alive && !starving_)
+      std::fprintf(stderr, "<4>watchdog not fed: %s%s%s stalled\n", render_alive ? "" : "render ",
+                   audio_alive ? "" : "audio ", input_alive ? "" : "input");
+    starving_ = !alive;
     next_watchdog_ = now + interval;
   }
   if (log_due) {
