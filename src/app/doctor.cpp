@@ -91,12 +91,7 @@ VkExtent2D display_size(std::string& said) {
 DoctorCheck check_vulkan(const DoctorOptions& o, const AppConfig& config, const Scene& scene) {
   try {
     std::string said;
-    HeadlessOptions ho;
-    ho.size = display_size(said);
-    ho.auto_samples = config.render.msaa == "auto";
-    if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
-    ho.settings.shadow = config.render.shadow;
-    ho.device = o.device.empty() ? config.render.device : o.device;
+    const HeadlessOptions ho = kiosk_headless_options(config.render, display_size(said), o.device);
     HeadlessRenderer renderer(scene, ho);
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(renderer.context().physical_device(), &props);

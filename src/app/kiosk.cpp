@@ -69,12 +69,7 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     count_strike(scene, s.impact, metrics.strikes);
   };
 
-  HeadlessOptions ho;
-  ho.size = parse_size(o.size, "--size");
-  ho.auto_samples = config.render.msaa == "auto";
-  if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(config.render.msaa));
-  ho.settings.shadow = config.render.shadow;
-  ho.device = o.device.empty() ? config.render.device : o.device;
+  const HeadlessOptions ho = kiosk_headless_options(config.render, parse_size(o.size, "--size"), o.device);
   HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
   const render::FontAtlas font(render::FontAtlas::default_font(), static_cast<float>(ho.size.height) / 24.0f);

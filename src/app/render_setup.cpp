@@ -83,6 +83,16 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
   overlay = std::make_unique<render::Overlay>(*font);
 }
 
+HeadlessOptions kiosk_headless_options(const RenderConfig& r, VkExtent2D size, const std::string& device) {
+  HeadlessOptions ho;
+  ho.size = size;
+  ho.auto_samples = r.msaa == "auto";
+  if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  ho.settings.shadow = r.shadow;
+  ho.device = device.empty() ? r.device : device;
+  return ho;
+}
+
 HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& options) {
   render::ContextOptions co;
   co.validation = options.validation;

@@ -36,6 +36,10 @@ struct HeadlessOptions {
   std::filesystem::path cache_dir = render::PipelineCache::default_dir();
 };
 
+//! The kiosk's offscreen renderer as its settings choose it ([render] msaa, shadow, device;
+//! `device` overrides the device when not empty): the headless run and `mallet doctor`.
+HeadlessOptions kiosk_headless_options(const RenderConfig& r, VkExtent2D size, const std::string& device);
+
 class HeadlessRenderer {
  public:
   HeadlessRenderer(const Scene& scene, const HeadlessOptions& options);
