@@ -1,9 +1,9 @@
 #include <cstdio>
 
-#include "app/settings_source.hpp"
 #include "app/analyze.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
+#include "app/settings_source.hpp"
 #include "app/simulate.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"

@@ -8,10 +8,10 @@
 #include <string>
 #include <thread>
 
-#include "app/settings_source.hpp"
 #include "app/audio_setup.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
+#include "app/settings_source.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"

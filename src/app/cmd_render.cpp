@@ -2,11 +2,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/settings_source.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/render_setup.hpp"
 #include "app/replay.hpp"
+#include "app/settings_source.hpp"
 #include "app/simulate.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"

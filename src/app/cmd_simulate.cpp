@@ -2,6 +2,7 @@
 
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
+#include "app/settings_source.hpp"
 #include "app/simulate.hpp"
 
 namespace mallet::app {
@@ -40,7 +41,8 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--scene", options->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--input", options->input, "Trajectory CSV (t,x,y)")->required();
   cmd->add_option("--out", options->out_dir, "Output directory (created if needed)")->required();
-  cmd->add_option("--config", options->config, "Settings file (default: built-in, same as config/mallet.toml)");
+  options->config = default_settings();  // the operator's, as the kiosk reads them
+  add_settings_options(*cmd, options->config, options->config_dir);
   auto space = std::make_shared<std::string>("screen");
   cmd->add_option("--input-space", *space, "screen: x,y normalised 0..1; world: sphere centre in metres")
       ->check(CLI::IsMember({"screen", "world"}))

@@ -8,9 +8,9 @@
 #include <string>
 #include <variant>
 
+#include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/settings_source.hpp"
-#include "app/commands.hpp"
 #include "app/wiimote_monitor.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/file_error.hpp"

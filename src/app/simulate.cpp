@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/audio_setup.hpp"
+#include "app/settings_source.hpp"
 #include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -90,8 +91,7 @@ void check_stream(std::ofstream& out, const fs::path& path) {
 
 SimulateResult run_simulate(const SimulateOptions& options) {
   // --- everything that can be wrong with the input is found before anything is written
-  const AppConfig config =
-      options.config ? config::load_app_config(*options.config) : AppConfig{};
+  const AppConfig config = command_settings(options.config, options.config_dir, "simulate");
   SimulateResult result;
   result.scene = config::load_scene(options.scene);
   const Scene& scene = result.scene;

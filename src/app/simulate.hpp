@@ -27,6 +27,7 @@ struct SimulateOptions {
   std::filesystem::path input;
   std::filesystem::path out_dir;
   std::optional<std::filesystem::path> config;  //!< mallet.toml; built-in defaults if absent
+  std::optional<std::filesystem::path> config_dir;  //!< its drop-ins (none: FILE.d)
   InputSpace input_space = InputSpace::screen;
   std::optional<int> sample_rate_hz;             //!< overrides [audio].sample_rate_hz
   double trace_rate_hz = 1000.0;

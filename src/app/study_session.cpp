@@ -1,4 +1,3 @@
-#include "app/settings_source.hpp"
 #include "app/study_session.hpp"
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <set>
 
 #include "app/headless_loop.hpp"
+#include "app/settings_source.hpp"
 #include "app/study_stimuli.hpp"
 #include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"

@@ -4,12 +4,15 @@
 // remote or a sound card.
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
+#include "audio/wav_file.hpp"
 #include "run_cli.hpp"
 #include "test_paths.hpp"
 
@@ -81,6 +84,39 @@ TEST(OperatorSettings, EveryCommandReadsTheDropInsAndSaysWhichFilesItUsed) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("mallet render: settings: " + settings + " + 1 drop-in (10-gain.toml)"), std::string::npos)
       << r.output;
+}
+
+//! The actuator channel's peak of `mallet simulate` on the demo tune, run with the data folder
+//! `data` and no --config (the operator's settings, as the kiosk finds them).
+double simulated_actuator_peak(const fs::path& data, const fs::path& out) {
+  const std::string cmd = "MALLET_DATA_DIR=" + data.string() + " " + std::string(MALLET_TEST_BINARY) +
+                          " simulate --input " + (test::config_dir() / "trajectories" / "demo.csv").string() +
+                          " --out " + out.string() + " > " + out.string() + ".said 2>&1";
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(raw), 0) << read(out.string() + ".said");
+  const audio::WavData wav = audio::read_wav(out / "audio.wav");
+  double peak = 0;
+  for (std::size_t i = 1; i < wav.samples.size(); i += static_cast<std::size_t>(wav.channels))
+    peak = std::max(peak, static_cast<double>(std::abs(wav.samples[i])));  // channel 1: the actuator
+  return peak;
+}
+
+TEST(OperatorSettings, SimulateUsesTheOperatorsSettingsAsTheKioskDoes) {
+  // An operator turned the actuator down to 0.05 (from 0.2) in a drop-in; simulate used to
+  // ignore it and play 4x louder than the kiosk.
+  const fs::path dir = test::scratch_dir();
+  fs::create_directories(dir / "data");
+  fs::copy(test::config_dir(), dir / "data" / "config", fs::copy_options::recursive);
+  const double shipped = simulated_actuator_peak(dir / "data", dir / "shipped");
+  write(dir / "data" / "config" / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
+  const double turned_down = simulated_actuator_peak(dir / "data", dir / "turned-down");
+  ASSERT_GT(shipped, 0.01);
+  EXPECT_NEAR(turned_down / shipped, 0.25, 1e-3);
+  EXPECT_NE(read(dir.string() + "/turned-down.said").find("mallet simulate: settings: " +
+                                                           (dir / "data" / "config" / "mallet.toml").string() +
+                                                           " + 1 drop-in (50-gain.toml)"),
+            std::string::npos)
+      << read(dir.string() + "/turned-down.said");
 }
 
 TEST(OperatorSettings, AMissingStartSceneIsReportedAgainstTheSettingsLineThatNamesIt) {
