@@ -26,6 +26,10 @@ echo "$*" >> "$FAKE_LOG"
 case "$FAKE_KIOSK" in
 exit:*) exit "${FAKE_KIOSK#exit:}" ;;
 signal:*) kill -s "${FAKE_KIOSK#signal:}" $$ ;;
+term)  # wait for SIGTERM, and stop cleanly as the real kiosk does
+  trap 'echo stopped >> "$FAKE_LOG"; exit 0' TERM
+  echo waiting > "$FAKE_LOG.waiting"
+  while :; do sleep 0.05; done ;;
 reload)  # wait for SIGHUP, as the real kiosk reloads its settings
   trap 'echo reloaded >> "$FAKE_LOG"; exit 7' HUP
   echo waiting > "$FAKE_LOG.waiting"
@@ -69,6 +73,20 @@ FAKE_CAGE=broken FAKE_KIOSK=exit:0 "$wrapper" 2>"$scratch/stderr" || status=$?
 grep -q "cage ended" "$scratch/stderr" || fail "no line says cage ended first: $(cat "$scratch/stderr")"
 [[ -s $FAKE_LOG ]] && fail "the kiosk ran although cage did not start"
 
+# systemctl stop: SIGTERM to mallet-kiosk alone (KillMode=mixed) reaches the kiosk, which
+# stops cleanly, and mallet-kiosk exits with its 0.
+: >"$FAKE_LOG"
+rm -f "$FAKE_LOG.waiting"
+FAKE_KIOSK=term "$wrapper" 2>"$scratch/stderr" &
+main=$!
+for _ in $(seq 200); do [[ -f $FAKE_LOG.waiting ]] && break; sleep 0.05; done
+[[ -f $FAKE_LOG.waiting ]] || fail "the stopping stand-in never started"
+kill -TERM "$main"
+status=0
+wait "$main" || status=$?
+[[ $status == 0 ]] || fail "after SIGTERM mallet-kiosk exits $status, expected the kiosk's clean 0"
+grep -qx stopped "$FAKE_LOG" || fail "the kiosk did not get SIGTERM: $(cat "$FAKE_LOG")"
+
 # systemctl reload: SIGHUP reaches the kiosk (not cage, not the wrapper).
 : >"$FAKE_LOG"
 rm -f "$FAKE_LOG.waiting"
@@ -88,4 +106,4 @@ if ((failures > 0)); then
   echo "package: $failures problem(s) with mallet-kiosk" >&2
   exit 1
 fi
-echo "package: mallet-kiosk passes the kiosk's exit status and SIGHUP through cage"
+echo "package: mallet-kiosk passes the kiosk's exit status, SIGTERM and SIGHUP through cage"
