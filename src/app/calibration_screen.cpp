@@ -96,6 +96,19 @@ void CalibrationScreen::accept() {
   }
 }
 
+std::string CalibrationScreen::status_line() const {
+  if (outcome_ != Outcome::measuring) return message_;
+  // The target on the screen now, by its place in reading order: a round that asks one
+  // target again (the fifth, say) must not read as the ninth, as a count of the measured
+  // ones would.
+  const std::size_t count = session_.targets().size();
+  const int target = session_.current_target().value_or(static_cast<int>(count) - 1);
+  char status[200];
+  std::snprintf(status, sizeof status, "Target %d of %zu, round %d   %s", target + 1, count, session_.round() + 1,
+                dot_seen_ ? "light seen" : "no light seen");
+  return status;
+}
+
 void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
   const float px = o.atlas().pixel_height();
   const std::array<float, 4> white{1.0f, 1.0f, 1.0f, 1.0f}, dim{1.0f, 1.0f, 1.0f, 0.35f},
@@ -135,15 +148,7 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
     }
   }
 
-  char status[200];
-  int measured = 0;
-  for (int i = 0; i < static_cast<int>(targets.size()); ++i) measured += session_.measured(i).has_value();
-  if (outcome_ == Outcome::measuring)
-    std::snprintf(status, sizeof status, "Target %d of %zu   round %d   %s", std::min(measured + 1, static_cast<int>(targets.size())),
-                  targets.size(), session_.round() + 1, dot_seen_ ? "light seen" : "no light seen");
-  else
-    std::snprintf(status, sizeof status, "%s", message_.c_str());
-  o.text(w / 2, h * 0.70f, status, outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
+  o.text(w / 2, h * 0.70f, status_line(), outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
          render::TextAlign::center);
   if (outcome_ == Outcome::measuring && !last_round_.empty())
     o.text(w / 2, h * 0.70f + px * 1.5f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);

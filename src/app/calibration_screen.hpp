@@ -60,6 +60,10 @@ class CalibrationScreen {
   const std::string& message() const { return message_; }
   const CalibrationSession& session() const { return session_; }
 
+  //! The line under the targets: which target is being measured and in which round, and
+  //! whether the dot is seen; once over, message().
+  std::string status_line() const;
+
   //! The screen's pictures over a width×height window.
   void draw(render::Overlay& overlay, float width, float height) const;
 

@@ -42,6 +42,8 @@ std::string validate(const CalibrationSessionConfig& c) {
   if (!px_ok(c.max_std_dev_camera_px)) return "max_std_dev_camera_px must be a finite number > 0";
   if (!seconds_ok(c.max_gap_s)) return "max_gap_s must be a finite number of seconds > 0";
   if (c.min_dwell_samples < 1) return "min_dwell_samples must be >= 1";
+  if (!(std::isfinite(c.settle_s) && c.settle_s >= 0 && from_seconds(c.settle_s).has_value()))
+    return "settle_s must be a finite number of seconds >= 0";
   if (!(std::isfinite(c.min_separation_camera_px) && c.min_separation_camera_px >= 0))
     return "min_separation_camera_px must be a finite number >= 0";
   if (!px_ok(c.max_error_screen_px)) return "max_error_screen_px must be a finite number > 0";
@@ -66,6 +68,7 @@ const char* to_string(CalibrationStep step) {
     case CalibrationStep::dwell_reset: return "dwell_reset";
     case CalibrationStep::unstable: return "unstable";
     case CalibrationStep::still_on_last: return "still_on_last";
+    case CalibrationStep::settling: return "settling";
     case CalibrationStep::ignored: return "ignored";
     case CalibrationStep::target_measured: return "target_measured";
     case CalibrationStep::round_rejected: return "round_rejected";
@@ -86,6 +89,7 @@ CalibrationSession::CalibrationSession(CalibrationSessionConfig config, std::vec
     throw std::invalid_argument("calibration targets must be finite");
   dwell_ns_ = *from_seconds(config_.dwell_s);
   max_gap_ns_ = *from_seconds(config_.max_gap_s);
+  settle_ns_ = *from_seconds(config_.settle_s);
   measured_.assign(targets_.size(), std::nullopt);
   queue_.resize(targets_.size());
   std::iota(queue_.begin(), queue_.end(), 0);
@@ -118,9 +122,20 @@ CalibrationStep CalibrationSession::feed(Nanos t_ns, Vec2 p) {
   }
   ++counters_.samples;
   last_sample_ns_ = t_ns;
+  // The grace before each target: where the dot rested when the target was shown is never
+  // measured, nor is the way from there to the target.
+  if (rest_unknown_) {
+    rest_unknown_ = false;
+    must_leave_ = p;
+  }
   if (must_leave_) {
     if (distance(p, *must_leave_) <= config_.min_separation_camera_px) return CalibrationStep::still_on_last;
     must_leave_.reset();
+    settle_end_ns_ = t_ns + settle_ns_;
+  }
+  if (settle_end_ns_) {
+    if (t_ns < *settle_end_ns_) return CalibrationStep::settling;
+    settle_end_ns_.reset();
   }
   CalibrationStep step = CalibrationStep::dwelling;
   if (!window_.empty()) {

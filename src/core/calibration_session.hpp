@@ -6,6 +6,13 @@
 // Rules:
 //  * Targets: a columns × rows grid (default 3 × 3) in normalised screen coordinates, inset by
 //    the margins, in reading order; or any ≥ 4 given points.
+//  * Grace before each target: when a target is shown (the session's first sample, or the
+//    sample that measured the previous target) the dot is where it rested, not on the new
+//    target. Its samples count for nothing (still_on_last) until the dot has left that point
+//    by more than min_separation_camera_px, and then for settle_s more (settling): the stick
+//    travels to the target and steadies there before the dwell starts. So a stick lying
+//    still when calibration starts never measures target 1 where it lies, and the travel
+//    to a target is never part of its window.
 //  * Dwell: the samples of the current target since the last reset form the dwell window.
 //    A sample farther than dwell_radius_camera_px from the window's mean (the dot moved or
 //    jumped) starts a new window at that sample; so does a gap longer than max_gap_s (the
@@ -14,9 +21,8 @@
 //    distance of its samples from their mean (the 2-D standard deviation) is above
 //    max_std_dev_camera_px, the window is rejected as unstable and dwelling starts again;
 //    otherwise the target's measured point is the window's mean and the next target comes.
-//  * After a target is measured, samples within min_separation_camera_px of its point are
-//    ignored until the dot has left that point once: a visitor still resting on the old
-//    target does not measure the new one.
+//  * After a target is measured, its point is where the dot rests for the next target (the
+//    grace above): a visitor still resting on the old target does not measure the new one.
 //  * Samples that are not finite, or not after the previous sample, are ignored and counted.
 //  * End of a round: fit all measured points. Accepted when the largest per-point
 //    reprojection error (screen px, full fit) is ≤ max_error_screen_px. Otherwise the
@@ -54,7 +60,14 @@ struct CalibrationSessionConfig {
   double max_std_dev_camera_px = 2.5;    //!< a steadier window than this is required
   double max_gap_s = 0.15;               //!< a longer silence restarts the dwell (as IrTracker's lost_after_ms)
   int min_dwell_samples = 10;
-  double min_separation_camera_px = 30.0;  //!< the dot must leave the last measured point by this much
+  //! The dot must leave where it rested when the target was shown (at first: its first
+  //! sample; then: the last measured point) by this much before the target can be measured.
+  double min_separation_camera_px = 30.0;
+  //! The grace period after the dot has left that point, before the dwell starts: the time to
+  //! carry the stick to the target and steady it. A choice, not a measurement; with dwell_s
+  //! a target takes ≥ 1.7 s from leaving the previous one, and ≥ 0 is allowed (0 = only the
+  //! leaving is required).
+  double settle_s = 0.5;
   //! Accept when the max reprojection error is ≤ this: ≈ 0.5 % of a 1920 px screen, well under
   //! the mallet head; ±1 camera px on each point gives 2–4 px (tests/core/homography_test).
   double max_error_screen_px = 10.0;
@@ -76,7 +89,8 @@ enum class CalibrationStep {
   dwelling,        //!< counted towards the current target's dwell
   dwell_reset,     //!< the dot moved, jumped or was lost for a while: a new dwell starts
   unstable,        //!< a full window was too unsteady: rejected, a new dwell starts
-  still_on_last,   //!< ignored: the dot has not left the previous target's point yet
+  still_on_last,   //!< not counted: the dot has not left where it rested when the target was shown
+  settling,        //!< not counted: the dot left less than settle_s ago (travelling, steadying)
   ignored,         //!< not finite, not after the previous sample, or the session is over
   target_measured, //!< the current target got its point; the next one is current
   round_rejected,  //!< the fit was not good enough (or refused): some targets come again
@@ -145,7 +159,10 @@ class CalibrationSession {
   double sum_x_ = 0, sum_y_ = 0;
   Nanos window_first_ns_ = 0, window_last_ns_ = 0;
   std::optional<Nanos> last_sample_ns_;
-  std::optional<Vec2> must_leave_;
+  bool rest_unknown_ = true;         //!< no sample yet: the first one is where the dot rests
+  std::optional<Vec2> must_leave_;   //!< where the dot rested when the current target was shown
+  std::optional<Nanos> settle_end_ns_;  //!< the dwell may start from here (the dot has left)
+  Nanos settle_ns_ = 0;
   std::optional<HomographyFit> last_fit_;
   std::vector<double> leave_one_out_px_;
   std::vector<double> without_px_;

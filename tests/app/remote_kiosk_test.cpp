@@ -87,8 +87,10 @@ TEST(RemoteKiosk, TheCalibrationScreenGoesFromIrReportsToASavedFile) {
   const auto dir = scratch("flow");
   const auto file = dir / "state" / "calibration.toml";  // the folder is made on saving
   CalibrationScreen screen(session_config(), file, "00:1f:32:aa:bb:cc");
-  // The visitor (or operator) holds the stick on each target for 1.5 s, at 100 reports/s.
-  for (const Vec2 target : screen.session().targets()) rig.hold(camera_of(target), 150);
+  // The stick lies still somewhere, then the visitor (or operator) holds it on each target
+  // for 2 s (the grace, then the dwell), at 100 reports/s.
+  rig.hold({20, 20}, 10);
+  for (const Vec2 target : screen.session().targets()) rig.hold(camera_of(target), 200);
   rig.play_script();
   for (const RemoteSample& s : rig.pointer.take()) {
     EXPECT_FALSE(s.screen);  // no calibration yet: no screen position, no strikes
@@ -117,7 +119,7 @@ TEST(RemoteKiosk, TheScreenFirstPicksTheSensitivityThatShowsOneCleanDot) {
   // The visitor holds the light up: one clean dot of size 3 whatever the preset (a fake
   // camera), then the targets.
   rig.hold({500, 380}, 150);
-  for (const Vec2 target : screen.session().targets()) rig.hold(camera_of(target), 150);
+  for (const Vec2 target : screen.session().targets()) rig.hold(camera_of(target), 200);
   std::vector<std::string> requested;
   for (int i = 0; i < 1'000'000 && !rig.remote->script.empty(); ++i) {
     rig.device.step();
@@ -172,8 +174,9 @@ TEST(RemoteKiosk, WithTwoDotsNoSensitivityIsCleanAndTheConfiguredOneIsPutBack) {
   // The targets, with the mouse's kind of input (no device): what is kept has no sensitivity
   // of its own, so the configured one stays the kiosk's after a restart.
   Nanos t = 100 * kNanosPerSecond;
+  screen.feed(t, {20, 20});  // where the dot rests when the targets begin
   for (const Vec2 target : screen.session().targets())
-    for (int i = 0; i < 150; ++i) screen.feed(t += 10'000'000, camera_of(target));
+    for (int i = 0; i < 200; ++i) screen.feed(t += 10'000'000, camera_of(target));
   ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
   EXPECT_EQ(screen.result()->ir_sensitivity, "");
 }
@@ -185,7 +188,8 @@ TEST(RemoteKiosk, ThePreviousCalibrationStaysUntilTheNewOneIsAccepted) {
   std::ofstream(file) << "previous";
   CalibrationScreen screen(session_config(), file, "00:1f:32:aa:bb:cc");
   const std::vector<Vec2>& targets = screen.session().targets();
-  for (std::size_t i = 0; i < 4; ++i) rig.hold(camera_of(targets[i]), 150);  // abandoned after 4 of 9
+  rig.hold({20, 20}, 10);
+  for (std::size_t i = 0; i < 4; ++i) rig.hold(camera_of(targets[i]), 200);  // abandoned after 4 of 9
   rig.play_script();
   for (const RemoteSample& s : rig.pointer.take())
     if (s.camera_px) screen.feed(s.t_ns, *s.camera_px);
@@ -199,8 +203,9 @@ TEST(RemoteKiosk, AnUnsavableCalibrationFailsAndSaysWhy) {
   std::ofstream(dir / "not-a-folder") << "x";
   CalibrationScreen screen(session_config(), dir / "not-a-folder" / "calibration.toml", "r");
   Nanos t = 0;
+  screen.feed(t += 10'000'000, {20, 20});  // where the dot rests when the targets begin
   for (const Vec2 target : screen.session().targets())
-    for (int i = 0; i < 150; ++i) screen.feed(t += 10'000'000, camera_of(target));
+    for (int i = 0; i < 200; ++i) screen.feed(t += 10'000'000, camera_of(target));
   EXPECT_EQ(screen.outcome(), CalibrationScreen::Outcome::failed);
   EXPECT_FALSE(screen.result());
   EXPECT_NE(screen.message().find("Calibration not saved: "), std::string::npos) << screen.message();
@@ -209,10 +214,47 @@ TEST(RemoteKiosk, AnUnsavableCalibrationFailsAndSaysWhy) {
 TEST(RemoteKiosk, TheMouseStandsInForTheDotAndSavesNothing) {
   CalibrationScreen screen(session_config(), std::nullopt, "mouse");
   Nanos t = 0;
+  screen.feed(t += 16'666'667, mouse_as_camera_px({0.5, 0.97}));  // where the pointer rests after R
   for (const Vec2 target : screen.session().targets())
-    for (int i = 0; i < 80; ++i) screen.feed(t += 16'666'667, mouse_as_camera_px(target));  // 60 Hz frames
+    for (int i = 0; i < 120; ++i) screen.feed(t += 16'666'667, mouse_as_camera_px(target));  // 60 Hz frames
   ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
   EXPECT_NE(screen.message().find("mouse: not saved"), std::string::npos) << screen.message();
+}
+
+//! Carries the stick in from the sensor's corner, then holds its dot on `camera` (100
+//! reports/s, at most 4 s) until the screen moves on to another target or ends.
+CalibrationStep carry_and_hold(CalibrationScreen& screen, Nanos& t, Vec2 camera) {
+  CalibrationStep step = screen.feed(t += 10'000'000, {20, 20});
+  for (int i = 0; i < 400; ++i) {
+    step = screen.feed(t += 10'000'000, camera);
+    if (step == CalibrationStep::target_measured || step == CalibrationStep::round_rejected ||
+        step == CalibrationStep::accepted || step == CalibrationStep::failed)
+      break;
+  }
+  return step;
+}
+
+TEST(RemoteKiosk, TheCalibrationLabelNamesTheTargetBeingMeasuredAndItsRound) {
+  CalibrationScreen screen(session_config(), std::nullopt, "r");
+  screen.dot_seen(true);
+  EXPECT_EQ(screen.status_line(), "Target 1 of 9, round 1   light seen");
+  Nanos t = kNanosPerSecond;
+  const std::vector<Vec2>& targets = screen.session().targets();
+  // Round 1: target 5 (the centre) is missed by a wide margin, so it alone comes again.
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (i == 2) {
+      EXPECT_EQ(screen.status_line(), "Target 3 of 9, round 1   light seen");
+    }
+    carry_and_hold(screen, t, camera_of(i == 4 ? Vec2{0.62, 0.31} : targets[i]));
+  }
+  ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::measuring) << screen.message();
+  ASSERT_EQ(screen.session().round(), 1);
+  ASSERT_EQ(screen.session().current_target(), 4);
+  // Eight targets are measured, but the one asked again is the fifth, not a ninth.
+  EXPECT_EQ(screen.status_line(), "Target 5 of 9, round 2   light seen");
+  EXPECT_EQ(carry_and_hold(screen, t, camera_of(targets[4])), CalibrationStep::accepted);
+  EXPECT_EQ(screen.outcome(), CalibrationScreen::Outcome::accepted) << screen.message();
+  EXPECT_EQ(screen.status_line(), screen.message());
 }
 
 //! A calibration that maps camera_of() back exactly.

@@ -53,6 +53,16 @@ struct Visitor {
     }
     return step;
   }
+
+  //! Carries the stick in from the corner of the sensor to `camera` and holds it there
+  //! through the grace (settling); returns the first sample's step after it.
+  CalibrationStep arrive(CalibrationSession& s, Vec2 camera) {
+    t += kReport;
+    s.feed(t, {20, 20});
+    CalibrationStep step = CalibrationStep::settling;
+    for (int i = 0; i < 1000 && step == CalibrationStep::settling; ++i) step = s.feed(t += kReport, camera);
+    return step;
+  }
 };
 
 double max_gap_px(const Homography& h, ScreenSize screen) {
@@ -204,8 +214,8 @@ TEST(CalibrationSession, DwellProgressRunsFromZeroToOneAndResetsOnMovement) {
   Visitor v;
   const Vec2 p = camera_of(s.targets()[0]);
   EXPECT_EQ(s.progress(), 0.0);
+  EXPECT_EQ(v.arrive(s, p), CalibrationStep::dwelling);  // the window's first sample
   Nanos t0 = v.t;
-  EXPECT_EQ(s.feed(t0, p), CalibrationStep::dwelling);
   EXPECT_EQ(s.progress(), 0.0);
   for (int i = 1; i <= 60; ++i) EXPECT_EQ(s.feed(t0 + i * kReport, p), CalibrationStep::dwelling);
   EXPECT_DOUBLE_EQ(s.progress(), 0.5);  // 0.6 s of 1.2
@@ -233,11 +243,63 @@ TEST(CalibrationSession, DwellProgressRunsFromZeroToOneAndResetsOnMovement) {
   EXPECT_EQ(s.progress(), 0.0);
 }
 
+TEST(CalibrationSession, TheFirstTargetIsNotMeasuredWhereTheDotRests) {
+  // The operator pressed R with the stick lying still, its dot nowhere near target 1: that
+  // resting point must never become target 1's measurement (it gave a 470 px error).
+  CalibrationSession s;
+  Visitor v;
+  const Vec2 rest{600, 500};
+  for (int i = 0; i < 500; ++i) {  // 5 s, four times the dwell
+    v.t += kReport;
+    EXPECT_NE(s.feed(v.t, rest), CalibrationStep::target_measured) << "sample " << i;
+  }
+  EXPECT_FALSE(s.measured(0));
+  EXPECT_EQ(s.current_target(), 0);
+  EXPECT_EQ(s.progress(), 0.0);
+  // Carried to the target, it is measured there.
+  const Vec2 target = camera_of(s.targets()[0]);
+  EXPECT_EQ(v.hold(s, target), CalibrationStep::target_measured);
+  ASSERT_TRUE(s.measured(0));
+  EXPECT_NEAR(s.measured(0)->x, target.x, 1e-9);
+  EXPECT_NEAR(s.measured(0)->y, target.y, 1e-9);
+}
+
+TEST(CalibrationSession, TheDwellStartsOnlyOnceTheDotHasLeftAndSettled) {
+  CalibrationSession s;
+  Visitor v;
+  const Vec2 rest{600, 500}, target = camera_of(s.targets()[0]);
+  v.t += kReport;
+  EXPECT_EQ(s.feed(v.t, rest), CalibrationStep::still_on_last);
+  // Within min_separation_camera_px of where it rested: still resting.
+  v.t += kReport;
+  EXPECT_EQ(s.feed(v.t, {rest.x + 20, rest.y}), CalibrationStep::still_on_last);
+  // Left: settle_s of travel and steadying count for nothing, wherever the dot is.
+  const Nanos left = v.t + kReport;
+  const Nanos settle = *from_seconds(s.config().settle_s);
+  ASSERT_GT(settle, 0);
+  for (v.t = left; v.t < left + settle; v.t += kReport) {
+    EXPECT_EQ(s.feed(v.t, v.t == left ? Vec2{rest.x - 100, rest.y} : target), CalibrationStep::settling);
+    EXPECT_EQ(s.progress(), 0.0);
+  }
+  // Then the dwell, from the first sample after the grace.
+  const Nanos first = v.t;
+  CalibrationStep step = CalibrationStep::dwelling;
+  for (; step == CalibrationStep::dwelling; v.t += kReport) step = s.feed(v.t, target);
+  EXPECT_EQ(step, CalibrationStep::target_measured);
+  EXPECT_EQ(v.t - kReport - first, *from_seconds(s.config().dwell_s));
+  EXPECT_NEAR(s.measured(0)->x, target.x, 1e-9);
+  // The next target's grace starts from the measured point.
+  EXPECT_EQ(s.feed(v.t, target), CalibrationStep::still_on_last);
+  EXPECT_EQ(s.feed(v.t + kReport, camera_of(s.targets()[1])), CalibrationStep::settling);
+}
+
 TEST(CalibrationSession, ALostDotRestartsTheDwell) {
   CalibrationSession s;
+  Visitor v;
   const Vec2 p{300, 300};
-  const Nanos t0 = kNanosPerSecond;
-  for (int i = 0; i < 100; ++i) s.feed(t0 + i * kReport, p);
+  v.arrive(s, p);
+  const Nanos t0 = v.t;
+  for (int i = 1; i < 100; ++i) s.feed(t0 + i * kReport, p);
   EXPECT_GT(s.progress(), 0.8);
   // 200 ms without a report (max_gap_s is 150 ms).
   EXPECT_EQ(s.feed(t0 + 99 * kReport + 200 * kMs, p), CalibrationStep::dwell_reset);
@@ -247,6 +309,7 @@ TEST(CalibrationSession, ALostDotRestartsTheDwell) {
 TEST(CalibrationSession, AJumpingDotIsRejected) {
   CalibrationSession s;
   Visitor v;
+  v.arrive(s, {300, 300});
   // Between the LED and a reflection 50 px away: never still, never measured.
   for (int i = 0; i < 500; ++i) {
     v.t += kReport;
@@ -283,7 +346,7 @@ TEST(CalibrationSession, ResumingOnThePreviousTargetDoesNotMeasureTheNextOne) {
 
 TEST(CalibrationSession, BadSamplesAreIgnoredAndCounted) {
   CalibrationSession s;
-  EXPECT_EQ(s.feed(kNanosPerSecond, {300, 300}), CalibrationStep::dwelling);
+  EXPECT_EQ(s.feed(kNanosPerSecond, {300, 300}), CalibrationStep::still_on_last);  // where it rests
   EXPECT_EQ(s.feed(kNanosPerSecond, {300, 300}), CalibrationStep::ignored);  // not after the previous
   EXPECT_EQ(s.feed(kNanosPerSecond - 1, {300, 300}), CalibrationStep::ignored);
   EXPECT_EQ(s.feed(2 * kNanosPerSecond, {std::nan(""), 300}), CalibrationStep::ignored);
@@ -338,6 +401,11 @@ TEST(CalibrationSession, ABadSetUpIsRefused) {
   c = {};
   c.repeat_worst = 0;
   EXPECT_NE(validate(c).find("repeat_worst"), std::string::npos);
+  c = {};
+  c.settle_s = 0;  // no grace time: leaving the resting point is still required
+  EXPECT_EQ(validate(c), "");
+  c.settle_s = -0.1;
+  EXPECT_NE(validate(c).find("settle_s"), std::string::npos);
 }
 
 }  // namespace
