@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <string>
 
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
@@ -37,7 +38,11 @@ void register_simulate(CLI::App& app) {
       "Without --causal every output is the exact stimulus, as before.\n"
       "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
       "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
-      "Bad input prints FILE:LINE: problem and exits 2 with nothing written.");
+      "A t past one hour is refused (FILE:LINE, exit 2) unless --allow-long: the outputs grow\n"
+      "with it (1.4 GB of audio.wav per hour at 48 kHz), and a t in milliseconds looks like that.\n"
+      "Bad input prints FILE:LINE: problem and exits 2 with nothing written.\n"
+      "SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and exits\n"
+      "130 or 143.");
   cmd->add_option("--scene", options->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--input", options->input, "Trajectory CSV (t,x,y)")->required();
   cmd->add_option("--out", options->out_dir, "Output directory (created if needed)")->required();
@@ -51,6 +56,8 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")->capture_default_str();
   cmd->add_option("--tail", options->tail_s, "Seconds rendered after the last trajectory sample")
       ->capture_default_str();
+  cmd->add_flag("--allow-long", options->allow_long,
+                "Simulate a trajectory whose t goes past 3600 s (one hour) instead of refusing it");
   cmd->add_flag("--causal", options->causal, "Decide strikes as the live kiosk does (see below)");
   cmd->add_option("--input-delay-ms", options->input_delay_ms,
                   "With --causal: from a sample's time to the kiosk knowing it (ms)")
@@ -65,7 +72,15 @@ void register_simulate(CLI::App& app) {
   cmd->callback([options, rate, space] {
     if (*rate != 0) options->sample_rate_hz = *rate;
     options->input_space = *space == "world" ? InputSpace::world : InputSpace::screen;
-    const SimulateResult r = run_simulate(*options);
+    SimulateResult r;
+    try {
+      r = run_simulate(*options);
+    } catch (const SimulateInterrupted& e) {
+      // Stopped on request, nothing left behind: the shell's convention, 128 + the signal.
+      std::fprintf(stderr, "mallet: %s\n", e.what());
+      set_exit_status(128 + e.signal());
+      return;
+    }
     const auto& c = r.counters;
     std::printf("%zu impact%s from %llu samples", r.impacts.size(), r.impacts.size() == 1 ? "" : "s",
                 static_cast<unsigned long long>(c.accepted));

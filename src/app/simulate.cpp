@@ -1,9 +1,12 @@
 #include "app/simulate.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cinttypes>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -15,6 +18,7 @@
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
 #include "core/present_clock.hpp"
+#include "core/text_lines.hpp"
 #include "core/visual_vibration.hpp"
 #include "input/trajectory_csv.hpp"
 
@@ -31,7 +35,71 @@ std::string format_seconds(Nanos t_ns) {
   return buf;
 }
 
+SimulateInterrupted::SimulateInterrupted(int signal)
+    : std::runtime_error(std::string("simulate: stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                         "; the partial outputs were removed"),
+      signal_(signal) {}
+
 namespace {
+
+// The signal that asked us to stop while writing (0: none). The handler only stores it
+// (async-signal-safe: a lock-free atomic); the writing loops check it and throw, and the
+// partial files are removed by StagedOutput's destructor on the ordinary unwinding path.
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+extern "C" void on_stop_signal(int s) { g_stop_signal.store(s); }
+
+//! SIGINT/SIGTERM set g_stop_signal while the outputs are being written; the previous
+//! handlers come back afterwards. Before it (reading, validating, the replay) nothing is
+//! on disk, so the default action, ending at once, is right.
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop_signal.store(0);
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    for (std::size_t i = 0; i < 2; ++i) sigaction(kSignals[i], &sa, &old_[i]);
+  }
+  ~StopSignals() {
+    for (std::size_t i = 0; i < 2; ++i) sigaction(kSignals[i], &old_[i], nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+  //! Throws SimulateInterrupted once a signal has arrived.
+  static void check() {
+    if (const int s = g_stop_signal.load(std::memory_order_relaxed)) throw SimulateInterrupted(s);
+  }
+
+ private:
+  static constexpr int kSignals[2] = {SIGINT, SIGTERM};
+  struct sigaction old_[2]{};
+};
+
+//! The line of data row `index` (0-based, as parse_trajectory_csv numbered its samples):
+//! the parser keeps one sample per row after the header, skipping blank and '#' lines.
+std::uint32_t trajectory_row_line(std::string_view text, std::size_t index) {
+  text::Lines lines(text);
+  bool header = true;
+  std::size_t row = 0;
+  while (auto raw = lines.next()) {
+    const std::string_view line = text::trim(*raw);
+    if (line.empty() || line.front() == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    if (row++ == index) return lines.number();
+  }
+  return 0;
+}
+
+std::string gigabytes(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f GB", bytes / 1e9);
+  return buf;
+}
 
 std::string g9(double v) {
   char buf[40];
@@ -95,7 +163,8 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   SimulateResult result;
   result.scene = config::load_scene(options.scene);
   const Scene& scene = result.scene;
-  const input::Trajectory trajectory = input::read_trajectory_csv(options.input);
+  const std::string trajectory_text = text::read_file(options.input);
+  const input::Trajectory trajectory = input::parse_trajectory_csv(trajectory_text, options.input.string());
 
   const int rate = options.sample_rate_hz.value_or(config.audio.sample_rate_hz);
   if (rate < 1000 || rate > 384000)
@@ -106,6 +175,22 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     throw FileError("--tail", 0, 0, "must be in [0, 3600] s");
   for (const Material& m : scene.materials)
     if (auto problem = actuator_band_problem(m, rate)) throw FileError(scene.file, 0, 0, *problem);
+  // An hour of trajectory is the most written without asking (kLongTrajectoryS): the row
+  // that first goes past it is named, with what would be written.
+  const auto past = std::find_if(trajectory.samples.begin(), trajectory.samples.end(), [](const PointerSample& p) {
+    return to_seconds(p.t_ns) > kLongTrajectoryS;
+  });
+  if (past != trajectory.samples.end() && !options.allow_long) {
+    const double last_s = to_seconds(trajectory.samples.back().t_ns);
+    const double audio_bytes = (last_s + options.tail_s) * rate * config.audio.routing.channels * 4.0;
+    char what[200];
+    std::snprintf(what, sizeof what, "t = %.9g s is more than an hour after t = 0 (is t in milliseconds? it must be "
+                  "in seconds); the outputs would run to %.0f s (audio.wav alone %s); --allow-long writes them anyway",
+                  to_seconds(past->t_ns), last_s + options.tail_s, gigabytes(audio_bytes).c_str());
+    throw FileError(options.input.string(),
+                    trajectory_row_line(trajectory_text, static_cast<std::size_t>(past - trajectory.samples.begin())),
+                    0, what);
+  }
   result.sample_rate_hz = rate;
   AudioRig rig = make_audio_rig(scene, config, rate);
 
@@ -125,6 +210,8 @@ SimulateResult run_simulate(const SimulateOptions& options) {
 
   const Nanos t_end = path.back().t + static_cast<Nanos>(std::llround(options.tail_s * 1e9));
 
+  // Declared before `out`: its handlers stay until the partial files are gone.
+  const StopSignals stop_signals;
   StagedOutput out(options.out_dir);
   out.prepare();
 
@@ -135,6 +222,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     f << "t,target,instrument,material,note,velocity" << (causal ? ",contact_t,sound_t,shown_t,predicted" : "")
       << '\n';
     for (const Strike& s : replay.strikes()) {
+      StopSignals::check();
       const Impact& i = s.impact;
       const Target& t = scene.targets[i.target];
       f << format_seconds(i.t_ns) << ',' << t.id << ',' << t.instrument << ','
@@ -165,6 +253,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     for (std::uint64_t k = 0;; ++k) {
       const Nanos t = t0 + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / options.trace_rate_hz));
       if (t > t_end) break;
+      StopSignals::check();
       const CursorState c = replay.cursor_at(t);
       f << format_seconds(t) << ',' << g9(c.hand.x) << ',' << g9(c.hand.y) << ',' << g9(c.shown.x) << ','
         << g9(c.shown.y) << ',' << g9(c.offset);
@@ -206,6 +295,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     std::vector<float> block(static_cast<std::size_t>(kBlock * routing.channels));
     std::size_t next_impact = 0, next_motion = 0;
     for (std::int64_t first = 0; first < frames; first += kBlock) {
+      StopSignals::check();
       const int n = static_cast<int>(std::min<std::int64_t>(kBlock, frames - first));
       const std::int64_t block_end = first + n;
       // Posted before the block it is heard in (t + the route's delay: --causal).
@@ -227,6 +317,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
     result.clipped_samples = rig.engine->counters().clipped;
   }
 
+  StopSignals::check();  // the last chance: after the renames the outputs are whole
   result.written = out.commit();
   return result;
 }

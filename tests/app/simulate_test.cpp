@@ -1,8 +1,15 @@
 // `mallet simulate` end to end: a scripted strike on wood and one on metal produce the
 // expected events, cursor trace and audio; bad input exits 2 with nothing written.
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <numbers>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -336,6 +343,117 @@ TEST(SimulateCli, NonFiniteSamplesAreIgnoredAndCounted) {
             std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "audio.wav"));
+}
+
+// 522 samples at 100 Hz, 5.21 s of strokes, with t written in milliseconds: 5210 "seconds".
+// Line 1 is a comment, line 2 the header, sample k on line 3 + k.
+fs::path write_milliseconds_trajectory(const fs::path& dir) {
+  const fs::path csv = dir / "ms.csv";
+  std::ofstream f(csv);
+  f << "# recorded with t in ms\nt,x,y\n";
+  for (int k = 0; k < 522; ++k) f << 10 * k << ",0.5," << (k % 100 < 50 ? 0.3 : 0.5) << '\n';
+  return csv;
+}
+
+// Small rates, so that even a run that is not refused writes little.
+const std::string kSmallOutputs = " --sample-rate 1000 --trace-rate 1 --tail 0";
+
+TEST(SimulateCli, ATrajectoryPastAnHourIsRefusedAtItsRow) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path csv = write_milliseconds_trajectory(dir);
+  const test::CliResult r =
+      test::run_mallet("simulate --input " + csv.string() + " --out " + (dir / "out").string() + kSmallOutputs);
+  EXPECT_EQ(r.status, 2) << r.output;
+  // The first row past 3600 s: t = 3610, sample 361, line 364.
+  EXPECT_NE(r.output.find("ms.csv:364: t = 3610 s is more than an hour after t = 0 (is t in milliseconds?"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("--allow-long"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(SimulateCli, AllowLongSimulatesATrajectoryPastAnHour) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path csv = write_milliseconds_trajectory(dir);
+  const test::CliResult r = test::run_mallet("simulate --allow-long --input " + csv.string() + " --out " +
+                                             (dir / "out").string() + kSmallOutputs);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("from 522 samples"), std::string::npos) << r.output;
+  const audio::WavData wav = audio::read_wav(dir / "out" / "audio.wav");
+  EXPECT_EQ(wav.sample_rate_hz, 1000);
+  EXPECT_EQ(wav.samples.size() / static_cast<std::size_t>(wav.channels), 5'210'000u);  // t = 5210 s
+  EXPECT_TRUE(fs::exists(dir / "out" / "cursor.csv"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "events.csv"));
+}
+
+// `mallet simulate` as a child whose cursor.csv.partial is a FIFO this test reads: the child
+// is certainly in the middle of writing when the signal is sent (it cannot finish that file
+// before the test has read it all), and no wait is timed. Returns the child's wait status.
+int simulate_signalled_mid_write(const fs::path& dir, int signal, std::string& stderr_text) {
+  const fs::path csv = dir / "ten-minutes.csv";
+  std::ofstream(csv) << "t,x,y\n0,0.5,0.3\n600,0.5,0.3\n";  // 600 000 cursor rows at 1000/s
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  const fs::path fifo = out / "cursor.csv.partial";
+  if (mkfifo(fifo.c_str(), 0600) != 0) return -1;
+  const fs::path err = dir / "stderr.txt";
+  const std::string input = csv.string(), out_dir = out.string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(MALLET_TEST_BINARY, MALLET_TEST_BINARY, "simulate", "--input", input.c_str(), "--out", out_dir.c_str(),
+          "--sample-rate", "1000", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Non-blocking, so that a child that never opens the FIFO cannot hang the test.
+  const int fd = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  bool data = false, signalled = false;
+  char buf[65536];
+  for (int guard = 0; guard < 1'000'000; ++guard) {
+    pollfd p{fd, POLLIN, 0};
+    const int ready = poll(&p, 1, 100);
+    if (ready > 0 && (p.revents & POLLIN)) {
+      const ssize_t n = read(fd, buf, sizeof buf);
+      if (n > 0) {
+        data = true;
+        if (!signalled) signalled = kill(pid, signal) == 0;  // rows have come: mid-write
+        continue;
+      }
+      if (n == 0 && data) break;  // the writer is gone
+    } else if (ready > 0 && (p.revents & POLLHUP)) {
+      break;
+    } else if (!data && waitpid(pid, nullptr, WNOHANG) == pid) {
+      close(fd);
+      return -1;  // it ended without writing the cursor
+    }
+  }
+  close(fd);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::ifstream in(err);
+  stderr_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return signalled ? status : -1;
+}
+
+TEST(SimulateCli, ASignalWhileWritingRemovesThePartialFilesAndExits128PlusIt) {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    SCOPED_TRACE(signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    const fs::path dir = test::scratch_dir();
+    std::string err;
+    const int status = simulate_signalled_mid_write(dir, signal, err);
+    ASSERT_NE(status, -1) << err;
+    // Nothing left behind: no *.partial (the FIFO included), no output.
+    std::string left;
+    for (const auto& e : fs::directory_iterator(dir / "out")) left += e.path().filename().string() + " ";
+    EXPECT_EQ(left, "");
+    EXPECT_FALSE(WIFSIGNALED(status)) << "killed by signal " << WTERMSIG(status);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 128 + signal) << err;  // 143, 130
+    EXPECT_NE(err.find(signal == SIGTERM ? "stopped by SIGTERM" : "stopped by SIGINT"), std::string::npos) << err;
+  }
 }
 
 TEST(AnalyzeCli, FitsTheShippedDemoBackToTableOne) {
