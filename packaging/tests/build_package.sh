@@ -1,12 +1,21 @@
 #!/usr/bin/env bash
-# Builds the .deb from a build folder into a fresh scratch folder, as the README says
-# (cpack -G DEB), and leaves exactly one mallet_*.deb there for the other package tests.
-#   build_package.sh CPACK BUILD_DIR OUT_DIR
+# Builds the Debian package as the operators' guide says (`dpkg-buildpackage -us -uc -b`),
+# from a copy of the source tree (the build writes debian/mallet/, obj-*/ and ../*.deb, never
+# into the checkout), and leaves exactly one mallet_*.deb in OUT_DIR for the other package
+# tests. A full release build of the product: minutes on a small machine.
+#   build_package.sh SOURCE_DIR OUT_DIR
 set -euo pipefail
-cpack=$1 build=$2 out=$3
+src=$1 out=$2
 rm -rf "$out"
-mkdir -p "$out"
-"$cpack" --config "$build/CPackConfig.cmake" -G DEB -B "$out"
+mkdir -p "$out/src"
+tar -C "$src" --exclude=./build --exclude=./.git --exclude='./obj-*' --exclude=./debian/mallet \
+  --exclude=./debian/.debhelper --exclude=./debian/files --exclude='./debian/*.substvars' \
+  --exclude='./debian/*debhelper*' -cf - . | tar -C "$out/src" -xf -
+if ! (cd "$out/src" && dpkg-buildpackage -us -uc -b) >"$out/build.log" 2>&1; then
+  tail -n 60 "$out/build.log" >&2
+  echo "package: dpkg-buildpackage failed (whole log: $out/build.log)" >&2
+  exit 1
+fi
 shopt -s nullglob
 debs=("$out"/mallet_*.deb)
 if ((${#debs[@]} != 1)); then

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The built .deb, looked at as dpkg sees it: its files and their modes, its control fields
-# (Depends: every package of packaging/deps-run.txt, and cage), its conffiles (every file
-# under /etc), its maintainer scripts (run against stubs: they must survive a machine with
-# no running systemd or udev) and its systemd unit.
+# The .deb that dpkg-buildpackage built, looked at as dpkg sees it: its files and their
+# modes, its control fields (Depends: every package of packaging/deps-run.txt), its
+# conffiles (every file under /etc), its maintainer scripts (run against stubs: they must
+# survive a machine with no running systemd or udev) and its systemd unit.
 #   check_package.sh DEB_DIR SOURCE_DIR VERSION
 set -euo pipefail
 dir=$1 src=$2 version=$3
@@ -38,9 +38,11 @@ expect_file() {  # PATH [MODE]
 }
 expect_file /usr/bin/mallet -rwxr-xr-x
 expect_file /usr/libexec/mallet/mallet-kiosk -rwxr-xr-x
-expect_file /usr/lib/udev/rules.d/70-mallet-wiimote.rules -rw-r--r--
-expect_file /usr/lib/systemd/system/mallet.service -rw-r--r--
+expect_file /lib/udev/rules.d/70-mallet-wiimote.rules -rw-r--r--
+expect_file /lib/systemd/system/mallet.service -rw-r--r--
 expect_file /etc/pam.d/mallet -rw-r--r--
+expect_file /usr/share/man/man1/mallet.1.gz -rw-r--r--
+expect_file /usr/share/doc/mallet/copyright -rw-r--r--
 mapfile -t models < <(cd "$src/models" && find . -name '*.glb' -printf '%P\n' | sort)
 mapfile -t shaders < <(cd "$src/shaders" && find . -type f -printf '%P\n' | sort)
 mapfile -t configs < <(cd "$src/config" && find . -type f -printf '%P\n' | sort)
@@ -59,7 +61,8 @@ for path in "${!mode[@]}"; do
   [[ ${owner[$path]} == root/root ]] || fail "$path is owned by ${owner[$path]}, not root/root"
   case $path in
   /usr/bin/mallet | /usr/libexec/mallet/* | /usr/share/mallet/* | /etc/mallet/* | /etc/pam.d/mallet | \
-    /usr/lib/udev/rules.d/70-mallet-wiimote.rules | /usr/lib/systemd/system/mallet.service) ;;
+    /lib/udev/rules.d/70-mallet-wiimote.rules | /lib/systemd/system/mallet.service | \
+    /usr/share/man/man1/mallet.1.gz | /usr/share/doc/mallet/* | /usr/share/lintian/overrides/mallet) ;;
   *) fail "unexpected file $path" ;;
   esac
 done
@@ -91,7 +94,7 @@ for item in "${items[@]}"; do
 done
 mapfile -t wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/deps-run.txt" | grep -v '^$')
 ((${#wanted[@]} > 5)) || fail "deps-run.txt read as ${#wanted[@]} packages"
-for p in "${wanted[@]}" cage; do
+for p in "${wanted[@]}"; do
   [[ -n ${depends[$p]+x} ]] || fail "Depends lacks $p (from deps-run.txt): $(field Depends)"
 done
 
@@ -112,6 +115,7 @@ stub() {  # NAME SHELL-CODE
 }
 stub adduser 'exit 0'
 stub deb-systemd-helper 'exit 0'
+stub deb-systemd-invoke 'exit 0'
 stub systemctl 'exit 1'
 stub udevadm 'exit 1'
 # shellcheck disable=SC2016 # the stub's own $1
@@ -131,7 +135,7 @@ grep -q '^adduser --system --group --home /var/lib/mallet mallet$' "$work/calls"
 grep -q '^adduser --quiet mallet audio$' "$work/calls" || fail "postinst did not add mallet to audio"
 grep -q '^deb-systemd-helper enable mallet.service$' "$work/calls" || fail "postinst did not enable mallet.service"
 if [[ -d /run/systemd/system ]]; then
-  grep -q '^systemctl daemon-reload$' "$work/calls" || fail "postinst did not reload systemd"
+  grep -q '^systemctl.* daemon-reload$' "$work/calls" || fail "postinst did not reload systemd"
 elif grep -q '^systemctl' "$work/calls"; then
   fail "postinst called systemctl with no systemd running"
 fi
@@ -143,12 +147,12 @@ run_script postinst configure 0.0.1
 run_script prerm remove
 run_script prerm upgrade 0.0.1
 run_script postrm remove
-for command in 'systemctl daemon-reload' 'udevadm control --reload-rules' 'udevadm trigger'; do
+for command in 'daemon-reload' 'deb-systemd-helper enable' 'udevadm control --reload-rules' 'udevadm trigger'; do
   grep -q "$command" "$work/control/postinst" || fail "postinst never runs '$command'"
 done
 
 # --- The unit ------------------------------------------------------------------------------
-unit=$work/root/usr/lib/systemd/system/mallet.service
+unit=$work/root/lib/systemd/system/mallet.service
 setting() { sed -n "s/^$1=//p" "$unit"; }
 [[ $(setting ExecStart) == /usr/libexec/mallet/mallet-kiosk ]] || fail "ExecStart=$(setting ExecStart)"
 [[ $(setting Restart) == always ]] || fail "Restart=$(setting Restart)"

@@ -59,8 +59,10 @@ run run --headless --seconds 0.1 --size 160x90 --out "$scratch/bad-settings"
   fail "with a bad $settings: status $status (expected 2, naming it): $output"
 mv "$settings.orig" "$settings"
 
-# The udev rule the package ships is the one `mallet wiimote list` tells to install.
-rule=$(grep -v '^#' "$root/usr/lib/udev/rules.d/70-mallet-wiimote.rules" | grep -v '^$')
+# The udev rule the package ships is the one `mallet wiimote list` tells to install. The
+# package has it in /lib/udev/rules.d (dh_installudev), which is /usr/lib/udev/rules.d on
+# Debian 12's merged /usr: the path the hint names.
+rule=$(grep -v '^#' "$root/lib/udev/rules.d/70-mallet-wiimote.rules" | grep -v '^$')
 [[ $(wc -l <<<"$rule") == 1 ]] || fail "the udev rule file holds $(wc -l <<<"$rule") rules"
 run wiimote list
 if [[ $output == *"No Wii Remote found"* ]]; then
