@@ -19,12 +19,13 @@ namespace {
 //! drop source positions): errors and `show_settings` name the drop-in.
 void merge_into(toml::table& into, toml::table&& from) {
   for (auto&& [key, node] : from) {
+    const std::string name(key.str());  // a named copy: clang 14 cannot capture a binding
     if (toml::table* sub = node.as_table())
-      if (toml::table* existing = into.get_as<toml::table>(key.str())) {
+      if (toml::table* existing = into.get_as<toml::table>(name)) {
         merge_into(*existing, std::move(*sub));
         continue;
       }
-    node.visit([&into, &key](auto&& n) { into.insert_or_assign(key.str(), std::move(n)); });
+    node.visit([&into, &name](auto&& n) { into.insert_or_assign(name, std::move(n)); });
   }
 }
 
