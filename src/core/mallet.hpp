@@ -4,7 +4,7 @@
 // line; the solver sweeps that segment against the bars' top faces, finds the exact
 // fractional contact time and the normal impact speed, and emits one Impact per strike.
 //
-// Contact model (documented in README "How a strike is detected"):
+// Contact model (documented in docs/researchers.md, "How a strike is detected"):
 //  * Each bar has a contact zone: its top face widened by r on both sides (the sphere's
 //    edge touching the bar's corner counts), cut at the middle of the gap where two
 //    zones of the same height would overlap. A point on that cut belongs to the bar on

@@ -72,7 +72,7 @@ struct FrameState {
 //! Whether the device can render colour and depth with this many samples per pixel.
 bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples);
 
-//! Antialiasing chosen by measurement (`mallet bench render`, README): on a CPU rasteriser
+//! Antialiasing chosen by measurement (`mallet bench render`, docs/researchers.md): on a CPU rasteriser
 //! (lavapipe) 4x MSAA on every frame costs ≈10x the frame drawn over the cached background,
 //! but the background's own 4x MSAA (drawn once) brings the 1080p image's RMS error against
 //! a supersampled reference from 1.77 to 0.90 (1/255; whole-frame 4x MSAA: 0.85) at no cost
