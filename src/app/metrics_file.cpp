@@ -78,7 +78,9 @@ std::uint64_t count_kiosk_start(const std::filesystem::path& dir, const std::fun
     std::getline(in, text);
     const auto r = std::from_chars(text.data(), text.data() + text.size(), before);
     if (!in || r.ec != std::errc() || r.ptr != text.data() + text.size()) {
-      warn(file.string() + ":1: expected the number of kiosk starts, got \"" + text + "\"; counting from 0");
+      const std::optional<std::filesystem::path> bad = set_aside_as_bad(file);
+      warn(file.string() + ":1: expected the number of kiosk starts, got \"" + text + "\"; counting from 0" +
+           (bad ? " (the file is kept as " + bad->string() + ")" : ""));
       before = 0;
     }
   }

@@ -21,6 +21,7 @@
 #include "app/mouse_pointer.hpp"
 #include "app/remote_pointer.hpp"
 #include "app/render_setup.hpp"
+#include "app/saved_calibration.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
 #include "app/strike_route.hpp"
@@ -271,17 +272,10 @@ void WindowKiosk::choose_input(Stage& stage) {
     stage.input_why = "the settings say wiimote";
   }
   if (want != "replay") stage.source = InputSource::wiimote;
-  try {
-    stage.calibration = load_calibration(calibration_path());
-    char buf[300];
-    std::snprintf(buf, sizeof buf, "calibration: %s (%s, max error %.1f px)", calibration_path().c_str(),
-                  stage.calibration->created_utc.c_str(), stage.calibration->max_error_screen_px);
-    stage.calibration_status = buf;
-  } catch (const std::exception& e) {  // missing or bad: the calibration screen comes at start-up
-    std::error_code ec;
-    if (std::filesystem::exists(calibration_path(), ec)) std::fprintf(stderr, "<4>%s; calibrating again\n", e.what());
-    stage.calibration_status = "calibration: none yet";
-  }
+  SavedCalibration saved = load_saved_calibration(calibration_path());
+  stage.calibration = std::move(saved.calibration);
+  stage.calibration_status = std::move(saved.status);
+  if (!saved.warning.empty()) std::fprintf(stderr, "<4>%s\n", saved.warning.c_str());
   if (stage.source == InputSource::replay && !stage.calibration) {
     // A recording without a calibration: the camera's view mirrored onto the whole screen
     // (the camera faces the visitor), so a demo plays at once.

@@ -61,4 +61,13 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
   }
 }
 
+std::optional<std::filesystem::path> set_aside_as_bad(const std::filesystem::path& file) {
+  std::filesystem::path bad = file;
+  bad += ".bad";
+  std::error_code ec;
+  std::filesystem::rename(file, bad, ec);  // atomic; replaces an older .bad
+  if (ec) return std::nullopt;
+  return bad;
+}
+
 }  // namespace mallet

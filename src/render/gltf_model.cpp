@@ -21,6 +21,7 @@
 #include <tiny_gltf.h>
 
 #include "core/file_error.hpp"
+#include "render/gltf_source.hpp"
 
 // What this loader does with the parts of glTF 2.0 a static kiosk scene can meet:
 // * the default scene (else scene 0, else every root node), node transforms (matrix or
@@ -206,10 +207,14 @@ struct AccessorView {
 
 class Loader {
  public:
-  Loader(std::string file, const tinygltf::Model& gltf) : file_(std::move(file)), gltf_(gltf) {}
+  Loader(std::string file, const tinygltf::Model& gltf, std::string warnings)
+      : file_(std::move(file)), gltf_(gltf), warnings_(std::move(warnings)) {}
 
   Model load() {
     for (const auto& extension : gltf_.extensionsRequired) {
+      if (const std::optional<std::string> compression = mesh_compression(extension))
+        fail("its meshes are compressed with " + *compression +
+             ", which Mallet cannot decode: export the model without mesh compression");
       fail("requires extension '" + extension + "', which the renderer does not support");
     }
     model_.file = file_;
@@ -604,6 +609,25 @@ class Loader {
     return slot;
   }
 
+  //! ": why" for an external file tinygltf could not read ("File read error : PATH : why"
+  //! or "File not found : URI" among its warnings), else nothing.
+  std::string read_failure(const std::string& uri) const {
+    std::size_t start = 0;
+    while (start < warnings_.size()) {
+      std::size_t end = warnings_.find('\n', start);
+      if (end == std::string::npos) end = warnings_.size();
+      const std::string_view line(warnings_.data() + start, end - start);
+      start = end + 1;
+      if (uri.empty() || line.find(uri) == std::string_view::npos) continue;
+      if (line.starts_with("File not found")) return ": no such file";
+      if (line.starts_with("File read error")) {
+        const std::size_t why = line.rfind(" : ");
+        if (why != std::string_view::npos) return ": " + std::string(line.substr(why + 3));
+      }
+    }
+    return {};
+  }
+
   TextureImage decode_image(std::size_t index) const {
     const tinygltf::Image& image = gltf_.images[index];
     const std::string place = named("image", index, image.name);
@@ -611,7 +635,7 @@ class Loader {
     if (image.bufferView >= 0) {
       encoded = buffer_view(image.bufferView, place);
     } else if (encoded.empty()) {
-      fail(place + ": cannot read '" + image.uri + "'");
+      fail(place + ": cannot read '" + image.uri + "'" + read_failure(image.uri));
     }
     if (encoded.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) fail(place + ": too large");
     int width = 0;
@@ -697,50 +721,52 @@ class Loader {
 
   std::string file_;
   const tinygltf::Model& gltf_;
+  std::string warnings_;  //!< tinygltf's: why an external image could not be read
   Model model_;
   std::map<int, int> texture_slots_;  // glTF texture index → Model::textures index
 };
 
-std::vector<unsigned char> read_bytes(const std::filesystem::path& file) {
-  std::error_code error;
-  if (!std::filesystem::exists(file, error)) throw FileError(file.string(), 0, 0, "no such file");
-  if (std::filesystem::is_directory(file, error))
-    throw FileError(file.string(), 0, 0, "is a directory, not a glTF file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw FileError(file.string(), 0, 0, "cannot be opened for reading");
-  std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw FileError(file.string(), 0, 0, "read error");
-  return bytes;
-}
-
-tinygltf::Model parse(const std::filesystem::path& file, const std::vector<unsigned char>& bytes) {
-  const std::string name = file.string();
-  if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(name, 0, 0, "larger than 4 GiB");
-  tinygltf::TinyGLTF reader;
-  reader.SetImageLoader(&keep_encoded_image, nullptr);
+//! tinygltf's model and its warnings (external images it could not read, and why).
+struct Parsed {
   tinygltf::Model gltf;
-  std::string error;
-  std::string warning;  // only unreadable external images, reported when a texture needs one
-  const auto size = static_cast<unsigned int>(bytes.size());
-  const std::string base_dir = file.parent_path().string();
+  std::string warnings;
+};
+
+Parsed parse(const std::filesystem::path& file, const std::vector<unsigned char>& bytes) {
+  const std::string name = file.string();
   // A .glb is recognised by its magic, whatever the file is called.
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  const bool ok = binary ? reader.LoadBinaryFromMemory(&gltf, &error, &warning, bytes.data(), size, base_dir)
-                         : reader.LoadASCIIFromString(&gltf, &error, &warning,
+  const std::string_view json = gltf_json_text(bytes, binary);
+  check_json_nesting(json, name, binary);
+  tinygltf::TinyGLTF reader;
+  use_guarded_files(reader);
+  reader.SetImageLoader(&keep_encoded_image, nullptr);
+  Parsed parsed;
+  std::string error;
+  const auto size = static_cast<unsigned int>(bytes.size());  // read_gltf_file bounds it far below 4 GiB
+  const std::string base_dir = file.parent_path().string();
+  const bool ok = binary ? reader.LoadBinaryFromMemory(&parsed.gltf, &error, &parsed.warnings, bytes.data(), size,
+                                                       base_dir)
+                         : reader.LoadASCIIFromString(&parsed.gltf, &error, &parsed.warnings,
                                                       reinterpret_cast<const char*>(bytes.data()), size, base_dir);
   if (!ok) {
+    // A compressed mesh's accessors have no bufferView of their own: tinygltf fails on them
+    // without naming the compression, which is the reason a modeller can act on.
+    if (const std::optional<std::string> compression = mesh_compression(json))
+      throw FileError(name, 0, 0, "its meshes are compressed with " + *compression +
+                                      ", which Mallet cannot decode: export the model without mesh compression");
     throw FileError(name, 0, 0,
                     std::string(binary ? "not a valid glTF binary: " : "not valid glTF: ") + one_line(error));
   }
-  return gltf;
+  return parsed;
 }
 
 }  // namespace
 
 Model load_gltf(const std::filesystem::path& file) {
-  const std::vector<unsigned char> bytes = read_bytes(file);
-  const tinygltf::Model gltf = parse(file, bytes);
-  return Loader(file.string(), gltf).load();
+  const std::vector<unsigned char> bytes = read_gltf_file(file);
+  const Parsed parsed = parse(file, bytes);
+  return Loader(file.string(), parsed.gltf, parsed.warnings).load();
 }
 
 }  // namespace mallet::render

@@ -166,6 +166,9 @@ TEST(MetricsFile, RestartsAreTheStartsCountedBeforeInTheStateFolder) {
   EXPECT_EQ(count_kiosk_start(state, warn), 0u);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("kiosk-starts:1:"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("(the file is kept as " + (state / "kiosk-starts.bad").string() + ")"), std::string::npos)
+      << warnings[0];
+  EXPECT_EQ(read_text(state / "kiosk-starts.bad"), "many\n");  // for the operator
   EXPECT_EQ(read_text(state / "kiosk-starts"), "1\n");
 }
 

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,10 +15,13 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
 #include "render/gltf_model.hpp"
+#include "render/gltf_source.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::render {
@@ -473,9 +478,8 @@ TEST(GltfModelErrors, NodeCycle) {
 
 TEST(GltfModelErrors, RequiredExtension) {
   GltfFile f;
-  f.extra = R"(, "extensionsUsed": ["KHR_draco_mesh_compression"],
-                 "extensionsRequired": ["KHR_draco_mesh_compression"])";
-  expect_error(gltf_in_scratch(f), "requires extension 'KHR_draco_mesh_compression'");
+  f.extra = R"(, "extensionsUsed": ["KHR_texture_basisu"], "extensionsRequired": ["KHR_texture_basisu"])";
+  expect_error(gltf_in_scratch(f), "requires extension 'KHR_texture_basisu', which the renderer does not support");
 }
 
 TEST(GltfModelErrors, MissingTextureImage) {
@@ -495,6 +499,99 @@ TEST(GltfModelErrors, CorruptEmbeddedTexture) {
   std::fill(png, png + 64, 0);
   write_bytes(file, bytes.data(), bytes.size());
   expect_error(file, "image 'rosewood_grain': cannot decode");
+}
+
+// ---- hostile files (found with real public glTF test files): refused, never a crash or a hang ----
+
+TEST(GltfModelErrors, ModelPathIsADirectory) {
+  const fs::path dir = test::scratch_dir() / "model.glb";
+  fs::create_directories(dir);
+  expect_error(dir, "is a directory");
+}
+
+TEST(GltfModelErrors, ModelPathIsAFifoAndIsNotOpened) {
+  const fs::path fifo = test::scratch_dir() / "model.glb";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_error(fifo, "is not a regular file (a FIFO, socket or device)");  // opening it would block forever
+}
+
+TEST(GltfModelErrors, ModelLargerThanTheLoaderReads) {
+  const fs::path file = test::scratch_dir() / "huge.glb";
+  write_text(file, "glTF");
+  fs::resize_file(file, kMaxGltfFileBytes + 1);  // sparse: nothing is written to the disk
+  expect_error(file, "larger than the 512 MiB Mallet loads");
+}
+
+TEST(GltfModelErrors, BufferUriNamingADirectory) {
+  const fs::path file = gltf_in_scratch(GltfFile{});
+  fs::remove(file.parent_path() / "model.bin");
+  fs::create_directories(file.parent_path() / "model.bin");  // tinygltf alone: std::bad_alloc
+  expect_error(file, "model.bin : is a directory, not a file");
+}
+
+TEST(GltfModelErrors, BufferUriNamingAFifo) {
+  const fs::path file = gltf_in_scratch(GltfFile{});
+  fs::remove(file.parent_path() / "model.bin");
+  ASSERT_EQ(::mkfifo((file.parent_path() / "model.bin").c_str(), 0600), 0);  // tinygltf alone: blocks
+  expect_error(file, "model.bin : is not a regular file");
+}
+
+TEST(GltfModelErrors, ImageUriNamingADirectory) {
+  GltfFile f;
+  f.material = R"("material": 0, )";
+  f.extra = R"(, "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+               "textures": [{"source": 0}], "images": [{"uri": "grain.png"}])";
+  const fs::path file = gltf_in_scratch(f);
+  fs::create_directories(file.parent_path() / "grain.png");
+  expect_error(file, "image 0: cannot read 'grain.png': is a directory, not a file");
+}
+
+std::string nested(int depth) { return std::string(static_cast<std::size_t>(depth), '[') + std::string(static_cast<std::size_t>(depth), ']'); }
+
+TEST(GltfModelErrors, DeeplyNestedExtrasAreRefusedAtTheirLineAndColumn) {
+  GltfFile f;
+  f.extra = ",\n \"extras\": " + nested(200000);  // tinygltf alone: a stack overflow
+  const fs::path file = gltf_in_scratch(f);
+  const FileError e = test::file_error_of([&] { load_gltf(file); });
+  EXPECT_EQ(e.line(), 2u);
+  EXPECT_EQ(e.column(), 12u + 63u);  // the 64th [ (inside the top-level object: depth 65)
+  EXPECT_NE(std::string(e.what()).find("JSON nested more than 64 arrays or objects deep"), std::string::npos)
+      << e.what();
+}
+
+TEST(GltfModelErrors, DeeplyNestedJsonChunkOfAGlb) {
+  const std::string json = R"({"asset": {"version": "2.0"}, "extras": )" + nested(100000) + "}";
+  std::vector<unsigned char> glb(20);
+  const std::uint32_t header[5] = {0x46546C67u, 2u, static_cast<std::uint32_t>(20 + json.size()),
+                                   static_cast<std::uint32_t>(json.size()), 0x4E4F534Au};  // "glTF", "JSON"
+  std::memcpy(glb.data(), header, sizeof header);
+  glb.insert(glb.end(), json.begin(), json.end());
+  const fs::path file = test::scratch_dir() / "deep.glb";
+  write_bytes(file, glb.data(), glb.size());
+  expect_error(file, "JSON chunk line 1 column 104: JSON nested more than 64");
+}
+
+TEST(GltfModel, BracketsInsideJsonStringsAreNotNesting) {
+  GltfFile f;
+  f.extra = R"(, "extras": {"note": ")" + nested(1000) + R"(\" [[["})";
+  EXPECT_EQ(triangle_count(load_gltf(gltf_in_scratch(f))), 1u);
+}
+
+TEST(GltfModelErrors, DracoCompressedMeshIsNamedAsSuch) {
+  // As a Draco exporter writes it: the accessors have no bufferView; the primitive's
+  // extension points at the compressed bytes.
+  const fs::path dir = test::scratch_dir();
+  write_bytes(dir / "draco.bin", "DRACO\0\0\0", 8);
+  write_text(dir / "draco.gltf", R"({"asset": {"version": "2.0"},
+    "extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1,
+      "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}}]}],
+    "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"componentType": 5123, "count": 3, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 8}], "buffers": [{"uri": "draco.bin", "byteLength": 8}]})");
+  expect_error(dir / "draco.gltf",
+               "its meshes are compressed with KHR_draco_mesh_compression (Draco), which Mallet cannot decode");
 }
 
 }  // namespace

@@ -124,6 +124,58 @@ TEST(WindowSmoke, SighupReloadsTheSettingsAndRefusesABrokenFile) {
   EXPECT_TRUE(wait_for(dir / "log.txt", "strike t=")) << slurp(dir / "log.txt");
 }
 
+// Hostile models met in public glTF test files: tinygltf alone ended the process on each
+// (std::bad_alloc for a buffer naming a directory, a stack overflow for deep nesting). On a
+// reload they are refused with their file and problem, and the kiosk plays on.
+TEST(WindowSmoke, AReloadNamingAHostileModelIsRefusedAndTheKioskPlaysOn) {
+  const auto dir = test::scratch_dir();
+  std::filesystem::copy(test::config_dir(), dir / "config", std::filesystem::copy_options::recursive);
+  const auto cfg = dir / "config" / "mallet.toml";
+  const auto scene = dir / "config" / "scenes" / "percussion.toml";
+  std::filesystem::create_directories(dir / "data");
+  std::ofstream(dir / "dir_buffer.gltf")
+      << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+             "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+             "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"uri": "data", "byteLength": 36}]})";
+  std::ofstream(dir / "deep.gltf") << R"({"asset": {"version": "2.0"}, "extras": )" << std::string(100000, '[')
+                                   << std::string(100000, ']') << "}";
+  const std::string original = slurp(scene);
+  const auto use_bar_model = [&](const std::filesystem::path& model) {
+    std::string text = original;
+    const std::size_t at = text.find("\"wood_bar.glb\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("\"wood_bar.glb\"").size(), "\"" + model.string() + "\"");
+    std::ofstream(scene) << text;
+  };
+  const std::string launch = "(" + child_preload() + "xvfb-run -a -s '-screen 0 1024x768x24' " +
+                             std::string(MALLET_TEST_BINARY) + " run --windowed --size 320x180 --quit-after 12" +
+                             " --idle-after 1 --device llvmpipe --config " + cfg.string() + " > " +
+                             (dir / "log.txt").string() + " 2>&1; echo $? > " + (dir / "status").string() + ") &";
+  ASSERT_EQ(std::system(launch.c_str()), 0);
+  ASSERT_TRUE(wait_for(dir / "log.txt", "mallet run:")) << slurp(dir / "log.txt");
+  const std::string hup = "pkill -HUP -f '^" + std::string(MALLET_TEST_BINARY) + " run .*" + cfg.string() + "'";
+
+  use_bar_model(dir / "dir_buffer.gltf");
+  std::system(hup.c_str());
+  ASSERT_TRUE(wait_for(dir / "log.txt", "is a directory, not a file")) << slurp(dir / "log.txt");
+  use_bar_model(dir / "deep.gltf");
+  std::system(hup.c_str());
+  ASSERT_TRUE(wait_for(dir / "log.txt", "JSON nested more than 64")) << slurp(dir / "log.txt");
+
+  ASSERT_TRUE(wait_for(dir / "status", "\n")) << slurp(dir / "log.txt");
+  const std::string log = slurp(dir / "log.txt");
+  EXPECT_EQ(slurp(dir / "status"), "0\n") << log;
+  for (const char* model : {"dir_buffer.gltf", "deep.gltf"}) {
+    const std::size_t refused = log.find(std::string("reload refused, the running configuration stays: ") +
+                                         scene.string());
+    EXPECT_NE(refused, std::string::npos) << log;
+    EXPECT_NE(log.find(model, refused), std::string::npos) << log;
+  }
+  // The attract mode still strikes after both refusals.
+  EXPECT_NE(log.find("strike t=", log.rfind("JSON nested more than 64")), std::string::npos) << log;
+}
+
 TEST(WindowSmoke, SigtermIsACleanStopWithItsLineAndStatusZero) {
   // systemd's `systemctl stop` sends SIGTERM: the kiosk ends as the operator's Q ends it.
   const auto dir = test::scratch_dir();
