@@ -8,9 +8,33 @@
 #include <string>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 namespace mallet {
+
+namespace {
+
+//! Removes the temporary files of `path` left by processes that no longer run (a SIGKILL or
+//! a power cut between creating one and renaming it): ".NAME.tmp-PID-N" with PID gone.
+void remove_stale_temporaries(const std::filesystem::path& dir, const std::string& name) {
+  const std::string prefix = "." + name + ".tmp-";
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string file = it->path().filename().string();
+    if (file.rfind(prefix, 0) != 0) continue;
+    const std::string rest = file.substr(prefix.size());
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || rest.find_first_not_of("0123456789-") != std::string::npos) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      std::filesystem::remove(it->path(), ignored);
+    }
+  }
+}
+
+}  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
@@ -59,6 +83,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
     ::fsync(dfd);
     ::close(dfd);
   }
+  remove_stale_temporaries(dir, path.filename().string());
 }
 
 std::optional<std::filesystem::path> set_aside_as_bad(const std::filesystem::path& file) {

@@ -2,6 +2,8 @@
 // Replacing a file so that a reader never sees half of it and a power cut leaves either the
 // old or the new file: write a temporary file in the same folder (unique per process and
 // call), fsync it, rename it over the target, fsync the folder. The folder is not created.
+// A process killed mid-write (SIGKILL, a power cut) leaves the old file whole and, at most,
+// its temporary file, which the next write of the same file removes.
 #include <filesystem>
 #include <optional>
 #include <string_view>
