@@ -4,6 +4,11 @@
 #include <fstream>
 #include <iterator>
 
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "core/study/results_csv.hpp"
@@ -77,6 +82,43 @@ TEST(ResultsCsv, AppendsReadBackAndCutsAnIncompleteLastLine) {
   EXPECT_EQ(text, std::string(kResultsHeader) + "\n" + format_row(row(1, true)) + format_row(row(2, false)) +
                       format_row(row(3, true)));
   EXPECT_TRUE(read_results(csv).warnings.empty());
+}
+
+// The disk fills up while a row is written (RLIMIT_FSIZE in a child process stands in for
+// ENOSPC: the kernel refuses the bytes past the limit the same way). The writer says what
+// failed; every row written before is intact; the torn row is dropped on resume and its
+// trial runs again.
+TEST(ResultsCsv, ADiskThatFillsUpLosesNoRowAlreadyWritten) {
+  const fs::path csv = test::scratch_dir() / "r.csv";
+  const std::size_t header_and_two = std::string(kResultsHeader).size() + 1 + 2 * format_row(row(1, true)).size();
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing the process
+    const rlimit limit{header_and_two + 20, header_and_two + 20};  // room for 20 bytes of a third row
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    ResultsWriter w(csv, read_results(csv));
+    w.append(row(1, true));
+    w.append(row(2, false));
+    try {
+      w.append(row(3, true));
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      ::_exit(what.rfind(csv.string() + ": write failed: ", 0) == 0 ? 42 : 1);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 42) << "the third row's write failed, naming the file";
+  EXPECT_EQ(fs::file_size(csv), header_and_two + 20);
+  const ResultsFile file = read_results(csv);
+  ASSERT_EQ(file.rows.size(), 2u);
+  EXPECT_EQ(file.rows[0].trial, 1);
+  EXPECT_EQ(file.rows[1].trial, 2);
+  ASSERT_EQ(file.warnings.size(), 1u);
+  EXPECT_NE(file.warnings[0].find(":4: incomplete last line ignored"), std::string::npos) << file.warnings[0];
 }
 
 TEST(ResultsCsv, AHalfWrittenHeaderStartsTheFileAgain) {
