@@ -2,6 +2,8 @@
 // A problem in a file a person wrote or a device produced (config, scene, trajectory,
 // recording), reported as one line they can act on:
 //   config/materials.toml:12:17: material.wood.visual.decay_per_s: must be >= 0, got -8
+// Control characters in the file name or the message (a value quoted from the file) are
+// shown escaped, so the message is always exactly one line.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -29,9 +31,29 @@ class FileError : public std::runtime_error {
   std::uint32_t column() const { return column_; }  //!< 1-based; 0 = unknown
 
  private:
+  //! `text` with each control character written as an escape (\n, \r, \t, \xHH): a file
+  //! name or a quoted piece of a file can never break the message's one line.
+  static void append_printable(std::string& out, const std::string& text) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    for (const char ch : text) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c >= 0x20 && c != 0x7f) {
+        out += ch;
+      } else if (ch == '\n' || ch == '\r' || ch == '\t') {
+        out += '\\';
+        out += ch == '\n' ? 'n' : ch == '\r' ? 'r' : 't';
+      } else {
+        out += "\\x";
+        out += kHex[c >> 4];
+        out += kHex[c & 0xf];
+      }
+    }
+  }
+
   static std::string format(const std::string& file, std::uint32_t line, std::uint32_t column,
                             const std::string& message) {
-    std::string out = file;
+    std::string out;
+    append_printable(out, file);
     if (line > 0) {
       out += ':';
       out += std::to_string(line);
@@ -41,7 +63,7 @@ class FileError : public std::runtime_error {
       }
     }
     out += ": ";
-    out += message;
+    append_printable(out, message);
     return out;
   }
 

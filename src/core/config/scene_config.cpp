@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/config/materials_config.hpp"
 #include "core/config/toml_reader.hpp"
@@ -10,6 +11,12 @@
 namespace mallet::config {
 
 namespace {
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 int add_material(Scene& scene, const Material& m) {
   for (std::size_t i = 0; i < scene.materials.size(); ++i)
@@ -69,6 +76,12 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
     bar.top_y = top_y;
     bar.length_m = lengths[i];
     bar.thickness_m = thickness;
+    // Far out, the sum loses the bar's width to rounding (or overflows): the bar would be
+    // one no strike can hit.
+    if (!std::isfinite(bar.x_min) || !std::isfinite(bar.x_max) || !(bar.x_max > bar.x_min))
+      t.fail("x_start_m", "bar " + std::to_string(i + 1) + " of " + std::to_string(notes.size()) + " would start at " +
+                              number_text(bar.x_min) + " m, too far out to keep its width of " + number_text(width) +
+                              " m (keep the instruments within a few metres of 0)");
     inst.targets.push_back(bar.id);
     scene.targets.push_back(std::move(bar));
   }
@@ -165,6 +178,8 @@ void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
   const double bottom = t.number("bottom_y_m");
   if (!(wall.top_y > bottom)) t.fail("top_y_m", "must be greater than bottom_y_m");
   wall.thickness_m = wall.top_y - bottom;
+  if (!std::isfinite(wall.thickness_m))
+    t.fail("top_y_m", "top_y_m - bottom_m overflows (keep the wall within a few metres of 0)");
   wall.length_m = t.number_or("depth_m", 2 * scene.mallet_radius_m);
   t.require_positive("depth_m", wall.length_m);
   t.finish();

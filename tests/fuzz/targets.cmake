@@ -1,0 +1,15 @@
+# tests/fuzz/targets.txt as CMake lists: MALLET_FUZZ_FILE_TARGETS (the targets, in file
+# order) and, for each, MALLET_FUZZ_SEEDS_<target> (its seed files, absolute paths).
+file(STRINGS ${CMAKE_CURRENT_LIST_DIR}/targets.txt _mallet_fuzz_lines REGEX "^fuzz_")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/targets.txt)
+set(MALLET_FUZZ_FILE_TARGETS)
+foreach(_line IN LISTS _mallet_fuzz_lines)
+  string(REGEX REPLACE "[ \t]+" ";" _fields "${_line}")
+  list(POP_FRONT _fields _target)
+  list(APPEND MALLET_FUZZ_FILE_TARGETS ${_target})
+  set(MALLET_FUZZ_SEEDS_${_target})
+  foreach(_glob IN LISTS _fields)
+    file(GLOB _found CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${_glob})
+    list(APPEND MALLET_FUZZ_SEEDS_${_target} ${_found})
+  endforeach()
+endforeach()
