@@ -22,6 +22,7 @@
 
 #include <toml++/toml.h>
 
+#include "app/bench_kiosk_child.hpp"
 #include "app/bench_latency_child.hpp"
 #include "app/bench_latency_jack.hpp"
 #include "app/bench_latency_onset.hpp"
@@ -123,69 +124,15 @@ constexpr int kWidth = 960, kHeight = 540;
 constexpr int kRate = 48000, kPeriod = 128;
 constexpr int kPictureTolerancePx = 1;
 
-std::atomic<int> g_signal{0};
-void on_signal(int s) { g_signal.store(s); }
-
-//! SIGINT/SIGTERM/SIGHUP end the bench through its ordinary error path, so every child is
-//! torn down by its owner; the old handlers come back afterwards.
-class SignalGuard {
- public:
-  SignalGuard() {
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &sa, &old_[i]);
-  }
-  ~SignalGuard() {
-    for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &old_[i], nullptr);
-  }
-
- private:
-  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
-  struct sigaction old_[3]{};
-};
-
 //! The whole run's bound, and every wait's check for a signal.
 struct Deadline {
   Nanos end = 0;
   void check() const {
-    if (const int s = g_signal.load())
+    if (const int s = stop_signal())
       throw std::runtime_error("bench latency: stopped by signal " + std::to_string(s));
     if (monotonic_now() > end) throw std::runtime_error("bench latency: the run took longer than its bound; stopped");
   }
 };
-
-void sleep_until(Nanos t) {
-  timespec ts{static_cast<time_t>(t / kNanosPerSecond), static_cast<long>(t % kNanosPerSecond)};
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-    if (g_signal.load()) return;
-  }
-}
-void sleep_ms(double ms) { sleep_until(monotonic_now() + static_cast<Nanos>(ms * 1e6)); }
-
-//! A private folder for the run's files, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "mallet-bench-latency-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in " + pattern);
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-void write_text(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream out(p);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + p.string());
-}
 
 //! The shipped percussion scene with no visual vibration: a copy of the scene and of its
 //! materials file with every material's visual amplitude_s set to 0 (the actuator and the
@@ -274,11 +221,11 @@ struct KioskLog {
   void line(std::string_view text) {
     std::lock_guard lock(mutex);
     if (const std::size_t at = text.find("strike t="); at != std::string_view::npos) {
-      if (const std::optional<Nanos> t = parse_time(text.substr(at + 9))) strikes.push_back(*t);
+      if (const std::optional<Nanos> t = parse_log_seconds(text.substr(at + 9))) strikes.push_back(*t);
       return;
     }
     if (const std::size_t at = text.find("recording's time 0 is t="); at != std::string_view::npos) {
-      if (!replay_origin) replay_origin = parse_time(text.substr(at + 24));
+      if (!replay_origin) replay_origin = parse_log_seconds(text.substr(at + 24));
       return;
     }
     if (text.find("mallet run:") != std::string_view::npos && !started) {
@@ -288,21 +235,6 @@ struct KioskLog {
     for (const char* key : {"input:", "timing:"})
       if (text.find(key) != std::string_view::npos && status.size() < 4)
         status.emplace_back(text.substr(text.find(key)));
-  }
-  //! "123.456789012" (format_seconds) → ns, exactly.
-  static std::optional<Nanos> parse_time(std::string_view s) {
-    bool negative = !s.empty() && s[0] == '-';
-    if (negative) s.remove_prefix(1);
-    Nanos whole = 0, frac = 0;
-    std::size_t i = 0;
-    for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) whole = whole * 10 + (s[i] - '0');
-    if (i == 0 || i >= s.size() || s[i] != '.') return std::nullopt;
-    int digits = 0;
-    for (++i; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])) && digits < 9; ++i, ++digits)
-      frac = frac * 10 + (s[i] - '0');
-    for (; digits < 9; ++digits) frac *= 10;
-    const Nanos t = whole * kNanosPerSecond + frac;
-    return negative ? -t : t;
   }
 };
 
@@ -323,7 +255,7 @@ struct ConfigResult {
 
 //! Everything the runs share: the servers, the recorder, the hand, the eye.
 struct Rig {
-  TempDir temp;
+  TempDir temp{"mallet-bench-latency"};
   std::filesystem::path scene_file, runtime_dir, state_dir;
   Scene scene;
   Mapping map;
@@ -361,18 +293,6 @@ std::string settings_text(const Config& c) {
   t += "[attract]\nidle_after_s = 86400.0   # the ghost never takes over\n";
   t += "[render]\npresent_mode = \"fifo\"\n";
   return t;
-}
-
-//! LD_PRELOAD without the Vulkan validation layer (the sanitizer tests preload it; GLFW
-//! looks vkGetInstanceProcAddr up by name and a preloaded layer would answer).
-std::optional<std::string> child_preload() {
-  const char* preload = std::getenv("LD_PRELOAD");
-  if (!preload) return std::nullopt;
-  std::string kept, entry;
-  std::stringstream in(preload);
-  while (std::getline(in, entry, ':'))
-    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
-  return kept;
 }
 
 [[noreturn]] void kiosk_failed(Child& kiosk, const std::string& what) {
@@ -726,8 +646,7 @@ void run_bench_latency(const LatencyOptions& options) {
     if (find_program(program).empty())
       throw std::runtime_error(std::string("bench latency needs ") + program + ": install the Debian package " +
                                package);
-  SignalGuard signals;
-  g_signal.store(0);
+  StopSignals signals;
   const int strokes = options.strokes > 0 ? options.strokes : options.quick ? 6 : 20;
   const std::vector<std::string> presets =
       options.quick ? std::vector<std::string>{"balanced"} : std::vector<std::string>{"balanced", "exact"};

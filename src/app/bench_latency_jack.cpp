@@ -214,6 +214,26 @@ void JackRecorder::start_recording(AudioTrack& track) {
   recording_.store(true, std::memory_order_release);
 }
 
+void JackRecorder::forget_before(AudioTrack& track, std::size_t index) {
+  for (std::vector<float>& c : track.channels) {
+    const std::size_t n = std::min(index, c.size());
+    c.erase(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  // The last cycle that starts at or before `index` stays (it times the first kept sample).
+  auto after = std::upper_bound(track.blocks.begin(), track.blocks.end(), index,
+                                [](std::size_t v, const AudioTrack::Block& b) { return v < b.index; });
+  if (after != track.blocks.begin()) --after;
+  const std::size_t first = after == track.blocks.end() ? index : after->index;
+  const Nanos first_t = after == track.blocks.end() ? 0 : after->t;
+  track.blocks.erase(track.blocks.begin(), after);
+  if (!track.blocks.empty() && first < index) {  // re-anchor it at the first kept sample
+    track.blocks.front().index = index;
+    track.blocks.front().t = first_t + static_cast<Nanos>(index - first) * kNanosPerSecond / track.rate;
+  }
+  for (AudioTrack::Block& b : track.blocks) b.index -= index;
+  track_origin_ += index;
+}
+
 void JackRecorder::drain(AudioTrack& track) {
   const std::uint64_t w = frames_written_.load(std::memory_order_acquire);
   const std::uint64_t r = frames_read_.load(std::memory_order_relaxed);

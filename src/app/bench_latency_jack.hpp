@@ -82,6 +82,12 @@ class JackRecorder {
   //! 10 s); the cycle times converted to the monotonic clock and a device's playback time.
   void drain(AudioTrack& track);
   void stop_recording() { recording_.store(false, std::memory_order_release); }
+  //! Drops the track's samples (and cycle stamps) before sample `index`, so that a recording
+  //! of hours keeps only what is still to be looked at; indices shift down by `index`.
+  void forget_before(AudioTrack& track, std::size_t index);
+  //! Measures clock_offset_ns() again (the main thread; the two clocks drift apart by tens
+  //! of µs a minute while NTP slews CLOCK_MONOTONIC, which a run of hours must follow).
+  void measure_clock();
   //! How much later than its cycle's start a sample written in that cycle is played by a
   //! device (the system playback ports' latency): added to every onset.
   Nanos playback_latency_ns() const { return playback_latency_ns_; }
@@ -98,7 +104,6 @@ class JackRecorder {
  private:
   static int process(std::uint32_t frames, void* self);
   static int xrun(void* self);
-  void measure_clock();
 
   jack_client_t* client_ = nullptr;
   std::vector<jack_port_t*> ports_;

@@ -11,6 +11,7 @@ void register_bench(CLI::App& app) {
   add_bench_report(*bench);
   add_bench_latency(*bench);
   add_bench_prediction(*bench);
+  add_bench_soak(*bench);
 }
 
 }  // namespace mallet::app

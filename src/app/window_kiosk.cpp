@@ -40,6 +40,7 @@
 #include "input/wiimote/wiimote_device.hpp"
 #include "core/quality.hpp"
 #include "render/font_atlas.hpp"
+#include "render/vk_handle.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/window_target.hpp"
@@ -372,6 +373,7 @@ void WindowKiosk::write_metrics(Nanos now) {
   stage_->tally->add_to(metrics_.strikes);
   metrics_.audio_xruns = xruns_retired_ + (stage_->output ? stage_->output->counters().xruns : 0);
   metrics_.audio_output_latency_s = stage_->output ? stage_->output->output_latency_s() : kUnknown;
+  metrics_.vulkan_device_memory_bytes = static_cast<double>(render::device_memory_bytes());
   metrics_.remote_connected = stage_->device && stage_->link_up;
   metrics_.remote_battery_ratio = kUnknown;
   if (stage_->device)

@@ -72,6 +72,8 @@ class KioskMetrics {
   std::uint64_t audio_xruns = 0;  //!< mallet_audio_xruns_total
   //! Gauges; NaN = unknown (no audio device, no remote, no battery report yet).
   double audio_output_latency_s = std::numeric_limits<double>::quiet_NaN();
+  //! Device memory the renderer holds (render::device_memory_bytes); NaN: nothing renders.
+  double vulkan_device_memory_bytes = std::numeric_limits<double>::quiet_NaN();
   bool remote_connected = false;
   double remote_battery_ratio = std::numeric_limits<double>::quiet_NaN();
   Nanos uptime_ns = 0;

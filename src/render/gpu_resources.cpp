@@ -25,7 +25,7 @@ GpuBuffer make_host_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageF
                                                                 VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory mem;
   check(vkAllocateMemory(dev, &mai, nullptr, &mem), "allocating buffer memory");
-  out.memory = vk::Memory(dev, mem);
+  out.memory = vk::Memory(dev, mem, mai.allocationSize);
   check(vkBindBufferMemory(dev, raw, mem, 0), "binding buffer memory");
   check(vkMapMemory(dev, mem, 0, VK_WHOLE_SIZE, 0, &out.mapped), "mapping buffer memory");
   return out;
@@ -65,7 +65,7 @@ GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkIm
   mai.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkDeviceMemory mem;
   check(vkAllocateMemory(dev, &mai, nullptr, &mem), "allocating image memory");
-  out.memory = vk::Memory(dev, mem);
+  out.memory = vk::Memory(dev, mem, mai.allocationSize);
   check(vkBindImageMemory(dev, raw, mem, 0), "binding image memory");
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = raw;

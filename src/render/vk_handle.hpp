@@ -1,6 +1,10 @@
 #pragma once
 // One RAII owner per kind of Vulkan object: a move-only handle that destroys its object
 // with the right vkDestroy*/vkFree* call for its kind, on the device that made it.
+// Device memory is counted besides (device_memory_bytes): a kiosk that runs for weeks must
+// show that what it allocates comes back.
+#include <atomic>
+#include <cstdint>
 #include <utility>
 
 #include <vulkan/vulkan.h>
@@ -38,9 +42,53 @@ class DeviceOwned {
   Handle handle_ = VK_NULL_HANDLE;
 };
 
+namespace detail {
+inline std::atomic<std::uint64_t>& device_memory_counter() {
+  static std::atomic<std::uint64_t> bytes{0};
+  return bytes;
+}
+}  // namespace detail
+
+//! Bytes of device memory this process holds through vk::Memory (every vkAllocateMemory the
+//! renderer makes, on any device); the swapchain's images, the driver's own, are not in it.
+inline std::uint64_t device_memory_bytes() { return detail::device_memory_counter().load(std::memory_order_relaxed); }
+
 namespace vk {
 using Buffer = DeviceOwned<VkBuffer, vkDestroyBuffer>;
-using Memory = DeviceOwned<VkDeviceMemory, vkFreeMemory>;
+
+//! A vkAllocateMemory result and its size, counted in device_memory_bytes() while held.
+class Memory {
+ public:
+  Memory() = default;
+  Memory(VkDevice device, VkDeviceMemory memory, VkDeviceSize size) : memory_(device, memory), size_(size) {
+    detail::device_memory_counter().fetch_add(size_, std::memory_order_relaxed);
+  }
+  Memory(Memory&& other) noexcept : memory_(std::move(other.memory_)), size_(std::exchange(other.size_, 0)) {}
+  Memory& operator=(Memory&& other) noexcept {
+    if (this != &other) {
+      reset();
+      memory_ = std::move(other.memory_);
+      size_ = std::exchange(other.size_, 0);
+    }
+    return *this;
+  }
+  Memory(const Memory&) = delete;
+  Memory& operator=(const Memory&) = delete;
+  ~Memory() { reset(); }
+  void reset() {
+    if (memory_) detail::device_memory_counter().fetch_sub(size_, std::memory_order_relaxed);
+    memory_.reset();
+    size_ = 0;
+  }
+  VkDeviceMemory get() const { return memory_.get(); }
+  explicit operator bool() const { return static_cast<bool>(memory_); }
+  VkDeviceSize size() const { return size_; }
+
+ private:
+  DeviceOwned<VkDeviceMemory, vkFreeMemory> memory_;
+  VkDeviceSize size_ = 0;
+};
+
 using Image = DeviceOwned<VkImage, vkDestroyImage>;
 using ImageView = DeviceOwned<VkImageView, vkDestroyImageView>;
 using Sampler = DeviceOwned<VkSampler, vkDestroySampler>;

@@ -89,6 +89,7 @@ TEST(KioskMetrics, EveryFamilyHasHelpAndTypeAndUnitsInItsName) {
       {"mallet_frame_seconds", "histogram"},
       {"mallet_audio_xruns_total", "counter"},
       {"mallet_audio_output_latency_seconds", "gauge"},
+      {"mallet_vulkan_device_memory_bytes", "gauge"},
       {"mallet_remote_connected", "gauge"},
       {"mallet_remote_battery_ratio", "gauge"},
       {"mallet_tracking_lost_seconds_total", "counter"},
@@ -105,6 +106,9 @@ TEST(KioskMetrics, EveryFamilyHasHelpAndTypeAndUnitsInItsName) {
   // Unknown gauges are NaN, not missing: a series that comes and goes breaks alerts.
   EXPECT_TRUE(has_line(text, "mallet_remote_battery_ratio NaN")) << text;
   EXPECT_TRUE(has_line(text, "mallet_audio_output_latency_seconds NaN")) << text;
+  EXPECT_TRUE(has_line(text, "mallet_vulkan_device_memory_bytes NaN")) << text;
+  m.vulkan_device_memory_bytes = 25165824;
+  EXPECT_TRUE(has_line(render_prometheus_text(m), "mallet_vulkan_device_memory_bytes 25165824"));
   EXPECT_EQ(text.back(), '\n');
 }
 

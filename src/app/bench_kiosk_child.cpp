@@ -1,0 +1,86 @@
+#include "app/bench_kiosk_child.hpp"
+
+#include <stdlib.h>
+#include <time.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace mallet::app::latency {
+
+namespace {
+std::atomic<int> g_signal{0};
+void on_signal(int s) { g_signal.store(s); }
+constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+}  // namespace
+
+TempDir::TempDir(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in " + pattern);
+  path_ = pattern;
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream out(p);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + p.string());
+}
+
+std::optional<std::string> child_preload() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  if (!preload) return std::nullopt;
+  std::string kept, entry;
+  std::stringstream in(preload);
+  while (std::getline(in, entry, ':'))
+    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
+  return kept;
+}
+
+std::optional<Nanos> parse_log_seconds(std::string_view s) {
+  const bool negative = !s.empty() && s[0] == '-';
+  if (negative) s.remove_prefix(1);
+  Nanos whole = 0, frac = 0;
+  std::size_t i = 0;
+  for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) whole = whole * 10 + (s[i] - '0');
+  if (i == 0 || i >= s.size() || s[i] != '.') return std::nullopt;
+  int digits = 0;
+  for (++i; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])) && digits < 9; ++i, ++digits)
+    frac = frac * 10 + (s[i] - '0');
+  for (; digits < 9; ++digits) frac *= 10;
+  const Nanos t = whole * kNanosPerSecond + frac;
+  return negative ? -t : t;
+}
+
+StopSignals::StopSignals() {
+  g_signal.store(0);
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &sa, &old_[i]);
+}
+
+StopSignals::~StopSignals() {
+  for (std::size_t i = 0; i < 3; ++i) sigaction(kSignals[i], &old_[i], nullptr);
+}
+
+int stop_signal() { return g_signal.load(); }
+
+void sleep_until(Nanos t) {
+  timespec ts{static_cast<time_t>(t / kNanosPerSecond), static_cast<long>(t % kNanosPerSecond)};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    if (g_signal.load()) return;
+  }
+}
+
+void sleep_ms(double ms) { sleep_until(monotonic_now() + static_cast<Nanos>(ms * 1e6)); }
+
+}  // namespace mallet::app::latency

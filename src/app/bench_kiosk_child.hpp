@@ -1,0 +1,61 @@
+#pragma once
+// What a bench that runs the real kiosk as a child process needs besides the child itself
+// (bench_latency_child.hpp): a private folder for the run, its settings file written, the
+// child's LD_PRELOAD made safe, the kiosk's log times read back exactly, and waits that a
+// Ctrl+C (SIGINT, SIGTERM, SIGHUP) cuts short so that the bench tears everything down in
+// order. Used by `mallet bench latency` and `mallet bench soak`.
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/time.hpp"
+
+namespace mallet::app::latency {
+
+//! A private folder `<temp>/<prefix>-XXXXXX`, removed with everything in it afterwards.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix);
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+//! Writes `text` to `p`; throws naming the file when it cannot.
+void write_text(const std::filesystem::path& p, const std::string& text);
+
+//! LD_PRELOAD without the Vulkan validation layer (the sanitizer tests preload it; GLFW
+//! looks vkGetInstanceProcAddr up by name and a preloaded layer would answer). Nothing
+//! when the bench has no LD_PRELOAD.
+std::optional<std::string> child_preload();
+
+//! A time as the kiosk logs it, "123.456789012" seconds (format_seconds), → ns exactly.
+std::optional<Nanos> parse_log_seconds(std::string_view s);
+
+//! While it lives, SIGINT/SIGTERM/SIGHUP only set a flag (stop_signal) that the waits below
+//! and the benches' loops look at; the old handlers come back afterwards.
+class StopSignals {
+ public:
+  StopSignals();
+  ~StopSignals();
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  struct sigaction old_[3]{};
+};
+//! The signal that asked the bench to stop, 0 when none did.
+int stop_signal();
+
+//! Sleeps until `t` (CLOCK_MONOTONIC) or until a stop signal arrives.
+void sleep_until(Nanos t);
+void sleep_ms(double ms);
+
+}  // namespace mallet::app::latency
