@@ -74,13 +74,25 @@ std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
 
 ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
                              const std::string& title)
-    : ctx(make_window_context(device.empty() ? r.device : device)),
+    : device_name(device.empty() ? r.device : device),
+      options(window_options(r, size, windowed)),
+      ctx(make_window_context(device_name)),
       cache(std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir())) {
-  render::WindowOptions wo = window_options(r, size, windowed);
-  wo.title = title;
-  window = std::make_unique<render::WindowTarget>(*ctx, wo);
+  options.title = title;
+  window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
   font = overlay_font(window->extent());
   overlay = std::make_unique<render::Overlay>(*font);
+}
+
+void ProductWindow::rebuild() {
+  if (window) kept_window = window->release_window();
+  window.reset();  // its surface and swapchain, on the old instance and device
+  cache.reset();
+  ctx.reset();
+  ctx = make_window_context(device_name);
+  cache = std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir());
+  window = std::make_unique<render::WindowTarget>(*ctx, options, &clock, kept_window);
+  kept_window = nullptr;
 }
 
 HeadlessOptions kiosk_headless_options(const RenderConfig& r, VkExtent2D size, const std::string& device) {

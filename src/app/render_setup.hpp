@@ -87,7 +87,18 @@ std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent);
 struct ProductWindow {
   ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
                 const std::string& title);
+  //! After VK_ERROR_DEVICE_LOST: a new Vulkan context (instance and device), pipeline cache
+  //! and window target, on the same GLFW window (its place, size and callbacks stay) and the
+  //! same present model (`clock`, which the strike routes of other threads read meanwhile).
+  //! Every renderer drawing into it must be destroyed before. Throws RenderError when the
+  //! new device cannot be made; it may then be called again.
+  void rebuild();
+
   render::WindowSystem glfw;
+  PresentClock clock;  //!< outlives every window target made for this window
+  std::string device_name;
+  render::WindowOptions options;
+  GLFWwindow* kept_window = nullptr;  //!< between a release and a rebuild that succeeded
   std::unique_ptr<render::Context> ctx;
   std::unique_ptr<render::PipelineCache> cache;
   std::unique_ptr<render::WindowTarget> window;

@@ -31,8 +31,12 @@
 // Faults: a Wii Remote that is gone → Attract with the remote-missing hint, reconnected by
 // WiimoteDevice (it never gives up); a lost audio device is survived (silent, retried by PortAudioOutput); an
 // out-of-date swapchain is recreated (WindowTarget). A lost GPU device
-// (VK_ERROR_DEVICE_LOST) is not recovered in-process: the RenderError ends the run with
-// exit status 1, and systemd (Restart=always, RestartSec=2) starts a fresh kiosk.
+// (VK_ERROR_DEVICE_LOST) is recovered in-process: the scene renderer and the window's
+// Vulkan context, pipeline cache and swapchain are made anew on the same window, the sound
+// and the strikes of the reading threads go on meanwhile, and the loss is logged and
+// counted (mallet_render_device_lost_total). Only when no new device can be made (five
+// tries, a second apart) does the RenderError end the run with exit status 1, and systemd
+// (Restart=always, RestartSec=2) starts a fresh kiosk.
 #include <filesystem>
 #include <optional>
 

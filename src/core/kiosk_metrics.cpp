@@ -184,6 +184,9 @@ std::string render_prometheus_text(const KioskMetrics& m) {
   t.family("mallet_audio_output_latency_seconds", "gauge",
            "From a sample leaving the program to it being heard (NaN: no audio device).");
   t.sample("mallet_audio_output_latency_seconds", number(m.audio_output_latency_s));
+  t.family("mallet_render_device_lost_total", "counter",
+           "Times the Vulkan device was lost and the renderer rebuilt on a new one (the kiosk went on).");
+  t.sample("mallet_render_device_lost_total", format_count(m.render_devices_lost));
   t.family("mallet_vulkan_device_memory_bytes", "gauge",
            "Vulkan device memory the renderer holds (its buffers and images; not the swapchain's).");
   t.sample("mallet_vulkan_device_memory_bytes", number(m.vulkan_device_memory_bytes));

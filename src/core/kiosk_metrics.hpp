@@ -70,6 +70,7 @@ class KioskMetrics {
 
   StrikeCounts strikes;           //!< mallet_strikes_total{instrument, material}
   std::uint64_t audio_xruns = 0;  //!< mallet_audio_xruns_total
+  std::uint64_t render_devices_lost = 0;  //!< mallet_render_device_lost_total
   //! Gauges; NaN = unknown (no audio device, no remote, no battery report yet).
   double audio_output_latency_s = std::numeric_limits<double>::quiet_NaN();
   //! Device memory the renderer holds (render::device_memory_bytes); NaN: nothing renders.

@@ -37,7 +37,8 @@ bool WindowSystem::display_available() {
   return (x && *x) || (w && *w);
 }
 
-WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : ctx_(ctx), options_(options) {
+WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options, PresentClock* clock, GLFWwindow* adopt)
+    : ctx_(ctx), options_(options), clock_(clock ? clock : &own_clock_) {
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   GLFWmonitor* monitor = nullptr;
@@ -48,7 +49,7 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : c
     GLFWmonitor* m = monitors[std::clamp(options.monitor, 0, monitor_count - 1)];
     if (const GLFWvidmode* mode = glfwGetVideoMode(m)) {
       if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
-      clock_.set_refresh_hz(refresh_hz_);
+      clock_->set_refresh_hz(refresh_hz_);
       if (options.fullscreen) {  // borderless: the monitor's own mode, no mode switch
         glfwWindowHint(GLFW_RED_BITS, mode->redBits);
         glfwWindowHint(GLFW_GREEN_BITS, mode->greenBits);
@@ -60,7 +61,7 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options) : c
       }
     }
   }
-  window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
+  window_ = adopt ? adopt : glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
   if (!window_) {
     const char* why = nullptr;
     glfwGetError(&why);
@@ -91,6 +92,8 @@ WindowTarget::~WindowTarget() {
   if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
   if (window_) glfwDestroyWindow(window_);
 }
+
+GLFWwindow* WindowTarget::release_window() { return std::exchange(window_, nullptr); }
 
 bool WindowTarget::close_requested() const { return glfwWindowShouldClose(window_); }
 
@@ -140,7 +143,7 @@ void WindowTarget::create_swapchain() {
                                   : options_.present_mode == PresentMode::immediate ? VK_PRESENT_MODE_IMMEDIATE_KHR
                                                                                      : VK_PRESENT_MODE_FIFO_KHR;
   present_mode_ = std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
-  clock_.set_pacing(present_mode_ == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
+  clock_->set_pacing(present_mode_ == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
                     : present_mode_ == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
                                                                      : PresentPacing::fifo);
 
@@ -206,6 +209,8 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
     glfwWaitEventsTimeout(1.0 / refresh_hz_);
     return false;
   }
+  if (const VkResult injected = std::exchange(injected_, VK_SUCCESS); injected != VK_SUCCESS)
+    check(injected, "submitting a frame (an injected fault)");
   VkDevice dev = ctx_.device();
   // Not every driver says OUT_OF_DATE when the window changes size (lavapipe on X11 goes
   // on presenting the old size, measured): the window's own size is checked too.

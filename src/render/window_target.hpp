@@ -48,7 +48,12 @@ class WindowSystem {
 
 class WindowTarget {
  public:
-  WindowTarget(const Context& ctx, const WindowOptions& options);
+  //! A new window, or `adopt`: the window of a target released before (release_window),
+  //! kept with its place, size and callbacks when the device under it is rebuilt. `clock`:
+  //! a present model owned by the caller, which then outlives this target (the strike
+  //! routes of other threads keep reading it while the target is rebuilt); else its own.
+  WindowTarget(const Context& ctx, const WindowOptions& options, PresentClock* clock = nullptr,
+               GLFWwindow* adopt = nullptr);
   ~WindowTarget();
   WindowTarget(const WindowTarget&) = delete;
   WindowTarget& operator=(const WindowTarget&) = delete;
@@ -59,16 +64,22 @@ class WindowTarget {
   VkExtent2D extent() const { return extent_; }
   bool close_requested() const;
   std::uint64_t swapchain_recreations() const { return recreations_; }
+  //! Hands the GLFW window over: this target's destructor then frees its Vulkan objects
+  //! (surface, swapchain) but leaves the window open, for a new target to adopt.
+  GLFWwindow* release_window();
+  //! The fault-injecting seam for a lost device, which cannot be had on demand: the next
+  //! draw() fails as if the queue had returned `result` (a RenderError carrying it).
+  void fail_next_draw(VkResult result) { injected_ = result; }
 
   //! When the frame about to be drawn should reach the screen (present_clock()'s model:
   //! FIFO = now + the frames queued ahead of it times the refresh period). The visual
   //! vibration is evaluated there, not at the time the frame is recorded.
-  Nanos predicted_present(Nanos now) const { return clock_.present_of_frame_started(now); }
+  Nanos predicted_present(Nanos now) const { return clock_->present_of_frame_started(now); }
   //! The swapchain's present model: its pacing (the present mode in use), the display's
   //! refresh, refined by the frame starts the caller reports (frame_started). The strike
   //! route reads it from other threads to align the sound with the picture.
-  PresentClock& present_clock() { return clock_; }
-  const PresentClock& present_clock() const { return clock_; }
+  PresentClock& present_clock() { return *clock_; }
+  const PresentClock& present_clock() const { return *clock_; }
 
   //! Draws and presents one frame; false when nothing was drawn (minimised: it then waits
   //! up to one refresh for window events, so a loop around it does not spin). With
@@ -103,7 +114,9 @@ class WindowTarget {
   std::uint32_t frame_ = 0;
   std::uint64_t recreations_ = 0;
   double refresh_hz_ = 60.0;
-  PresentClock clock_;
+  PresentClock own_clock_;
+  PresentClock* clock_ = &own_clock_;
+  VkResult injected_ = VK_SUCCESS;
   GpuBuffer capture_buffer_;
 };
 

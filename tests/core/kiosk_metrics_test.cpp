@@ -89,6 +89,7 @@ TEST(KioskMetrics, EveryFamilyHasHelpAndTypeAndUnitsInItsName) {
       {"mallet_frame_seconds", "histogram"},
       {"mallet_audio_xruns_total", "counter"},
       {"mallet_audio_output_latency_seconds", "gauge"},
+      {"mallet_render_device_lost_total", "counter"},
       {"mallet_vulkan_device_memory_bytes", "gauge"},
       {"mallet_remote_connected", "gauge"},
       {"mallet_remote_battery_ratio", "gauge"},
