@@ -98,8 +98,11 @@ std::string read_all(const std::filesystem::path& p) {
 //! Every logged strike checked against the recorded channels, once its window is recorded.
 class StrikeAudit {
  public:
-  StrikeAudit(latency::JackRecorder& recorder, KioskLog& log) : recorder_(recorder), log_(log) {
+  //! `lost_file`: a line for each lost strike, to look at it closer.
+  StrikeAudit(latency::JackRecorder& recorder, KioskLog& log, std::ofstream& lost_file, Nanos start)
+      : recorder_(recorder), log_(log), lost_file_(lost_file), start_(start) {
     recorder_.start_recording(track_);
+    lost_file_ << "hours,t_s,note_found,actuator_found,late_jack_cycles_near,ms_since_previous,ms_to_next\n" << std::flush;
   }
   //! Drains the recorder and audits the strikes whose window has been recorded.
   void step() {
@@ -117,6 +120,8 @@ class StrikeAudit {
     while (!pending_.empty() && pending_.front() + kOnsetAfter + 300 * kMs < recorded_to) {
       const Nanos t = pending_.front();
       pending_.pop_front();
+      const Nanos since = t - previous_;
+      previous_ = t;
       Nanos to = t + kOnsetAfter;
       if (!pending_.empty()) to = std::max(t + kMs, std::min(to, pending_.front() - kOnsetBefore));
       const std::size_t i0 = track_.index_at(t - kOnsetBefore), i1 = track_.index_at(to);
@@ -125,7 +130,15 @@ class StrikeAudit {
       ++strikes;
       note_found += note;
       actuator_found += actuator;
-      lost += !(note && actuator);
+      if (note && actuator) continue;
+      ++lost;
+      int late = 0;  // the JACK cycles around the window that came late: the seams find_onset skips
+      for (const latency::Gap& g : gaps) late += g.end > i0 && g.begin < i1 + 2 * static_cast<std::size_t>(kRate) / 10;
+      char line[200];
+      std::snprintf(line, sizeof line, "%.4f,%.9f,%d,%d,%d,%.1f,%.1f\n", to_seconds(t - start_) / 3600.0, to_seconds(t),
+                    note, actuator, late, to_seconds(since) * 1e3,
+                    pending_.empty() ? -1.0 : to_seconds(pending_.front() - t) * 1e3);
+      lost_file_ << line << std::flush;
     }
     // Keep a second before what is still to be audited (the onset search's training window).
     const Nanos keep_from = (pending_.empty() ? recorded_to : std::min(pending_.front(), recorded_to)) -
@@ -138,6 +151,8 @@ class StrikeAudit {
  private:
   latency::JackRecorder& recorder_;
   KioskLog& log_;
+  std::ofstream& lost_file_;
+  Nanos start_ = 0, previous_ = 0;
   latency::AudioTrack track_;
   std::deque<Nanos> pending_;
 };
@@ -250,20 +265,22 @@ int run_bench_soak(const SoakOptions& options) {
   std::printf("bench soak: the windowed kiosk (pid %d) on %s, JACK server %s; %.2f h, a row every %.0f s in %s\n",
               static_cast<int>(kiosk.pid()), x.name().c_str(), jack.name().c_str(), options.hours,
               options.sample_every_s, (options.out / "soak.csv").c_str());
-  std::printf("%8s %9s %4s %7s %9s %7s %7s %5s %9s\n", "hours", "rss MiB", "fds", "threads", "vulkan MiB", "strokes",
-              "strikes", "lost", "p99 ms");
+  std::printf("%8s %9s %4s %7s %9s %7s %7s %5s %9s %6s\n", "hours", "rss MiB", "fds", "threads", "vulkan MiB",
+              "strokes", "strikes", "lost", "p99 ms", "xruns");
   std::fflush(stdout);
 
   Visitor visitor(scene, hand);
-  StrikeAudit audit(recorder, *log);
+  const Nanos start_of_run = monotonic_now();
+  std::ofstream lost_file(options.out / "lost_strikes.csv");
+  StrikeAudit audit(recorder, *log, lost_file, start_of_run);
   std::vector<Minute> rows;
-  const Nanos start = monotonic_now();
+  const Nanos start = start_of_run;
   const Nanos end = start + static_cast<Nanos>(options.hours * 3600.0 * 1e9);
   const Nanos period = static_cast<Nanos>(options.sample_every_s * 1e9);
   const Nanos strike_every = static_cast<Nanos>(options.strike_every_s * 1e9);
   Nanos next_sample = start + period, next_stroke = start + kNanosPerSecond, next_clock = start;
   std::optional<KioskFigures> before = parse_kiosk_figures(read_all(metrics));
-  std::uint64_t strokes = 0, audited[4] = {0, 0, 0, 0};
+  std::uint64_t strokes = 0, audited[4] = {0, 0, 0, 0}, xruns_before = recorder.xruns();
   std::string failure;
   while (!latency::stop_signal()) {
     const Nanos now = monotonic_now();
@@ -288,7 +305,10 @@ int run_bench_soak(const SoakOptions& options) {
     if (now >= next_sample) {
       Minute m;
       m.hours = to_seconds(now - start) / 3600.0;
-      m.state = playing ? "play" : "away";
+      const Nanos middle = now - period / 2 - start;
+      m.state = middle % (kPlay + kAway) < kPlay ? "play" : "away";
+      m.xruns = recorder.xruns() - xruns_before;
+      xruns_before = recorder.xruns();
       if (const std::optional<ProcessSample> p = read_process(kiosk.pid())) {
         m.rss_mib = static_cast<double>(p->rss_bytes) / (1 << 20);
         m.fds = p->fds;
@@ -311,9 +331,10 @@ int run_bench_soak(const SoakOptions& options) {
       strokes = 0;
       rows.push_back(m);
       csv << csv_row(m) << '\n' << std::flush;
-      std::printf("%8.3f %9.1f %4d %7d %9.1f %7llu %7llu %5llu %9.2f\n", m.hours, m.rss_mib, m.fds, m.threads,
+      std::printf("%8.3f %9.1f %4d %7d %9.1f %7llu %7llu %5llu %9.2f %6llu\n", m.hours, m.rss_mib, m.fds, m.threads,
                   m.vulkan_mib, static_cast<unsigned long long>(m.strokes),
-                  static_cast<unsigned long long>(m.strikes), static_cast<unsigned long long>(m.lost), m.frame_p99_ms);
+                  static_cast<unsigned long long>(m.strikes), static_cast<unsigned long long>(m.lost), m.frame_p99_ms,
+                  static_cast<unsigned long long>(m.xruns));
       std::fflush(stdout);
       next_sample += period;
       if (now >= end) break;
@@ -362,13 +383,16 @@ void add_bench_soak(CLI::App& bench) {
       "leaves for one (the attract mode's ghost plays after 20 s). Every --sample-every seconds a row of\n"
       "OUT/soak.csv (OUT defaults to the current directory):\n"
       "  hours,rss_mib,fds,threads,vulkan_mib,strokes,strikes,actuator_found,note_found,lost_strikes,frames,\n"
-      "  frame_p99_ms,visitor\n"
+      "  frame_p99_ms,visitor,jack_xruns\n"
       "rss_mib, fds, threads: the kiosk process (/proc); vulkan_mib: its mallet_vulkan_device_memory_bytes;\n"
       "strokes: the visitor's since the last row; strikes: the strikes the kiosk logged (visitor's and\n"
       "ghost's) whose audio window was recorded since the last row; actuator_found, note_found: of those, the\n"
       "ones whose onset was found on that channel by a JACK client of the bench's own; lost_strikes: strikes\n"
       "missing on either channel; frames, frame_p99_ms: drawn since the last row and their p99 (from the\n"
-      "kiosk's mallet_frame_seconds histogram, as Prometheus' histogram_quantile); visitor: play or away.\n"
+      "kiosk's mallet_frame_seconds histogram, as Prometheus' histogram_quantile); visitor: play or away\n"
+      "(mid-row); jack_xruns: cycles of the bench's JACK server that came late (this machine's load). Each lost\n"
+      "strike gets a line of OUT/lost_strikes.csv:\n"
+      "  hours,t_s,note_found,actuator_found,late_jack_cycles_near,ms_since_previous,ms_to_next\n"
       "At the end: OUT/soak.svg (a panel per figure), OUT/kiosk.log (everything the kiosk printed) and the\n"
       "growth per hour of each figure (least squares). Exit status 0: no strike lost and the kiosk ran to the\n"
       "end; 1 otherwise, or when a server or the kiosk cannot run here. Ctrl+C ends it early, with the rows so far.");

@@ -113,16 +113,17 @@ double histogram_quantile(double q, const Buckets& now, const Buckets& before) {
 
 std::string csv_header() {
   return "hours,rss_mib,fds,threads,vulkan_mib,strokes,strikes,actuator_found,note_found,lost_strikes,frames,"
-         "frame_p99_ms,visitor";
+         "frame_p99_ms,visitor,jack_xruns";
 }
 
 std::string csv_row(const Minute& m) {
-  char b[256];
-  std::snprintf(b, sizeof b, "%.4f,%.2f,%d,%d,%.2f,%llu,%llu,%llu,%llu,%llu,%llu,%.2f,%s", m.hours, m.rss_mib, m.fds,
+  char b[320];
+  std::snprintf(b, sizeof b, "%.4f,%.2f,%d,%d,%.2f,%llu,%llu,%llu,%llu,%llu,%llu,%.2f,%s,%llu", m.hours, m.rss_mib, m.fds,
                 m.threads, m.vulkan_mib, static_cast<unsigned long long>(m.strokes),
                 static_cast<unsigned long long>(m.strikes), static_cast<unsigned long long>(m.actuator),
                 static_cast<unsigned long long>(m.note), static_cast<unsigned long long>(m.lost),
-                static_cast<unsigned long long>(m.frames), m.frame_p99_ms, m.state.c_str());
+                static_cast<unsigned long long>(m.frames), m.frame_p99_ms, m.state.c_str(),
+                static_cast<unsigned long long>(m.xruns));
   return b;
 }
 

@@ -53,9 +53,10 @@ struct Minute {
   std::uint64_t actuator = 0;   //!< of those, the ones whose onset was found on the actuator channel
   std::uint64_t note = 0;       //!< … and on the note channel
   std::uint64_t lost = 0;       //!< strikes with a channel where no onset was found
+  std::uint64_t xruns = 0;      //!< JACK cycles that came late (the bench's server, this machine's load)
   std::uint64_t frames = 0;     //!< drawn in this minute
   double frame_p99_ms = 0;      //!< this minute's frames (histogram_quantile)
-  std::string state;            //!< "play" or "attract": what the scripted visitor was doing
+  std::string state;            //!< "play" or "away": what the scripted visitor did mid-row
 };
 
 //! The header line of soak.csv (no line feed) and one row.
