@@ -81,6 +81,25 @@ void sleep_until(Nanos t) {
   }
 }
 
+void kiosk_failed(Child& kiosk, const std::string& bench, const std::string& what) {
+  throw std::runtime_error(bench + ": the kiosk " + what + " (" +
+                           (kiosk.running() ? std::string("still running") : kiosk.ended_how()) +
+                           "); its last lines:\n" + kiosk.tail(15));
+}
+
+void wait_for_kiosk(Child& kiosk, const std::string& bench, const std::string& what, Nanos within,
+                    const std::function<bool()>& done, const std::function<void()>& check) {
+  const Nanos until = monotonic_now() + within;
+  while (!done()) {
+    check();
+    if (!kiosk.running()) kiosk_failed(kiosk, bench, "exited before " + what);
+    if (monotonic_now() > until)
+      kiosk_failed(kiosk, bench,
+                   "did not get to " + what + " within " + std::to_string(within / kNanosPerSecond) + " s");
+    sleep_ms(20);
+  }
+}
+
 void sleep_ms(double ms) { sleep_until(monotonic_now() + static_cast<Nanos>(ms * 1e6)); }
 
 }  // namespace mallet::app::latency

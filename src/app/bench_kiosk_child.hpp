@@ -7,10 +7,12 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
 
+#include "app/bench_latency_child.hpp"
 #include "core/time.hpp"
 
 namespace mallet::app::latency {
@@ -53,6 +55,15 @@ class StopSignals {
 };
 //! The signal that asked the bench to stop, 0 when none did.
 int stop_signal();
+
+//! Throws "BENCH: the kiosk WHAT (how it ended); its last lines: …".
+[[noreturn]] void kiosk_failed(Child& kiosk, const std::string& bench, const std::string& what);
+
+//! Polls `done` every 20 ms until it holds; `check` runs before each poll (a signal, the
+//! bench's bound; it throws to stop). Fails (kiosk_failed) when the kiosk exits first
+//! ("exited before WHAT") or `within` passes ("did not get to WHAT within N s").
+void wait_for_kiosk(Child& kiosk, const std::string& bench, const std::string& what, Nanos within,
+                    const std::function<bool()>& done, const std::function<void()>& check);
 
 //! Sleeps until `t` (CLOCK_MONOTONIC) or until a stop signal arrives.
 void sleep_until(Nanos t);

@@ -296,9 +296,7 @@ std::string settings_text(const Config& c) {
 }
 
 [[noreturn]] void kiosk_failed(Child& kiosk, const std::string& what) {
-  throw std::runtime_error("bench latency: the kiosk " + what + " (" +
-                           (kiosk.running() ? std::string("still running") : kiosk.ended_how()) +
-                           "); its last lines:\n" + kiosk.tail(15));
+  latency::kiosk_failed(kiosk, "bench latency", what);
 }
 
 //! The remote's strokes, as a recording (the `mallet wiimote monitor --record` format) the
@@ -495,14 +493,8 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
 
   // Up: it says it runs, its window is on the screen, its audio ports are connected, and
   // a frame has been drawn (the bars are in the strips).
-  const Nanos up_by = monotonic_now() + 60 * kNanosPerSecond;
-  auto wait_for = [&](const char* what, auto&& done) {
-    while (!done()) {
-      deadline.check();
-      if (!kiosk.running()) kiosk_failed(kiosk, std::string("exited before ") + what);
-      if (monotonic_now() > up_by) kiosk_failed(kiosk, std::string("did not get to ") + what + " within 60 s");
-      sleep_ms(20);
-    }
+  auto wait_for = [&](const char* what, const std::function<bool()>& done) {
+    wait_for_kiosk(kiosk, "bench latency", what, 60 * kNanosPerSecond, done, [&] { deadline.check(); });
   };
   wait_for("its start line", [&] {
     std::lock_guard lock(log->mutex);
