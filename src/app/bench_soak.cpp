@@ -106,6 +106,7 @@ class StrikeAudit {
   void step() {
     recorder_.drain(track_);
     if (track_.blocks.empty()) return;
+    if (!recorded_from_) recorded_from_ = track_.blocks.front().t;
     const Nanos recorded_to = track_.time_of(track_.channels[0].size());
     std::deque<Nanos> fresh;
     {
@@ -120,6 +121,8 @@ class StrikeAudit {
       pending_.pop_front();
       const Nanos since = t - previous_;
       previous_ = t;
+      // Struck before the recorder listened (the kiosk starting up): nothing to look at.
+      if (t - kOnsetBefore - 20 * kMs < *recorded_from_) continue;
       Nanos to = t + kOnsetAfter;
       if (!pending_.empty()) to = std::max(t + kMs, std::min(to, pending_.front() - kOnsetBefore));
       const std::size_t i0 = track_.index_at(t - kOnsetBefore), i1 = track_.index_at(to);
@@ -153,6 +156,7 @@ class StrikeAudit {
   KioskLog& log_;
   std::ofstream& lost_file_;
   Nanos start_ = 0, previous_ = 0;
+  std::optional<Nanos> recorded_from_;  //!< the first recorded sample's time
   latency::AudioTrack track_;
   std::deque<Nanos> pending_;
 };

@@ -45,10 +45,10 @@
 #include "input/wiimote/wiimote_device.hpp"
 #include "core/quality.hpp"
 #include "render/font_atlas.hpp"
-#include "render/vk_error.hpp"
-#include "render/vk_handle.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
+#include "render/vk_error.hpp"
+#include "render/vk_handle.hpp"
 #include "render/window_target.hpp"
 
 namespace mallet::app {
@@ -183,7 +183,7 @@ class WindowKiosk {
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
   // [metrics]: what the kiosk counts, and the file it writes them to.
   KioskMetrics metrics_;
-  std::uint64_t devices_lost_ = 0;           //!< VK_ERROR_DEVICE_LOST survived
+  std::uint64_t devices_lost_ = 0;  //!< VK_ERROR_DEVICE_LOST survived
   //! The fault-injecting seam (tests): MALLET_INJECT_DEVICE_LOST="N[,M…]" loses the device
   //! when the Nth frame is drawn (frame counts, ascending).
   std::vector<std::uint64_t> inject_lost_at_;

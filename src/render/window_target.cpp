@@ -144,8 +144,8 @@ void WindowTarget::create_swapchain() {
                                                                                      : VK_PRESENT_MODE_FIFO_KHR;
   present_mode_ = std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
   clock_->set_pacing(present_mode_ == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
-                    : present_mode_ == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
-                                                                     : PresentPacing::fifo);
+                     : present_mode_ == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
+                                                                      : PresentPacing::fifo);
 
   if (caps.currentExtent.width != UINT32_MAX) {
     extent_ = caps.currentExtent;
