@@ -1,10 +1,16 @@
 #include "app/render_setup.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <sstream>
+#include <string>
+#include <thread>
 
 #include "app/data_paths.hpp"
 #include "core/file_error.hpp"
+#include "render/vk_error.hpp"
 
 namespace mallet::app {
 
@@ -82,6 +88,51 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
   window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
   font = overlay_font(window->extent());
   overlay = std::make_unique<render::Overlay>(*font);
+  if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
+    std::stringstream in(lose);
+    for (std::string n; std::getline(in, n, ',');)
+      if (!n.empty()) inject_lost_at_.push_back(std::strtoull(n.c_str(), nullptr, 10));
+    std::sort(inject_lost_at_.begin(), inject_lost_at_.end());
+  }
+}
+
+bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,
+                                    const std::function<void()>& drop, const std::function<void()>& make) {
+  if (!inject_lost_at_.empty() && frames_ == inject_lost_at_.front()) {
+    inject_lost_at_.erase(inject_lost_at_.begin());
+    window->fail_next_draw(VK_ERROR_DEVICE_LOST);
+  }
+  try {
+    const bool drawn = window->draw(renderer, state);
+    frames_ += drawn;
+    return drawn;
+  } catch (const render::RenderError& lost) {
+    if (lost.result() != VK_ERROR_DEVICE_LOST) throw;
+    const Nanos at = monotonic_now();
+    ++devices_lost_;
+    std::fprintf(stderr,
+                 "<3>render: the Vulkan device was lost (%s); rebuilding the device, the pipelines and the "
+                 "background (the sound and the remote's strikes go on)\n",
+                 lost.what());
+    constexpr int kTries = 5;
+    for (int attempt = 1;; ++attempt) {
+      try {
+        drop();  // before the device it was made on
+        rebuild();
+        make();
+        break;
+      } catch (const render::RenderError& e) {
+        if (attempt == kTries) throw;
+        std::fprintf(stderr, "<3>render: rebuilding failed (%s); trying again in 1 s (%d of %d)\n", e.what(),
+                     attempt, kTries);
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+      }
+    }
+    std::fprintf(stderr, "<5>render: rebuilt on %s in %.0f ms; drawing again (device lost %llu time(s))\n",
+                 ctx->device_name().c_str(), to_seconds(monotonic_now() - at) * 1e3,
+                 static_cast<unsigned long long>(devices_lost_));
+    return false;
+  }
 }
 
 void ProductWindow::rebuild() {

@@ -5,8 +5,10 @@
 // full-screen window of the product (the kiosk, the study) builds the same way from the
 // [render] settings.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
@@ -93,6 +95,15 @@ struct ProductWindow {
   //! Every renderer drawing into it must be destroyed before. Throws RenderError when the
   //! new device cannot be made; it may then be called again.
   void rebuild();
+  //! Draws and presents a frame (WindowTarget::draw); true when one was drawn. When the
+  //! device is lost (VK_ERROR_DEVICE_LOST): says so on stderr, calls `drop` (the caller
+  //! destroys what it made on the device: its renderer), rebuild()s (five tries, a second
+  //! apart), calls `make` (the caller makes it anew), says how long it took and returns
+  //! false. Rethrows when no new device can be made. The fault-injecting seam for tests:
+  //! MALLET_INJECT_DEVICE_LOST="N[,M…]" makes the draws after the Nth (Mth…) frame fail so.
+  bool draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,
+                       const std::function<void()>& drop, const std::function<void()>& make);
+  std::uint64_t devices_lost() const { return devices_lost_; }
 
   render::WindowSystem glfw;
   PresentClock clock;  //!< outlives every window target made for this window
@@ -104,6 +115,10 @@ struct ProductWindow {
   std::unique_ptr<render::WindowTarget> window;
   std::unique_ptr<render::FontAtlas> font;
   std::unique_ptr<render::Overlay> overlay;
+
+ private:
+  std::uint64_t frames_ = 0, devices_lost_ = 0;
+  std::vector<std::uint64_t> inject_lost_at_;  //!< frame counts, ascending
 };
 
 }  // namespace mallet::app

@@ -54,8 +54,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int) {
       if (action == GLFW_PRESS) static_cast<StudyWindow*>(glfwGetWindowUserPointer(w))->pressed_.push_back({key, monotonic_now()});
     });
-    renderer_ = std::make_unique<render::SceneRenderer>(*win_.ctx, scene_, models_dir(), win_.window->format(),
-                                                        render_settings(*win_.ctx, c.render), win_.cache->get());
+    make_renderer();
     rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz, plan.protocol.sound);
     route_ = std::make_unique<StrikeRoute>(scene_, c, rig_.engine.get(), &win_.window->present_clock());
     output_ = start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
@@ -176,8 +175,14 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = route_->view().displayed(present);
     state.overlay = win_.overlay.get();
-    win_.window->draw(*renderer_, state);
+    win_.draw_or_recover(*renderer_, state, [this] { renderer_.reset(); }, [this] { make_renderer(); });
     return true;
+  }
+
+  void make_renderer() {
+    renderer_ = std::make_unique<render::SceneRenderer>(*win_.ctx, scene_, models_dir(), win_.window->format(),
+                                                        render_settings(*win_.ctx, plan_.config.render),
+                                                        win_.cache->get());
   }
 
   const StudyPlan& plan_;

@@ -2,16 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #define GLFW_INCLUDE_VULKAN
@@ -47,7 +43,6 @@
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
-#include "render/vk_error.hpp"
 #include "render/vk_handle.hpp"
 #include "render/window_target.hpp"
 
@@ -147,12 +142,6 @@ class WindowKiosk {
   void retire_metrics(const Stage& old);  //!< a reload: keep the replaced stage's counts
   //! The stage's scene renderer on the window's current device.
   std::unique_ptr<render::SceneRenderer> make_renderer(const Stage& stage);
-  //! VK_ERROR_DEVICE_LOST while drawing: the renderer and the window's device, pipelines and
-  //! background made anew (a few tries, a second apart), the frame loop goes on. The sound,
-  //! the remote's and the evdev mouse's strikes run on their own threads meanwhile; the
-  //! present model they read stays. Rethrows when no new device can be made (exit 1:
-  //! systemd starts a fresh kiosk).
-  void recover_render_device(const render::RenderError& lost);
 
   KioskOptions options_;
   ProductWindow win_;
@@ -183,10 +172,6 @@ class WindowKiosk {
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
   // [metrics]: what the kiosk counts, and the file it writes them to.
   KioskMetrics metrics_;
-  std::uint64_t devices_lost_ = 0;  //!< VK_ERROR_DEVICE_LOST survived
-  //! The fault-injecting seam (tests): MALLET_INJECT_DEVICE_LOST="N[,M…]" loses the device
-  //! when the Nth frame is drawn (frame counts, ascending).
-  std::vector<std::uint64_t> inject_lost_at_;
   MetricsFile metrics_file_{state_dir(), [](const std::string& line) { std::fprintf(stderr, "<4>%s\n", line.c_str()); },
                             [](const std::string& line) { std::fprintf(stderr, "<5>%s\n", line.c_str()); }};
   StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
@@ -205,12 +190,6 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
     static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
   });
   started_ = monotonic_now();
-  if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
-    std::stringstream in(lose);
-    for (std::string n; std::getline(in, n, ',');)
-      if (!n.empty()) inject_lost_at_.push_back(std::strtoull(n.c_str(), nullptr, 10));
-    std::sort(inject_lost_at_.begin(), inject_lost_at_.end());
-  }
   volume_ = setup.config.audio.volume;
   gain_ = setup.config.actuator.gain;
   build(std::move(setup));
@@ -221,32 +200,6 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
 std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const Stage& stage) {
   return std::make_unique<render::SceneRenderer>(*win_.ctx, stage.scene, models_dir(), win_.window->format(),
                                                  render_settings(*win_.ctx, stage.config.render), win_.cache->get());
-}
-
-void WindowKiosk::recover_render_device(const render::RenderError& lost) {
-  const Nanos at = monotonic_now();
-  ++devices_lost_;
-  std::fprintf(stderr,
-               "<3>render: the Vulkan device was lost (%s); rebuilding the device, the pipelines and the background "
-               "(the sound and the remote's strikes go on)\n",
-               lost.what());
-  constexpr int kTries = 5;
-  for (int attempt = 1;; ++attempt) {
-    try {
-      stage_->renderer.reset();  // before the device it was made on
-      win_.rebuild();
-      stage_->renderer = make_renderer(*stage_);
-      break;
-    } catch (const render::RenderError& e) {
-      if (attempt == kTries) throw;
-      std::fprintf(stderr, "<3>render: rebuilding failed (%s); trying again in 1 s (%d of %d)\n", e.what(), attempt,
-                   kTries);
-      std::this_thread::sleep_for(std::chrono::seconds(1));
-    }
-  }
-  std::fprintf(stderr, "<5>render: rebuilt on %s in %.0f ms; the kiosk goes on (device lost %llu time(s))\n",
-               win_.ctx->device_name().c_str(), to_seconds(monotonic_now() - at) * 1e3,
-               static_cast<unsigned long long>(devices_lost_));
 }
 
 void WindowKiosk::build(KioskSetup setup) {
@@ -427,7 +380,7 @@ void WindowKiosk::write_metrics(Nanos now) {
   metrics_.audio_xruns = xruns_retired_ + (stage_->output ? stage_->output->counters().xruns : 0);
   metrics_.audio_output_latency_s = stage_->output ? stage_->output->output_latency_s() : kUnknown;
   metrics_.vulkan_device_memory_bytes = static_cast<double>(render::device_memory_bytes());
-  metrics_.render_devices_lost = devices_lost_;
+  metrics_.render_devices_lost = win_.devices_lost();
   metrics_.remote_connected = stage_->device && stage_->link_up;
   metrics_.remote_battery_ratio = kUnknown;
   if (stage_->device)
@@ -928,16 +881,12 @@ int WindowKiosk::run() {
                           : stage_->mouse        ? stage_->mouse->view().displayed(present)
                                                  : route.view().displayed(present);
     state.overlay = win_.overlay.get();
-    if (!inject_lost_at_.empty() && frames_ == inject_lost_at_.front()) {
-      inject_lost_at_.erase(inject_lost_at_.begin());
-      win_.window->fail_next_draw(VK_ERROR_DEVICE_LOST);
-    }
-    try {
-      if (win_.window->draw(*stage_->renderer, state)) ++frames_;
-    } catch (const render::RenderError& e) {
-      if (e.result() != VK_ERROR_DEVICE_LOST) throw;
-      recover_render_device(e);
-    }
+    // A lost device: the renderer and the window's device, pipelines and background made
+    // anew; the sound, the remote's and the evdev mouse's strikes go on on their threads.
+    if (win_.draw_or_recover(
+            *stage_->renderer, state, [&] { stage_->renderer.reset(); },
+            [&] { stage_->renderer = make_renderer(*stage_); }))
+      ++frames_;
     if (frames_ == 1) notifier_.ready();
     heartbeat(now);
     feed_metrics(now);

@@ -273,7 +273,7 @@ TEST(WindowSmoke, UnderSystemdTheKioskSaysReadyFeedsTheWatchdogAndSaysStopping) 
 //! taps are presented and its prompt shown; stopping it (SIGTERM, handled as Esc) leaves a
 //! valid results CSV with no row, exits 0 and says how to resume. The keys themselves are tested
 //! through the shared trial code (tests/app/study_session_test.cpp).
-TEST(WindowSmoke, TheStudyOpensItsWindowPromptsAndStopsLeavingAValidCsv) {
+TEST(WindowSmoke, TheStudyOpensItsWindowPromptsSurvivesALostDeviceAndStopsLeavingAValidCsv) {
   const auto dir = test::scratch_dir();
   std::ofstream(dir / "tiny.toml") << "name = \"tiny\"\ntask = \"2afc_harder\"\nconditions = [\"both\"]\n"
                                       "repetitions = 2\nseed = 1\noutput = \"tiny.csv\"\nreference_bar = 0\n"
@@ -281,7 +281,9 @@ TEST(WindowSmoke, TheStudyOpensItsWindowPromptsAndStopsLeavingAValidCsv) {
                                       "inter_trial_s = 0.1\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n"
                                       "[[stimulus]]\nname = \"wood_B130\"\nmaterial = \"wood\"\ndecay_scale = 1.30\n"
                                       "[[pair]]\na = \"wood\"\nb = \"wood_B130\"\n";
-  const std::string launch = "(" + child_preload() + "MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
+  // The study's window loses its Vulkan device at its 10th frame (the seam) and draws on.
+  const std::string launch = "(" + child_preload() +
+                             "MALLET_INJECT_DEVICE_LOST=10 MALLET_VK_VALIDATION=required xvfb-run -a -s '-screen 0 1024x768x24' " +
                              std::string(MALLET_TEST_BINARY) + " study --windowed --size 320x180 --quit-after 60" +
                              " --device llvmpipe --protocol " + (dir / "tiny.toml").string() +
                              " --participant W1 --out " + (dir / "r.csv").string() + " > " +
@@ -289,6 +291,7 @@ TEST(WindowSmoke, TheStudyOpensItsWindowPromptsAndStopsLeavingAValidCsv) {
                              ") &";
   ASSERT_EQ(std::system(launch.c_str()), 0);
   ASSERT_TRUE(wait_for(dir / "log.txt", "trial 1 of 2: Which tap felt harder? Press 1 or 2")) << slurp(dir / "log.txt");
+  ASSERT_TRUE(wait_for(dir / "log.txt", "<5>render: rebuilt on llvmpipe")) << slurp(dir / "log.txt");
   // Nobody answers: it waits at the prompt. SIGTERM stops it as Esc, Q or the close button
   // would (--quit-after 60 only guards against a hang).
   const std::string stop = "pkill -f '^" + std::string(MALLET_TEST_BINARY) + " study .*" + (dir / "r.csv").string() + "'";
