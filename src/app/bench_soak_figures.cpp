@@ -145,14 +145,15 @@ struct Column {
   const char* name;
   const char* unit;
   double (*of)(const Minute&);
+  double min_span;  //!< the plot's y range is at least this wide, so that noise looks like noise
 };
 const Column kColumns[] = {
-    {"rss_mib", "MiB", [](const Minute& m) { return m.rss_mib; }},
-    {"fds", "descriptors", [](const Minute& m) { return static_cast<double>(m.fds); }},
-    {"threads", "threads", [](const Minute& m) { return static_cast<double>(m.threads); }},
-    {"vulkan_mib", "MiB", [](const Minute& m) { return m.vulkan_mib; }},
-    {"lost_strikes", "strikes per row", [](const Minute& m) { return static_cast<double>(m.lost); }},
-    {"frame_p99_ms", "ms", [](const Minute& m) { return m.frame_p99_ms; }},
+    {"rss_mib", "MiB", [](const Minute& m) { return m.rss_mib; }, 8.0},
+    {"fds", "descriptors", [](const Minute& m) { return static_cast<double>(m.fds); }, 4.0},
+    {"threads", "threads", [](const Minute& m) { return static_cast<double>(m.threads); }, 4.0},
+    {"vulkan_mib", "MiB", [](const Minute& m) { return m.vulkan_mib; }, 4.0},
+    {"lost_strikes", "strikes per row", [](const Minute& m) { return static_cast<double>(m.lost); }, 4.0},
+    {"frame_p99_ms", "ms", [](const Minute& m) { return m.frame_p99_ms; }, 10.0},
 };
 
 }  // namespace
@@ -194,9 +195,13 @@ std::string svg_plot(const std::vector<Minute>& rows) {
       hi = any ? std::max(hi, v) : v;
       any = true;
     }
-    if (hi - lo < 1e-9) hi = lo + 1, lo -= 1;
-    const double pad = 0.1 * (hi - lo);
-    lo -= pad, hi += pad;
+    if (hi - lo < c.min_span) {
+      const double mid = 0.5 * (hi + lo);
+      lo = mid - 0.5 * c.min_span, hi = mid + 0.5 * c.min_span;
+    } else {
+      const double pad = 0.1 * (hi - lo);
+      lo -= pad, hi += pad;
+    }
     std::snprintf(b, sizeof b, "%s: %+.3g %s per hour", c.name, growth[k].per_hour, c.unit);
     svg << "<text x=\"" << left << "\" y=\"" << top - 8 << "\" font-weight=\"bold\">" << b << "</text>\n";
     svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << kPanelW << "\" height=\"" << kPanelH
@@ -205,6 +210,7 @@ std::string svg_plot(const std::vector<Minute>& rows) {
     svg << "<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" fill=\"#555\">" << b << "</text>\n";
     std::snprintf(b, sizeof b, "%.4g", lo);
     svg << "<text x=\"" << left + 4 << "\" y=\"" << top + kPanelH - 4 << "\" fill=\"#555\">" << b << "</text>\n";
+    svg << "<text x=\"" << left << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">0 h</text>\n";
     std::snprintf(b, sizeof b, "%.2f h", x_max);
     svg << "<text x=\"" << left + kPanelW - 40 << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">" << b
         << "</text>\n";
