@@ -16,5 +16,5 @@ void main() {
   // Bars are scaled non-uniformly: normals go through the inverse transpose.
   world_normal = transpose(inverse(mat3(draw.model))) * in_normal;
   uv = in_uv;
-  gl_Position = frame.view_proj * world;
+  gl_Position = (draw.params.z < -0.5 ? frame.sphere_view_proj : frame.view_proj) * world;
 }

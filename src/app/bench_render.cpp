@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_kiosk_cpu.hpp"
 #include "app/bench_report.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
@@ -91,7 +92,8 @@ Row time_frames(HeadlessRenderer& r, const render::FrameState& state, int frames
   return {what, ms[ms.size() / 2], ms[std::min(ms.size() - 1, ms.size() * 95 / 100)]};
 }
 
-void run(const std::filesystem::path& scene_file, int frames, const std::vector<std::string>& sizes,
+void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames,
+         const std::vector<std::string>& sizes,
          const std::string& device) {
   const Scene scene = config::load_scene(scene_file);
   const render::FrameState state = bench_state(scene);
@@ -202,6 +204,11 @@ void run(const std::filesystem::path& scene_file, int frames, const std::vector<
     std::printf("\n");
   }
   std::filesystem::remove_all(tmp_cache);
+  if (kiosk_cpu_s > 0) {
+    std::fflush(stdout);
+    const std::vector<KioskCpuRow> cpu = measure_kiosk_cpu(1920, 1080, kiosk_cpu_s, device);
+    std::printf("%s\n", kiosk_cpu_table(cpu, 1920, 1080).c_str());
+  }
 }
 
 }  // namespace
@@ -211,19 +218,27 @@ void add_bench_render(CLI::App& bench) {
   auto frames = std::make_shared<int>(200);
   auto sizes = std::make_shared<std::vector<std::string>>(std::vector<std::string>{"1280x720", "1920x1080"});
   auto device = std::make_shared<std::string>();
+  auto kiosk_cpu_s = std::make_shared<double>(10.0);
   CLI::App* cmd = bench.add_subcommand("render", "Offscreen renderer: ms per frame, shadow and antialiasing costs");
   cmd->footer(
       "Prints, per size: the floor (clear + read-back), the scene without and with the mallet's\n"
       "analytic shadow, the scene drawn whole every frame (without the cached background of the\n"
       "static instruments), and each antialiasing option (MSAA 1/2/4/8x) with its image error against\n"
       "a 4x-supersampled reference of the same frame (RMS in 1/255 units; share of pixels off by\n"
-      "more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache.");
+      "more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache.\n"
+      "Then the real kiosk's CPU at 1920x1080, fullscreen on its own Xvfb with its sound on its own\n"
+      "JACK server: % of one core in the attract mode with nobody there and during play (an XTest\n"
+      "pointer sweeping over the bars), with the frame budget ([render] max_fps = the refresh) and\n"
+      "without it (mallet run --no-frame-cap); needs Xvfb and jackd (--kiosk-cpu-seconds 0: skip it).");
   cmd->add_option("--scene", *scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--frames", *frames, "Frames timed per row (median reported)")->capture_default_str()
       ->check(CLI::Range(10, 100000));
   cmd->add_option("--sizes", *sizes, "Image sizes")->capture_default_str();
   cmd->add_option("--device", *device, "Vulkan device (substring of its name)");
-  cmd->callback([=] { run(*scene, *frames, *sizes, *device); });
+  cmd->add_option("--kiosk-cpu-seconds", *kiosk_cpu_s, "Seconds per phase of the kiosk's CPU (0: skip it)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 600.0));
+  cmd->callback([=] { run(*kiosk_cpu_s, *scene, *frames, *sizes, *device); });
 }
 
 }  // namespace mallet::app

@@ -99,7 +99,8 @@ void run(const ReportOptions& o) {
                                                    {"renderer", measure_render_trades},
                                                    {"pointer filter", measure_pointer},
                                                    {"contact prediction", measure_prediction},
-                                                   {"latency budget", measure_latency_budget}};
+                                                   {"latency budget", measure_latency_budget},
+                                                   {"the kiosk's CPU", measure_kiosk_cpu_part}};
   for (const auto& [name, measure] : parts) {
     std::printf("bench report: %s ...\n", name);
     std::fflush(stdout);

@@ -64,6 +64,8 @@ struct ReportSections {
 
 void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSections& out);
 void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSections& out);
+//! The real kiosk's CPU at 1080p, capped and uncapped, idle and playing (bench_kiosk_cpu.hpp).
+void measure_kiosk_cpu_part(const Scene& scene, const ReportOptions& o, ReportSections& out);
 void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSections& out);
 
 //! The 1€ filter's trade on bench input's synthetic camera tracks (bench_input.cpp): per

@@ -1,11 +1,14 @@
 #include "app/bench_soak_figures.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace mallet::app::soak {
@@ -28,6 +31,22 @@ std::optional<ProcessSample> read_process(pid_t pid) {
   std::error_code ec;
   for (std::filesystem::directory_iterator it(dir / "fd", ec), end; !ec && it != end; it.increment(ec)) ++s.fds;
   if (ec || !rss || !threads) return std::nullopt;
+  // /proc/PID/stat: "pid (comm) state ..." — utime and stime are the 14th and 15th fields,
+  // the 12th and 13th after the ")" that ends a comm which may itself hold spaces.
+  std::ifstream stat(dir / "stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const std::size_t close = text.rfind(')');
+  if (close == std::string::npos) return std::nullopt;
+  std::istringstream fields(text.substr(close + 1));
+  std::string field;
+  unsigned long long utime = 0, stime = 0;
+  for (int i = 1; i <= 13 && fields >> field; ++i) {
+    if (i == 12) utime = std::strtoull(field.c_str(), nullptr, 10);
+    if (i == 13) stime = std::strtoull(field.c_str(), nullptr, 10);
+  }
+  if (!fields) return std::nullopt;
+  const long ticks = sysconf(_SC_CLK_TCK);
+  s.cpu_ns = static_cast<std::int64_t>((utime + stime) * (1'000'000'000ULL / static_cast<unsigned long long>(ticks)));
   return s;
 }
 

@@ -14,11 +14,12 @@
 
 namespace mallet::app::soak {
 
-//! A process as the kernel sees it: resident memory, open descriptors, threads.
+//! A process as the kernel sees it: resident memory, open descriptors, threads, CPU time.
 struct ProcessSample {
   std::uint64_t rss_bytes = 0;  //!< VmRSS
   int fds = 0;                  //!< entries of /proc/PID/fd
   int threads = 0;              //!< Threads
+  std::int64_t cpu_ns = 0;      //!< user + system time of all its threads so far (/proc/PID/stat)
 };
 //! Nothing when the process is gone (or /proc cannot be read).
 std::optional<ProcessSample> read_process(pid_t pid);

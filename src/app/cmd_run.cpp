@@ -39,6 +39,9 @@ void register_run(CLI::App& app) {
   cmd->add_option("--idle-after", o->idle_after_s,
                   "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)");
   cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render].device)");
+  cmd->add_flag("--no-frame-cap", o->no_frame_cap,
+                "With a display: draw frames as fast as they come, ignoring [render] max_fps (to measure what the "
+                "frame budget saves; never on a kiosk)");
   cmd->add_option("--quit-after", o->quit_after_s, "With a display: quit after this many seconds (0 = never)")
       ->capture_default_str();
   cmd->callback([o] { set_exit_status(run_kiosk(*o)); });

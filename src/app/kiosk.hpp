@@ -22,6 +22,7 @@ struct KioskOptions {
   std::optional<double> idle_after_s;           //!< overrides [attract].idle_after_s
   double quit_after_s = 0;                      //!< window: quit after this long (0 = never)
   std::string device;                           //!< Vulkan device (substring of its name)
+  bool no_frame_cap = false;                    //!< window: frames as fast as they come (for measuring)
 };
 
 //! Returns the process exit status.

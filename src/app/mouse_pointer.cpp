@@ -5,8 +5,10 @@
 namespace mallet::app {
 
 MousePointer::MousePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine,
-                           const PresentClock* picture)
-    : scene_(scene), route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, false, true}) {
+                           const PresentClock* picture, const ViewAspect* aspect)
+    : scene_(scene),
+      aspect_(aspect),
+      route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, false, true}) {
   pending_.reserve(1024);
   route_.on_strike = [this](const Strike& s) {
     if (on_strike) on_strike(s);
@@ -18,8 +20,9 @@ void MousePointer::on_samples(std::span<const PointerSample> samples) {
   const bool playing = playing_.load(std::memory_order_acquire);
   if (playing && !was_playing_) route_.reset();  // Play (re)started: a new stroke
   was_playing_ = playing;
+  const ScreenToWorld view = framed(scene_.screen_to_world, aspect_);
   for (const PointerSample& s : samples)
-    if (playing) route_.feed(s.t_ns, scene_.screen_to_world.map(s.x, s.y), known);
+    if (playing) route_.feed(s.t_ns, view.map(s.x, s.y), known);
   std::lock_guard lock(mutex_);
   for (const PointerSample& s : samples) {
     if (pending_.size() >= kMaxPending) pending_.erase(pending_.begin());

@@ -24,13 +24,17 @@
 #include "core/pointer_sample.hpp"
 #include "core/present_clock.hpp"
 #include "core/scene.hpp"
+#include "core/view_aspect.hpp"
 
 namespace mallet::app {
 
 class MousePointer {
  public:
-  //! `scene`, `config`, `engine` and `picture` must outlive this object and the source's thread.
-  MousePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine, const PresentClock* picture);
+  //! `scene`, `config`, `engine`, `picture` and `aspect` must outlive this object and the
+  //! source's thread. `aspect`: the screen's proportions, which frame the scene the pointer
+  //! moves in (nullptr: the scene's own).
+  MousePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine, const PresentClock* picture,
+               const ViewAspect* aspect = nullptr);
 
   //! The source's sink (its reading thread): each sample is known to the route when it
   //! is handed over.
@@ -50,6 +54,7 @@ class MousePointer {
 
  private:
   const Scene& scene_;
+  const ViewAspect* aspect_;
   StrikeRoute route_;  //!< the reading thread's
   bool was_playing_ = false;  //!< reading thread
   std::atomic<bool> playing_{false};

@@ -20,8 +20,10 @@ input::wiimote::WiimoteDeviceConfig kiosk_device_config(const AppConfig& config,
 }
 
 RemotePointer::RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine,
-                             const PresentClock* picture)
-    : scene_(scene), route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, true, true}) {
+                             const PresentClock* picture, const ViewAspect* aspect)
+    : scene_(scene),
+      aspect_(aspect),
+      route_(scene, config, &engine, picture, RouteOptions{audio::Producer::input, true, true}) {
   pending_.reserve(256);
   route_.on_strike = [this](const Strike& s) {
     if (on_strike) on_strike(s.impact);
@@ -38,7 +40,7 @@ void RemotePointer::feed_point(Nanos t, Nanos now, Vec2 camera, RemoteSample& ou
   const std::optional<Vec2> screen = h->try_map(camera);
   if (!screen || !std::isfinite(screen->x) || !std::isfinite(screen->y)) return;  // off the map: no position
   out.screen = screen;
-  const Vec2 hand = scene_.screen_to_world.map(screen->x, screen->y);
+  const Vec2 hand = framed(scene_.screen_to_world, aspect_).map(screen->x, screen->y);
   const bool playing = playing_.load(std::memory_order_acquire);
   const std::uint64_t generation = generation_.load(std::memory_order_acquire);
   if (generation != seen_generation_) {  // Play (re)started, or a new calibration: a new stroke

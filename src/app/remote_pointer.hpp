@@ -32,6 +32,7 @@
 #include "core/calibration_file.hpp"
 #include "core/present_clock.hpp"
 #include "core/scene.hpp"
+#include "core/view_aspect.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 
 namespace mallet::app {
@@ -55,9 +56,11 @@ struct RemoteSample {
 
 class RemotePointer {
  public:
-  //! `scene`, `config`, `engine` and `picture` must outlive this object (and the device's thread).
+  //! `scene`, `config`, `engine`, `picture` and `aspect` must outlive this object (and the
+  //! device's thread). `aspect`: the screen's proportions, which frame the scene the pointer
+  //! moves in (nullptr: the scene's own).
   RemotePointer(const Scene& scene, const AppConfig& config, audio::AudioEngine& engine,
-                const PresentClock* picture = nullptr);
+                const PresentClock* picture = nullptr, const ViewAspect* aspect = nullptr);
 
   //! The device's sample sink (reading thread); `now` is when the samples arrived, the
   //! time the route knows a strike they make.
@@ -87,6 +90,7 @@ class RemotePointer {
   void feed_point(Nanos t, Nanos now, Vec2 camera, RemoteSample& out);
 
   const Scene& scene_;
+  const ViewAspect* aspect_;
   // Reading thread only.
   StrikeRoute route_;
   std::uint64_t seen_generation_ = 0;

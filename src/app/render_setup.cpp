@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "app/data_paths.hpp"
 #include "core/file_error.hpp"
@@ -74,8 +75,8 @@ render::RenderSettings render_settings(const render::Context& ctx, const RenderC
 }
 
 std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
-  return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(),
-                                             std::max(14.0f, static_cast<float>(extent.height) / 24.0f));
+  const float shorter = static_cast<float>(std::min(extent.width, extent.height));
+  return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), std::max(14.0f, shorter / 24.0f));
 }
 
 ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
@@ -85,7 +86,9 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
       ctx(make_window_context(device_name)),
       cache(std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir())) {
   options.title = title;
+  max_fps_ = r.max_fps;
   window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
+  aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
   font = overlay_font(window->extent());
   overlay = std::make_unique<render::Overlay>(*font);
   if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
@@ -94,6 +97,37 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
       if (!n.empty()) inject_lost_at_.push_back(std::strtoull(n.c_str(), nullptr, 10));
     std::sort(inject_lost_at_.begin(), inject_lost_at_.end());
   }
+}
+
+void ProductWindow::set_max_fps(double max_fps) {
+  if (max_fps == max_fps_) return;
+  max_fps_ = max_fps;
+  pace_chosen_ = false;
+  pacer_.set_max_fps(0);
+}
+
+void ProductWindow::pace() {
+  constexpr std::uint64_t kLearningFrames = 120;  // the present model's period settles in ~60
+  if (max_fps_ < 0) {  // mallet run --no-frame-cap
+    if (!std::exchange(pace_chosen_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
+    return;
+  }
+  if (!pace_chosen_ && frames_ >= kLearningFrames) {
+    pace_chosen_ = true;
+    const double refresh = window->refresh_hz();
+    const double cap = max_fps_ > 0 ? std::min(max_fps_, refresh) : refresh;
+    const bool fifo = clock.pacing() == PresentPacing::fifo;
+    const bool display_paces = fifo && !clock.unpaced();
+    if (fifo && !display_paces) clock.keep_unpaced();
+    if (!display_paces || cap < refresh * 0.98) pacer_.set_max_fps(cap);
+    if (pacer_.max_fps() > 0)
+      std::fprintf(stderr, "<6>render: frames paced at %.0f a second (%s)\n", cap,
+                   display_paces ? "[render] max_fps, below the display's refresh"
+                                 : fifo ? "the display does not hold them back" : "mailbox or immediate presenting");
+    else
+      std::fprintf(stderr, "<6>render: frames paced by the display at its %.0f Hz refresh\n", refresh);
+  }
+  sleep_until_monotonic(pacer_.begin(monotonic_now()));
 }
 
 bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,
@@ -105,6 +139,7 @@ bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const rende
   try {
     const bool drawn = window->draw(renderer, state);
     frames_ += drawn;
+    aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
     return drawn;
   } catch (const render::RenderError& lost) {
     if (lost.result() != VK_ERROR_DEVICE_LOST) throw;

@@ -12,6 +12,8 @@
 
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
+#include "core/frame_pacer.hpp"
+#include "core/view_aspect.hpp"
 #include "render/font_atlas.hpp"
 #include "render/offscreen_target.hpp"
 #include "render/overlay.hpp"
@@ -78,7 +80,8 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
 //! [render] msaa ("auto": what the device is recommended) and shadow, as renderer settings.
 render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r);
 
-//! The overlay's font, sized for a window of this height (a 24th of it, at least 14 px).
+//! The overlay's font, sized for a window of this size: a 24th of its shorter side (the height
+//! of a landscape screen, the width of a portrait one), at least 14 px.
 std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent);
 
 //! A window of the product (the kiosk's, the study's), made from the [render] settings in
@@ -104,9 +107,22 @@ struct ProductWindow {
   bool draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,
                        const std::function<void()>& drop, const std::function<void()>& make);
   std::uint64_t devices_lost() const { return devices_lost_; }
+  //! The frame budget ([render] max_fps; 0 = the refresh, never above it; < 0, only from
+  //! `mallet run --no-frame-cap`: none): called before
+  //! each frame, it waits until the frame's slot. The first frames run free, so that the
+  //! present model can learn whether the display paces them itself; a FIFO display that
+  //! does is left to pace them (unless max_fps is below its refresh). Says once in the log
+  //! what it chose. set_max_fps with another value (a reload) chooses again.
+  void pace();
+  void set_max_fps(double max_fps);
+  //! The pace chosen: 0 while learning, or when the display paces the frames itself.
+  double paced_fps() const { return pacer_.max_fps(); }
 
   render::WindowSystem glfw;
   PresentClock clock;  //!< outlives every window target made for this window
+  //! The window's proportions, after each frame drawn: the pointers' threads frame the
+  //! scene with them as the renderer frames the picture.
+  ViewAspect aspect;
   std::string device_name;
   render::WindowOptions options;
   GLFWwindow* kept_window = nullptr;  //!< between a release and a rebuild that succeeded
@@ -118,6 +134,9 @@ struct ProductWindow {
 
  private:
   std::uint64_t frames_ = 0, devices_lost_ = 0;
+  double max_fps_ = 0;
+  bool pace_chosen_ = false;
+  FramePacer pacer_;
   std::vector<std::uint64_t> inject_lost_at_;  //!< frame counts, ascending
 };
 

@@ -152,6 +152,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
   //! One frame; false once the participant (or --quit-after) asked to stop.
   bool frame() {
     if (quit_) return false;
+    win_.pace();  // the frame budget: [render] max_fps
     glfwPollEvents();
     const Nanos now = monotonic_now();
     for (const Press& p : pressed_)

@@ -111,6 +111,9 @@ struct RenderConfig {
   bool shadow = true;                 //!< the mallet's analytic cast shadow
   std::string device;                 //!< a part of the Vulkan device's name; empty = the best one
   int monitor = 0;                    //!< which monitor the fullscreen kiosk uses (GLFW's order)
+  //! The frame budget (core/frame_pacer.hpp), frames a second: 0 = the display's refresh;
+  //! never above it.
+  double max_fps = 0;
 };
 
 //! [scenes]: which scene the kiosk shows, and which the operator page can switch to. File

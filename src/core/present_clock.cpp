@@ -41,7 +41,8 @@ void PresentClock::set_refresh_hz(double hz) {
 
 bool PresentClock::unpaced() const {
   return pacing() == PresentPacing::fifo &&
-         period_ns_.load(std::memory_order_relaxed) * 10 < refresh_ns_.load(std::memory_order_relaxed) * 6;
+         (kept_unpaced_.load(std::memory_order_relaxed) ||
+          period_ns_.load(std::memory_order_relaxed) * 20 < refresh_ns_.load(std::memory_order_relaxed) * 17);
 }
 
 void PresentClock::frame_started(Nanos t) {
@@ -68,7 +69,8 @@ Nanos PresentClock::present_of_frame_started(Nanos start) const {
   const Nanos period = period_ns_.load(std::memory_order_relaxed);
   const Nanos cost = cost_ns_;
   switch (pacing()) {
-    case PresentPacing::fifo: return unpaced() ? start + period : start + 2 * period;
+    // Not paced: shown when done, one frame's work after its start (at most one period).
+    case PresentPacing::fifo: return unpaced() ? start + std::min(period, cost) : start + 2 * period;
     case PresentPacing::mailbox: return next_start(start + cost);
     case PresentPacing::immediate: return start + cost;
   }

@@ -14,7 +14,10 @@
 // (frame_started); without a window (simulate --causal) they come from --display-hz. A
 // FIFO swapchain whose frames come much faster than the display's refresh is not paced by
 // it (a virtual X server: no vblank at all): its frames are shown as soon as they are done,
-// one frame after they start (measured with bench latency: 2–7 ms, not two refreshes).
+// one frame's work after they start (measured with bench latency: 2–7 ms, not two
+// refreshes). The window's frame budget (core/frame_pacer.hpp) then slows them to max_fps,
+// after which their rate no longer tells: the window says so once it has seen it
+// (keep_unpaced), and the clock remembers.
 // Written by the render thread, read by the input threads: every field is one atomic.
 #include <atomic>
 #include <string>
@@ -48,8 +51,12 @@ class PresentClock {
   Nanos first_shown(Nanos t, Nanos not_before) const;
 
   Nanos period_ns() const { return period_ns_.load(std::memory_order_relaxed); }
-  //! FIFO frames that come at under 60 % of the refresh period: nothing paces them.
+  //! FIFO frames that come at under 85 % of the refresh period (a display that paces FIFO
+  //! never shows them faster than its refresh; or did, before the frame
+  //! budget slowed them: keep_unpaced): nothing paces them.
   bool unpaced() const;
+  //! The display was seen not to pace FIFO: it stays so whatever the frames' rate now.
+  void keep_unpaced() { kept_unpaced_.store(true, std::memory_order_relaxed); }
   PresentPacing pacing() const { return static_cast<PresentPacing>(pacing_.load(std::memory_order_relaxed)); }
   //! "fifo, 60.0 Hz (measured 16.7 ms)": for the operator page.
   std::string describe() const;
@@ -61,6 +68,7 @@ class PresentClock {
   std::atomic<Nanos> period_ns_;
   std::atomic<Nanos> refresh_ns_;      //!< the display's nominal refresh period
   std::atomic<Nanos> last_start_{-1};  //!< the latest frame start: the grid's anchor (0 before any)
+  std::atomic<bool> kept_unpaced_{false};
   const Nanos cost_ns_;  //!< one frame's work (mailbox, immediate)
   static_assert(std::atomic<Nanos>::is_always_lock_free);
 };

@@ -28,6 +28,7 @@ constexpr float kAmbient = 0.55f;
 struct FrameUniform {
   glm::mat4 view_proj;
   glm::vec4 eye, light_dir, sphere, light_color;
+  glm::mat4 sphere_view_proj;
 };
 struct DrawConstants {
   glm::mat4 model;
@@ -385,6 +386,9 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
 void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   if (extent.width == attachment_extent_.width && extent.height == attachment_extent_.height) return;
   vkDeviceWaitIdle(ctx_.device());  // resizes are rare; the old attachments may be in use
+  // The scene framed for the image's proportions: nothing stretched, all of it in view.
+  aspect_ = static_cast<double>(extent.width) / extent.height;
+  view_proj_ = render::view_projection(scene_, aspect_);
   depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, settings_.samples,
                       VK_IMAGE_ASPECT_DEPTH_BIT);
   msaa_color_ = {};
@@ -553,6 +557,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
 
   FrameUniform u;
   u.view_proj = view_proj_;
+  u.sphere_view_proj = sphere_view_projection(scene_, aspect_, state.mallet_centre);
   u.eye = glm::vec4(eye_position(scene_), 1.0f);
   u.light_dir = glm::vec4(kToLight, kLightTanRadius);
   const bool caster = settings_.shadow && state.draw_mallet;
@@ -649,7 +654,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
   } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives);
   }
-  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), Shadow::none);
+  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), Shadow::the_sphere);
   if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);
   vkCmdEndRendering(cmd);
 

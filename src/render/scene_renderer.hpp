@@ -98,6 +98,7 @@ class SceneRenderer {
   void record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& state, std::uint32_t slot);
 
   const RenderSettings& settings() const { return settings_; }
+  //! For the image size last recorded (the scene's own proportions before the first frame).
   const glm::mat4& view_projection() const { return view_proj_; }
   std::size_t triangle_count() const;
   //! How many times the cached background was drawn: once per image size it met.
@@ -135,7 +136,9 @@ class SceneRenderer {
   void record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index);
   //! The shader's params.z: whether a draw receives the sphere's shadow, and whether it is
   //! the redraw over the cached background, which keeps only the pixels the shadow darkens.
-  enum class Shadow { none = 0, receives = 1, only_shadowed_pixels = 2 };
+  //! the_sphere: the mallet itself, which receives none and is projected as seen from
+  //! straight in front of it (sphere_view_projection), so that it is drawn round.
+  enum class Shadow { the_sphere = -1, none = 0, receives = 1, only_shadowed_pixels = 2 };
   VkSampleCountFlagBits background_samples() const {
     return settings_.samples != VK_SAMPLE_COUNT_1_BIT ? settings_.samples : settings_.background_samples;
   }
@@ -149,6 +152,7 @@ class SceneRenderer {
   VkFormat color_format_;
   RenderSettings settings_;
   glm::mat4 view_proj_;
+  double aspect_ = 0;  //!< the image's width over height (0: the scene's own)
   std::vector<Instance> instruments_;
   std::map<std::string, GpuModel> models_;
   GpuImage white_;

@@ -12,11 +12,12 @@ glm::vec3 eye_position(const Scene& scene) {
           static_cast<float>(scene.camera.eye_z_m)};
 }
 
-glm::mat4 view_projection(const Scene& scene, double near_m, double far_m) {
-  // The window is the screen_to_world rectangle on the plane z = 0, at distance eye_z in
-  // front of the eye, which looks straight down −z: an asymmetric frustum through it.
-  const ScreenToWorld& w = scene.screen_to_world;
-  const Camera& c = scene.camera;
+namespace {
+
+//! The off-axis frustum from `c`'s eye through the rectangle `w` of the plane z = 0.
+glm::mat4 frustum_through(const ScreenToWorld& w, const Camera& c, double near_m, double far_m) {
+  // The window is the rectangle on the plane z = 0, at distance eye_z in front of the eye,
+  // which looks straight down −z: an asymmetric frustum through it.
   const double k = near_m / c.eye_z_m;
   const double l = (w.left_m - c.eye_x_m) * k, r = (w.right_m - c.eye_x_m) * k;
   const double b = (w.bottom_m - c.eye_y_m) * k, t = (w.top_m - c.eye_y_m) * k;
@@ -30,6 +31,19 @@ glm::mat4 view_projection(const Scene& scene, double near_m, double far_m) {
   p[3][2] = near_m * far_m / (near_m - far_m);
   const glm::dmat4 view = glm::translate(glm::dmat4(1.0), -glm::dvec3(c.eye_x_m, c.eye_y_m, c.eye_z_m));
   return glm::mat4(p * view);
+}
+
+}  // namespace
+
+glm::mat4 view_projection(const Scene& scene, double aspect, double near_m, double far_m) {
+  return frustum_through(framed(scene.screen_to_world, aspect), scene.camera, near_m, far_m);
+}
+
+glm::mat4 sphere_view_projection(const Scene& scene, double aspect, Vec2 centre, double near_m, double far_m) {
+  Camera facing = scene.camera;
+  facing.eye_x_m = centre.x;
+  facing.eye_y_m = centre.y;
+  return frustum_through(framed(scene.screen_to_world, aspect), facing, near_m, far_m);
 }
 
 glm::dvec2 project_to_screen(const glm::mat4& view_proj, glm::dvec3 world) {

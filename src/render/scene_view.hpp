@@ -1,6 +1,7 @@
 #pragma once
 // What is drawn where, as pure maths (no GPU): the off-axis perspective that shows the
-// scene's screen_to_world rectangle of the mallet's plane exactly, and the placement of
+// scene's screen_to_world rectangle of the mallet's plane, framed for the image's
+// proportions (unstretched, the rest filled with more of the world), and the placement of
 // every model instance (bars scaled from their unit model, rails under the nodal points,
 // the mallet head).
 #include <string>
@@ -13,9 +14,20 @@
 
 namespace mallet::render {
 
-//! Vulkan clip space (y down, depth 0..1). A world point on the plane z = 0 projects to
-//! the same normalised screen position as ScreenToWorld::unmap gives for it.
-glm::mat4 view_projection(const Scene& scene, double near_m = 0.05, double far_m = 20.0);
+//! Vulkan clip space (y down, depth 0..1) for an image of `aspect` (width over height; 0:
+//! the content's own). A world point on the plane z = 0 projects to the same normalised
+//! screen position as framed(scene.screen_to_world, aspect).unmap gives for it.
+glm::mat4 view_projection(const Scene& scene, double aspect = 0, double near_m = 0.05, double far_m = 20.0);
+
+//! The mallet's sphere as seen from straight in front of its centre: the same frustum
+//! through the same framed rectangle, from the eye moved parallel to the plane z = 0 until
+//! it faces `centre`. The plane z = 0 maps onto the image exactly as in view_projection (the
+//! window lies in it) and depth is the same function of z, so the sphere sits where it did
+//! and meets the bars as before; but it is seen along its own axis, so it is drawn round
+//! anywhere on screen instead of the ellipse that the off-axis view stretches it into away
+//! from the eye's axis (1.15 times taller than wide at the percussion scene's bottom edge).
+glm::mat4 sphere_view_projection(const Scene& scene, double aspect, Vec2 centre, double near_m = 0.05,
+                                 double far_m = 20.0);
 glm::vec3 eye_position(const Scene& scene);
 
 //! Where the sphere's centre appears on screen (0..1, origin top-left), for checks.

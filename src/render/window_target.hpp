@@ -79,6 +79,8 @@ class WindowTarget {
   //! refresh, refined by the frame starts the caller reports (frame_started). The strike
   //! route reads it from other threads to align the sound with the picture.
   PresentClock& present_clock() { return *clock_; }
+  //! The monitor's refresh rate as the window system reports it (60 when it does not).
+  double refresh_hz() const { return refresh_hz_; }
   const PresentClock& present_clock() const { return *clock_; }
 
   //! Draws and presents one frame; false when nothing was drawn (minimised: it then waits

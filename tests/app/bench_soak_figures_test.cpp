@@ -32,6 +32,23 @@ TEST(SoakFigures, ReadsThisProcessAndSeesADescriptorAndAThreadMore) {
   EXPECT_EQ(b->threads, a->threads + 1);
 }
 
+TEST(SoakFigures, ReadsTheCpuTimeAProcessHasUsedWhichGrowsWithItsWork) {
+  const std::optional<ProcessSample> a = read_process(getpid());
+  ASSERT_TRUE(a);
+  // Work until the kernel has counted at least one more tick (10 ms at 100 Hz) of this
+  // process's CPU; a process that read 0 or a value that never moved would never get there.
+  volatile double sink = 0;
+  std::optional<ProcessSample> b = a;
+  for (int round = 0; round < 2000 && b && b->cpu_ns <= a->cpu_ns; ++round) {
+    for (int i = 0; i < 1'000'000; ++i) sink = sink + std::sqrt(static_cast<double>(i));
+    b = read_process(getpid());
+  }
+  ASSERT_TRUE(b);
+  EXPECT_GT(a->cpu_ns, 0);
+  EXPECT_GT(b->cpu_ns, a->cpu_ns);
+  EXPECT_EQ((b->cpu_ns - a->cpu_ns) % (1'000'000'000 / sysconf(_SC_CLK_TCK)), 0);  // whole ticks
+}
+
 TEST(SoakFigures, AProcessThatIsGoneIsNothing) {
   const pid_t child = fork();
   if (child == 0) _exit(0);

@@ -44,9 +44,32 @@ TEST(PresentClock, LearnsThePeriodFromFrameStartsAndIgnoresHiccups) {
   c.frame_started(t += 500 * kMs);  // minimised for half a second: not a period
   EXPECT_EQ(c.period_ns(), before);
   // 200 fps on a 60 Hz display: nothing paces FIFO (a virtual X server); a frame is shown
-  // when it is done, one frame after it starts. The grid is anchored at the latest start.
+  // when it is done, one frame's work (3 ms here) after it starts. The grid is anchored at
+  // the latest start.
   EXPECT_TRUE(c.unpaced());
-  EXPECT_EQ(c.first_shown(t + 1, 0), t + 2 * before);
+  EXPECT_EQ(c.first_shown(t + 1, 0), t + before + 3 * kMs);
+}
+
+TEST(PresentClock, AnUnpacedDisplayStaysSoWhenTheFrameBudgetSlowsItsFramesToTheRefresh) {
+  PresentClock c(60.0, PresentPacing::fifo);
+  Nanos t = 0;
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 2 * kMs);  // 500 fps: unpaced
+  ASSERT_TRUE(c.unpaced());
+  c.keep_unpaced();
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 16'666'667);  // max_fps = 60 from now on
+  EXPECT_TRUE(c.unpaced());
+  EXPECT_EQ(c.present_of_frame_started(t), t + 3 * kMs);  // shown when done, not two refreshes on
+  PresentClock paced(60.0, PresentPacing::fifo);
+  for (int i = 0; i < 400; ++i) paced.frame_started(t += 16'666'667);
+  EXPECT_FALSE(paced.unpaced());
+  // A software renderer at 1080p on a busy machine: 80 frames a second on a 60 Hz display is
+  // more than a display that paces FIFO ever shows; 62 is within its jitter.
+  PresentClock slow(60.0, PresentPacing::fifo), jittery(60.0, PresentPacing::fifo);
+  for (int i = 0; i < 400; ++i) slow.frame_started(t += 12'500'000);
+  for (int i = 0; i < 400; ++i) jittery.frame_started(t += 16'129'032);
+  EXPECT_TRUE(slow.unpaced());
+  EXPECT_FALSE(jittery.unpaced());
+  EXPECT_EQ(paced.present_of_frame_started(t), t + 2 * paced.period_ns());
 }
 
 TEST(PresentClock, ParsesTheThreePresentModes) {

@@ -106,6 +106,35 @@ TEST(Golden, MetalBarThirtyMillisecondsAfterAStrike) {
   expect_matches_golden(render_at(r, t), "metal_bar_30ms_after_strike");
 }
 
+// ---- every museum screen's shape: the scene framed, never stretched ----
+
+struct ScreenShape {
+  const char* name;  //!< the golden's suffix
+  int width, height;
+};
+
+class GoldenScreenShape : public ::testing::TestWithParam<ScreenShape> {};
+
+TEST_P(GoldenScreenShape, MalletRestingOnAWoodenBarFramedUnstretched) {
+  // The sphere a circle, both instruments whole, the extra room filled with more of the
+  // room around them (compare mallet_resting_on_wood, at 16:9).
+  const ScreenShape shape = GetParam();
+  HeadlessOptions o = golden_options();
+  o.size = {shape.width, shape.height};
+  HeadlessRenderer r(percussion(), o);
+  const Target& bar = percussion().targets.at(2);
+  const Replay replay = replay_of({{0.0, (bar.x_min + bar.x_max) / 2, -0.01}});
+  render::FrameState state;
+  state.mallet_centre = replay.cursor_at(0).shown;
+  expect_matches_golden(r.render(state), std::string("mallet_resting_on_wood_") + shape.name, r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Screens, GoldenScreenShape,
+                         ::testing::Values(ScreenShape{"16x10", 640, 400}, ScreenShape{"4x3", 640, 480},
+                                           ScreenShape{"5x4", 640, 512}, ScreenShape{"21x9", 840, 360},
+                                           ScreenShape{"9x16", 360, 640}),
+                         [](const ::testing::TestParamInfo<ScreenShape>& i) { return std::string(i.param.name); });
+
 TEST(Golden, ShadowStraddlingTwoBars) {
   const Target& a = percussion().targets.at(4);
   const Target& b = percussion().targets.at(5);

@@ -1,6 +1,8 @@
 #include "render/scene_view.hpp"
 
+#include <cmath>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,76 @@ TEST(SceneView, ThePlaneOfTheMalletMapsOntoTheScreenExactlyAsThePointerDoes) {
       EXPECT_NEAR(p.x, sx, 1e-5) << sx << "," << sy;
       EXPECT_NEAR(p.y, sy, 1e-5) << sx << "," << sy;
     }
+}
+
+TEST(SceneView, OnEveryScreenShapeAMetreIsAsManyPixelsAcrossAsUpAndTheContentIsWhole) {
+  // 16:9, 16:10, 4:3, 5:4, 21:9 and portrait 9:16, as images of those sizes.
+  const Scene& s = percussion();
+  for (const auto& [w, h] : {std::pair{1920, 1080}, {1920, 1200}, {1024, 768}, {1280, 1024}, {2560, 1080},
+                             {1080, 1920}}) {
+    const double aspect = static_cast<double>(w) / h;
+    const glm::mat4 vp = view_projection(s, aspect);
+    const ScreenToWorld framing = framed(s.screen_to_world, aspect);
+    // The plane of the mallet maps onto the image as the pointer's framing says...
+    for (double sx : {0.0, 0.3, 1.0})
+      for (double sy : {0.0, 0.6, 1.0}) {
+        const Vec2 world = framing.map(sx, sy);
+        const glm::dvec2 p = project_to_screen(vp, {world.x, world.y, 0.0});
+        EXPECT_NEAR(p.x, sx, 1e-5) << w << "x" << h;
+        EXPECT_NEAR(p.y, sy, 1e-5) << w << "x" << h;
+      }
+    // ...unstretched: 10 cm across and 10 cm up cover the same pixels...
+    const glm::dvec2 o = project_to_screen(vp, {0.0, 0.1, 0.0});
+    const glm::dvec2 x = project_to_screen(vp, {0.1, 0.1, 0.0});
+    const glm::dvec2 y = project_to_screen(vp, {0.0, 0.2, 0.0});
+    EXPECT_NEAR((x.x - o.x) * w, (o.y - y.y) * h, 1e-3) << w << "x" << h;
+    // ...and every bar is whole on the plane of the mallet.
+    for (const Target& t : s.targets) {
+      const glm::dvec2 a = project_to_screen(vp, {t.x_min, t.top_y, 0.0});
+      const glm::dvec2 b = project_to_screen(vp, {t.x_max, t.top_y, 0.0});
+      EXPECT_GE(a.x, 0.0) << w << "x" << h;
+      EXPECT_LE(b.x, 1.0) << w << "x" << h;
+      EXPECT_GT(a.y, 0.0) << w << "x" << h;
+      EXPECT_LT(a.y, 1.0) << w << "x" << h;
+    }
+  }
+}
+
+//! The sphere's outline on a w × h image: its width and height in pixels.
+glm::dvec2 outline_px(const glm::mat4& vp, glm::dvec3 centre, double radius, int w, int h) {
+  glm::dvec2 lo{1e300}, hi{-1e300};
+  for (int i = 0; i <= 90; ++i)
+    for (int j = 0; j < 180; ++j) {
+      const double theta = M_PI * i / 90, phi = 2 * M_PI * j / 180;
+      const glm::dvec3 p = centre + radius * glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                                        std::sin(theta) * std::sin(phi));
+      const glm::dvec2 s = project_to_screen(vp, p) * glm::dvec2(w, h);
+      lo = glm::min(lo, s);
+      hi = glm::max(hi, s);
+    }
+  return hi - lo;
+}
+
+TEST(SceneView, TheMalletIsDrawnRoundAnywhereOnAnyScreenWhereTheOffAxisViewWouldStretchIt) {
+  const Scene& s = percussion();
+  const double r = s.mallet_radius_m;
+  for (const auto& [w, h] : {std::pair{1920, 1080}, {1280, 1024}, {1080, 1920}}) {
+    const double aspect = static_cast<double>(w) / h;
+    const ScreenToWorld f = framed(s.screen_to_world, aspect);
+    for (const Vec2 at : {f.map(0.03, 0.97), f.map(0.5, 0.5), f.map(0.97, 0.03), f.map(0.9, 0.8)}) {
+      const glm::dvec2 round = outline_px(sphere_view_projection(s, aspect, at), {at.x, at.y, 0.0}, r, w, h);
+      EXPECT_NEAR(round.y / round.x, 1.0, 2e-3) << w << "x" << h << " at " << at.x << "," << at.y;
+      // Where the plane of the mallet is, the two views agree: the sphere stays put.
+      const glm::dvec2 c0 = project_to_screen(view_projection(s, aspect), {at.x, at.y, 0.0});
+      const glm::dvec2 c1 = project_to_screen(sphere_view_projection(s, aspect, at), {at.x, at.y, 0.0});
+      EXPECT_NEAR(c0.x, c1.x, 1e-6);
+      EXPECT_NEAR(c0.y, c1.y, 1e-6);
+    }
+  }
+  // The eye's own view, from above, stretches it at the bottom of a 16:9 screen.
+  const Vec2 low = s.screen_to_world.map(0.03, 0.97);
+  const glm::dvec2 egg = outline_px(view_projection(s), {low.x, low.y, 0.0}, r, 1920, 1080);
+  EXPECT_GT(egg.y / egg.x, 1.1);
 }
 
 TEST(SceneView, BarsAreSeenFromAboveInPerspective) {

@@ -178,6 +178,8 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     r.device = t->string_or("device", r.device);
     r.monitor = static_cast<int>(t->integer_or("monitor", r.monitor));
     t->require_range("monitor", r.monitor, 0, 15);
+    r.max_fps = t->number_or("max_fps", r.max_fps);
+    t->require_range("max_fps", r.max_fps, 0, 1000);
     t->finish();
   }
   if (auto t = top.optional_table("scenes")) {

@@ -1,0 +1,30 @@
+#!/bin/bash
+# Takes docs/screens/play-NAME.png (and, with a third argument "operator", operator-NAME.png)
+# from the real kiosk on a screen of one shape: run it under an Xvfb screen of that size.
+#   run: for s in 1920x1200:16x10 1024x768:4x3 1280x1024:5x4 2560x1080:21x9 1080x1920:9x16; do
+#          xvfb-run -a -s "-screen 0 ${s%:*}x24" docs/screens/take-shape.sh build/debug/mallet docs/screens ${s#*:}
+#        done
+# The kiosk fullscreen, as on a museum's screen; a visitor's mouse sweeps down onto the
+# third wooden bar and up again; then (operator) the operator page.
+#   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
+set -eu
+mallet=$1; out=$2; name=$3; page=${4:-}
+work=$(mktemp -d); export XDG_RUNTIME_DIR=$work/xdg MALLET_STATE_DIR=$work/state; mkdir -m 700 "$XDG_RUNTIME_DIR"
+"$mallet" run >"$work/log" 2>&1 & pid=$!
+trap 'kill $pid 2>/dev/null || true; rm -rf "$work"' EXIT
+for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
+read -r w h < <(xdotool getdisplaygeometry)
+sleep 3
+# The third wooden bar is at 14 % of the content's width; the content is centred and, on a
+# screen narrower than 16:9, spans the whole width.
+x=$(( w / 2 - (h * 16 / 9 < w ? h * 16 / 9 : w) * 36 / 100 ))
+for y in $(seq $(( h * 35 / 100 )) $(( h / 40 )) $(( h * 62 / 100 ))) $(seq $(( h * 62 / 100 )) -$(( h / 25 )) $(( h * 52 / 100 ))); do
+  xdotool mousemove "$x" "$y"; sleep 0.05
+done
+sleep 0.3
+import -window root "$out/play-$name.png"
+if [ "$page" = operator ]; then
+  xdotool key ctrl+alt+o; sleep 1
+  import -window root "$out/operator-$name.png"
+fi
+grep "input:\|render:" "$work/log" >&2

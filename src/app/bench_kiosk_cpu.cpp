@@ -1,0 +1,179 @@
+// The windowed kiosk's CPU: see bench_kiosk_cpu.hpp.
+#include "app/bench_kiosk_cpu.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/bench_kiosk_child.hpp"
+#include "app/bench_latency_child.hpp"
+#include "app/bench_latency_jack.hpp"
+#include "app/bench_latency_x11.hpp"
+#include "app/bench_soak_figures.hpp"
+#include "app/data_paths.hpp"
+#include "core/config/scene_config.hpp"
+
+namespace mallet::app {
+
+namespace {
+
+using latency::Child;
+
+constexpr double kIdleAfterS = 2.0;
+
+std::string read_all(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string settings_text(const std::filesystem::path& metrics) {
+  std::string t = "# written by `mallet bench render` for the kiosk under test\n";
+  t += "[audio]\ndevice = \"system\"   # the JACK host API's device, on the bench's own JACK server\n";
+  t += "sample_rate_hz = 48000\n";
+  t += "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
+  t += "[metrics]\ntextfile = \"" + metrics.string() + "\"\ninterval_s = 1\n";
+  return t;
+}
+
+//! The kiosk's line saying how its frames are paced ("render: frames paced ...").
+std::string pace_line(const std::string& tail) {
+  std::istringstream in(tail);
+  for (std::string line; std::getline(in, line);)
+    if (line.find("render: frames") != std::string::npos) return line.substr(line.find("render: frames"));
+  return "(the kiosk did not say how its frames are paced)";
+}
+
+//! CPU time of a process so far; throws when it is gone.
+std::int64_t cpu_ns(pid_t pid, const char* what) {
+  const std::optional<soak::ProcessSample> s = soak::read_process(pid);
+  if (!s) throw std::runtime_error(std::string("bench render: cannot read the ") + what + "'s CPU time from /proc");
+  return s->cpu_ns;
+}
+
+std::uint64_t frames_of(const std::filesystem::path& metrics) {
+  const std::optional<soak::KioskFigures> f = soak::parse_kiosk_figures(read_all(metrics));
+  return f ? f->frames : 0;
+}
+
+//! One kiosk, its two phases.
+void measure_one(bool capped, int width, int height, double seconds, const std::string& device,
+                 std::vector<KioskCpuRow>& rows) {
+  latency::TempDir temp("mallet-bench-cpu");
+  const std::filesystem::path runtime = temp.path() / "runtime", state = temp.path() / "state";
+  std::filesystem::create_directories(runtime);
+  std::filesystem::create_directories(state);
+  chmod(runtime.c_str(), 0700);
+  const std::filesystem::path metrics = temp.path() / "kiosk.prom", settings = temp.path() / "settings.toml";
+  latency::write_text(settings, settings_text(metrics));
+  const Scene scene = config::load_scene(default_scene());
+
+  latency::VirtualDisplay x(width, height);
+  latency::JackServer jack("mallet-cpu-" + std::to_string(getpid()), 48000, 256);
+  latency::FakePointer hand(x.name());
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("bench render: cannot find this executable (/proc/self/exe)");
+  latency::ChildOptions o;
+  o.argv = {exe.string(), "run", "--config", settings.string(), "--idle-after", std::to_string(kIdleAfterS)};
+  if (!capped) o.argv.emplace_back("--no-frame-cap");
+  if (!device.empty()) o.argv.insert(o.argv.end(), {"--device", device});
+  o.env = {{"DISPLAY", x.name()},
+           {"JACK_DEFAULT_SERVER", jack.name()},
+           {"JACK_NO_START_SERVER", "1"},
+           {"XDG_RUNTIME_DIR", runtime.string()},
+           {"MALLET_STATE_DIR", state.string()}};
+  if (const std::optional<std::string> preload = latency::child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  Child kiosk(std::move(o));
+  auto wait_for = [&](const char* what, const std::function<bool()>& done) {
+    latency::wait_for_kiosk(kiosk, "bench render", what, 60 * kNanosPerSecond, done, [] {
+      if (latency::stop_signal()) throw std::runtime_error("bench render: stopped by a signal");
+    });
+  };
+  wait_for("a fullscreen window", [&] { return hand.find_window(width, height).has_value(); });
+  wait_for("its metrics file", [&] { return frames_of(metrics) > 0; });
+
+  const Nanos span = static_cast<Nanos>(std::llround(seconds * 1e9));
+  // The frames as the metrics file has them just after one of its writes (every second):
+  // polled every 10 ms until its count moves, so the count is at most that old.
+  auto fresh_frames = [&](const std::function<void()>& during) {
+    const std::uint64_t before = frames_of(metrics);
+    for (const Nanos until = monotonic_now() + 3 * kNanosPerSecond; monotonic_now() < until;) {
+      if (const std::uint64_t now = frames_of(metrics); now != before) return now;
+      during();
+      latency::sleep_ms(10);
+    }
+    throw std::runtime_error("bench render: the kiosk's metrics file stopped moving; its last lines:\n" +
+                             kiosk.tail(10));
+  };
+  auto measure = [&](const char* phase, const std::function<void()>& during) {
+    const std::uint64_t f0 = fresh_frames(during);
+    const std::int64_t k0 = cpu_ns(kiosk.pid(), "kiosk"), x0 = cpu_ns(x.server().pid(), "X server");
+    const Nanos t0 = monotonic_now();
+    while (monotonic_now() - t0 < span && !latency::stop_signal()) during();
+    const std::uint64_t f1 = fresh_frames(during);
+    const std::int64_t k1 = cpu_ns(kiosk.pid(), "kiosk"), x1 = cpu_ns(x.server().pid(), "X server");
+    const double wall = to_seconds(monotonic_now() - t0);
+    KioskCpuRow r;
+    r.capped = capped;
+    r.phase = phase;
+    r.cpu_percent = 100.0 * to_seconds(k1 - k0) / wall;
+    r.x_server_percent = 100.0 * to_seconds(x1 - x0) / wall;
+    r.fps = static_cast<double>(f1 - f0) / wall;
+    rows.push_back(r);
+  };
+  // Nobody there: the attract mode starts after kIdleAfterS; the frame budget after 120 frames.
+  latency::sleep_ms(1000 * (kIdleAfterS + 2.0));
+  measure("attract", [] { latency::sleep_ms(50); });
+  // A visitor: the pointer sweeps across the screen, dipping into the bars every 0.6 s.
+  const double top = scene.screen_to_world.unmap({0.0, 0.08}).y, bottom = scene.screen_to_world.unmap({0.0, -0.02}).y;
+  const Nanos start = monotonic_now();
+  measure("play", [&] {
+    const double t = to_seconds(monotonic_now() - start);
+    const double sx = 0.5 + 0.4 * std::sin(2 * M_PI * t / 7.0);
+    const double sy = top + (bottom - top) * 0.5 * (1 - std::cos(2 * M_PI * t / 0.6));
+    hand.move_to(static_cast<int>(sx * width), static_cast<int>(sy * height));
+    latency::sleep_ms(4);
+  });
+  kiosk.stop();
+  std::printf("  %s: %s\n", capped ? "capped" : "uncapped", pace_line(kiosk.tail(40)).c_str());
+}
+
+}  // namespace
+
+std::vector<KioskCpuRow> measure_kiosk_cpu(int width, int height, double seconds, const std::string& device) {
+  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
+    if (latency::find_program(program).empty())
+      throw std::runtime_error(std::string("bench render: the kiosk's CPU needs ") + program +
+                               ": install the Debian package " + package);
+  latency::StopSignals signals;
+  std::vector<KioskCpuRow> rows;
+  measure_one(true, width, height, seconds, device, rows);
+  measure_one(false, width, height, seconds, device, rows);
+  return rows;
+}
+
+std::string kiosk_cpu_table(const std::vector<KioskCpuRow>& rows, int width, int height) {
+  std::ostringstream out;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "The windowed kiosk at %dx%d (fullscreen on Xvfb, lavapipe), CPU of one core:\n\n",
+                width, height);
+  out << buf << "| frames | phase | kiosk CPU % | frames/s | X server CPU % |\n|---|---|---:|---:|---:|\n";
+  for (const KioskCpuRow& r : rows) {
+    std::snprintf(buf, sizeof buf, "| %s | %s | %.1f | %.1f | %.1f |\n",
+                  r.capped ? "capped ([render] max_fps = refresh)" : "uncapped (--no-frame-cap)", r.phase.c_str(),
+                  r.cpu_percent, r.fps, r.x_server_percent);
+    out << buf;
+  }
+  return out.str();
+}
+
+}  // namespace mallet::app
