@@ -68,5 +68,5 @@ void main() {
   vec3 ambient = (ambient_diffuse + environment * f0 * (1.0 - 0.7 * roughness)) * frame.light_color.w;
   ambient *= mix(0.55, 1.0, visibility);
 
-  out_color = vec4(direct + ambient, albedo.a);
+  out_color = vec4(direct + ambient + draw.emissive.rgb, albedo.a);
 }

@@ -14,4 +14,5 @@ layout(push_constant) uniform Draw {
   vec4 params;       // x metallic, y roughness, w textured (0/1); z the sphere's shadow: 0 not received,
                      // 1 received, 2 received and only the pixels it darkens drawn (over the cached background),
                      // -1 the sphere itself (not received; projected by frame.sphere_view_proj)
+  vec4 emissive;     // rgb: light the surface gives off (a lit bar: under the mallet, or struck)
 } draw;

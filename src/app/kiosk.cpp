@@ -15,6 +15,7 @@
 #include "app/metrics_file.hpp"
 #include "app/window_kiosk.hpp"
 #include "audio/wav_file.hpp"
+#include "core/bar_lights.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
@@ -72,8 +73,8 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   const HeadlessOptions ho = kiosk_headless_options(config.render, parse_size(o.size, "--size"), o.device);
   HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
-  const render::FontAtlas font(render::FontAtlas::default_font(), static_cast<float>(ho.size.height) / 24.0f);
-  render::Overlay overlay(font);
+  const std::unique_ptr<render::FontAtlas> font = overlay_font(ho.size);
+  render::Overlay overlay(*font);
 
   const Nanos frame = kNanosPerSecond / 60;
   const Nanos end = static_cast<Nanos>(std::llround(o.seconds * 1e9));
@@ -84,7 +85,9 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     draw_banner(overlay, hint_text(KioskHint::invitation), static_cast<float>(ho.size.width),
                 static_cast<float>(ho.size.height));
     render::FrameState state;
-    state.mallet_centre = loop.displayed(t);
+    const StrikeLoop::View view = loop.strike_loop().view();
+    state.mallet_centre = view.displayed(t);
+    state.bar_lights = bar_lights(scene, view.shown, view.vibration, t);
     state.overlay = &overlay;
     renderer.draw(state);
     ++frames;

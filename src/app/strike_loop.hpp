@@ -50,6 +50,8 @@ class StrikeLoop {
   View view(Vec2 hand) const {
     return {texture_ ? texture_->cursor() : mallet_.displayed_centre(hand), vibration_};
   }
+  //! The head where the latest hand sample puts it.
+  View view() const { return view(hand_); }
   const Mallet::Counters& counters() const { return mallet_.counters(); }
   //! The Speed technique's gain of the last displacement (1 outside texture scenes).
   double gain() const { return texture_ ? texture_->gain() : 1.0; }

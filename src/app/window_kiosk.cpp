@@ -28,6 +28,7 @@
 #include "app/strike_route.hpp"
 #include "app/systemd_notify.hpp"
 #include "audio/portaudio_output.hpp"
+#include "core/bar_lights.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
@@ -882,10 +883,13 @@ int WindowKiosk::run() {
     win_.window->present_clock().frame_started(now);
     const Nanos present = win_.window->predicted_present(now);
     if (!latency_test_.empty()) latency_test_frame(present);
-    state.mallet_centre = !states_->visitor_plays() ? route.view().displayed(present)
-                          : !mouse               ? stage_->remote->view().displayed(present)
-                          : stage_->mouse        ? stage_->mouse->view().displayed(present)
-                                                 : route.view().displayed(present);
+    const StrikeLoop::View view = !states_->visitor_plays() ? route.view()
+                                  : !mouse                 ? stage_->remote->view()
+                                  : stage_->mouse          ? stage_->mouse->view()
+                                                           : route.view();
+    state.mallet_centre = view.displayed(present);
+    // The bar under the mallet (where it is held, not where it bounces) and the bar struck.
+    state.bar_lights = bar_lights(stage_->scene, view.shown, view.vibration, present);
     state.overlay = win_.overlay.get();
     // A lost device: the renderer and the window's device, pipelines and background made
     // anew; the sound, the remote's and the evdev mouse's strikes go on on their threads.

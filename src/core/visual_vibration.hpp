@@ -4,6 +4,8 @@
 // with the material's *visual* triple (A in seconds, so A·v is metres).
 // The displacement is evaluated from the time since the impact on the int64 clock, so
 // it is the same after 30 days of uptime as after one second.
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "core/impact.hpp"
@@ -22,7 +24,7 @@ class VisualVibration {
 
   //! A new impact restarts the bounce (the latest strike is the one the eye follows).
   void start(const Impact& impact, const VibrationParams& visual) {
-    state_ = State{impact.t_ns, impact.speed_m_per_s, visual};
+    state_ = State{impact.t_ns, impact.speed_m_per_s, visual, impact.target};
   }
   void clear() { state_.reset(); }
 
@@ -38,11 +40,24 @@ class VisualVibration {
     return state_ ? std::optional<Nanos>(state_->t0) : std::nullopt;
   }
 
+  //! The struck bar (Target::id), -1 before any impact.
+  int target() const { return state_ ? state_->target : -1; }
+  //! How brightly the struck bar glows at `now`, 0..1: it fades with the same visual decay
+  //! as the bounce, e^(−B·t) (Eq. 1's envelope, without its amplitude and oscillation), from
+  //! a brightness set by the strike's speed (full at 2 m/s and above, a quarter at most at
+  //! the softest). 0 before the impact and without one.
+  double glow(Nanos now) const {
+    if (!state_ || now < state_->t0) return 0.0;
+    const double brightness = std::clamp(state_->speed / 2.0, 0.25, 1.0);
+    return brightness * std::exp(-state_->params.decay_per_s * to_seconds(now - state_->t0));
+  }
+
  private:
   struct State {
     Nanos t0;
     double speed;
     VibrationParams params;
+    int target;
   };
   BounceMode mode_;
   std::optional<State> state_;

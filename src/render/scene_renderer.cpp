@@ -34,8 +34,22 @@ struct DrawConstants {
   glm::mat4 model;
   glm::vec4 base_color;
   glm::vec4 params;
+  glm::vec4 emissive;  //!< rgb: light the surface gives off (a lit bar), linear
 };
-static_assert(sizeof(DrawConstants) == 96, "push constants: 128 bytes guaranteed, 96 used");
+static_assert(sizeof(DrawConstants) == 112, "push constants: 128 bytes guaranteed, 112 used");
+
+//! How brightly the bar `target` is lit this frame (the brighter of its lights); 0 when it
+//! is not, and for what is not a bar (-1).
+float glow_of(const FrameState& state, int target) {
+  float glow = 0;
+  if (target >= 0)
+    for (const BarLight& l : state.bar_lights)
+      if (l.target == target) glow = std::max(glow, l.glow);
+  return glow;
+}
+
+//! A lit bar's light at glow 1: warm, like a stage light on wood and metal alike.
+constexpr glm::vec3 kBarGlowColor{0.55f, 0.42f, 0.22f};
 
 template <std::size_t N>
 vk::ShaderModule make_shader(VkDevice dev, const std::uint32_t (&code)[N]) {
@@ -432,7 +446,7 @@ std::size_t SceneRenderer::triangle_count() const {
   return n;
 }
 
-void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow) {
+void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, float glow) {
   const GpuModel& model = models_.at(instance.model);
   const VkDeviceSize offset = 0;
   VkBuffer vb = model.vertices.buffer.get();
@@ -442,7 +456,8 @@ void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance,
     const GpuMaterial& m = model.materials.at(p.material);
     DrawConstants dc{instance.transform,
                      {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]},
-                     {m.metallic, m.roughness, static_cast<float>(shadow), m.textured ? 1.0f : 0.0f}};
+                     {m.metallic, m.roughness, static_cast<float>(shadow), m.textured ? 1.0f : 0.0f},
+                     glm::vec4(kBarGlowColor * glow, 0.0f)};
     vkCmdPushConstants(cmd, scene_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                        0, sizeof(dc), &dc);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 1, 1, &m.set, 0,
@@ -651,8 +666,11 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
       for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::only_shadowed_pixels);
       vkCmdSetScissor(cmd, 0, 1, &whole);
     }
+    // The lit bars again, whole, with their light (and the shadow where it falls on them).
+    for (const Instance& i : instruments_)
+      if (const float glow = glow_of(state, i.target); glow > 0) draw_instance(cmd, i, Shadow::receives, glow);
   } else if (state.draw_instruments) {
-    for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives);
+    for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_of(state, i.target));
   }
   if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), Shadow::the_sphere);
   if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);

@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "core/bar_lights.hpp"
 #include "core/geometry.hpp"
 #include "core/scene.hpp"
 #include "render/gpu_resources.hpp"
@@ -67,6 +68,8 @@ struct FrameState {
   bool draw_mallet = true;
   bool draw_instruments = true;      //!< false: only the clear (the benchmark's floor)
   const Overlay* overlay = nullptr;  //!< drawn last, over everything; may be null
+  //! Bars lit this frame (core/bar_lights.hpp): the one under the mallet, the one struck.
+  std::array<BarLight, 2> bar_lights{};
 };
 
 //! Whether the device can render colour and depth with this many samples per pixel.
@@ -142,7 +145,8 @@ class SceneRenderer {
   VkSampleCountFlagBits background_samples() const {
     return settings_.samples != VK_SAMPLE_COUNT_1_BIT ? settings_.samples : settings_.background_samples;
   }
-  void draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow);
+  //! `glow` (0..1): light the bar gives off (a lit bar), added to its shading.
+  void draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, float glow = 0);
   void draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Slot& slot, VkExtent2D extent);
   VkDescriptorSet allocate_set(VkDescriptorSetLayout layout);
   void write_image_set(VkDescriptorSet set, VkImageView view);

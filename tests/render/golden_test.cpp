@@ -5,6 +5,7 @@
 //
 // Updating the goldens after an intended change of the picture (look at them first):
 //   MALLET_UPDATE_GOLDENS=1 build/debug/render_tests --gtest_filter='Golden*'
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 
@@ -110,7 +111,7 @@ TEST(Golden, MetalBarThirtyMillisecondsAfterAStrike) {
 
 struct ScreenShape {
   const char* name;  //!< the golden's suffix
-  int width, height;
+  std::uint32_t width, height;
 };
 
 class GoldenScreenShape : public ::testing::TestWithParam<ScreenShape> {};
