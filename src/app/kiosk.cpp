@@ -82,7 +82,7 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   for (Nanos t = 0; t <= end; t += frame) {
     loop.advance(t);
     overlay.clear();
-    draw_banner(overlay, hint_text(KioskHint::invitation), static_cast<float>(ho.size.width),
+    draw_banner(overlay, hint_text(KioskHint::invitation, scene.kind), static_cast<float>(ho.size.width),
                 static_cast<float>(ho.size.height));
     render::FrameState state;
     const StrikeLoop::View view = loop.strike_loop().view();

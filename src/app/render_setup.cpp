@@ -199,8 +199,9 @@ HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& op
   cache_ = std::make_unique<render::PipelineCache>(*ctx_, options.cache_dir);
   render::RenderSettings settings = options.settings;
   if (options.auto_samples) render::use_recommended_antialiasing(*ctx_, settings);
-  renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene, models_dir(), render::OffscreenTarget::kFormat,
-                                                      settings, cache_->get());
+  const std::filesystem::path models = options.models.empty() ? models_dir() : options.models;
+  renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene, models, render::OffscreenTarget::kFormat, settings,
+                                                      cache_->get());
   target_ = std::make_unique<render::OffscreenTarget>(*ctx_, options.size);
 }
 

@@ -38,6 +38,7 @@ struct HeadlessOptions {
   std::string device;                 //!< substring of the Vulkan device name; empty = best
   render::Validation validation = validation_from_env();
   std::filesystem::path cache_dir = render::PipelineCache::default_dir();
+  std::filesystem::path models;  //!< where the scene's models are; empty = the shipped models_dir()
 };
 
 //! The kiosk's offscreen renderer as its settings choose it ([render] msaa, shadow, device;

@@ -721,7 +721,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
   const float px = win_.font->pixel_height();
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
-  if (const KioskHint hint = states_->hint(); hint != KioskHint::none) draw_banner(o, hint_text(hint), w, h);
+  if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
+    draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
   if (states_->overlay().mouse_notice)
     o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",

@@ -32,10 +32,13 @@ const char* to_string(KioskState state) {
   return "?";
 }
 
-std::string_view hint_text(KioskHint hint) {
+std::string_view hint_text(KioskHint hint, SceneKind scene) {
   switch (hint) {
     case KioskHint::none: return "";
-    case KioskHint::invitation: return "Pick up the mallet and strike a bar";
+    case KioskHint::invitation:
+      return scene == SceneKind::texture ? "Pick up the mallet and move it over the disc"
+             : scene == SceneKind::wall  ? "Pick up the mallet and tap the wall"
+                                         : "Pick up the mallet and strike a bar";
     case KioskHint::point_at_screen: return "Point the mallet at the screen";
     case KioskHint::close_needs_chord: return "This kiosk closes from the operator page only";
     case KioskHint::remote_missing: return "The mallet is resting: please ask a member of staff";

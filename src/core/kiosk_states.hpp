@@ -40,6 +40,7 @@
 #include <string_view>
 
 #include "core/geometry.hpp"
+#include "core/scene.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
@@ -74,7 +75,9 @@ struct KioskOverlay {
 //! The one line to show, most urgent first: close notice, remote missing, point-at-screen,
 //! invitation.
 enum class KioskHint { none, invitation, point_at_screen, close_needs_chord, remote_missing };
-std::string_view hint_text(KioskHint hint);  //!< "" for none
+//! "" for none. The invitation asks for what the scene is played with: a bar to strike, the
+//! disc to move over (texture), the wall to tap.
+std::string_view hint_text(KioskHint hint, SceneKind scene = SceneKind::percussion);
 
 class KioskStates {
  public:

@@ -203,8 +203,13 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   }
   for (const Instance& i : instruments_) {
     const Box& b = models_.at(i.model).bounds;
-    if (b.empty()) continue;
-    for (int c = 0; c < 8; ++c) instruments_box_.add(glm::dvec3(i.transform * glm::vec4(glm::vec3(b.corner(c)), 1.0f)));
+    Box world;
+    if (!b.empty())
+      for (int c = 0; c < 8; ++c) world.add(glm::dvec3(i.transform * glm::vec4(glm::vec3(b.corner(c)), 1.0f)));
+    instrument_boxes_.push_back(world);
+    if (world.empty()) continue;
+    instruments_box_.add(world.lo);
+    instruments_box_.add(world.hi);
   }
 
   build_pipelines(cache);
@@ -403,6 +408,10 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   // The scene framed for the image's proportions: nothing stretched, all of it in view.
   aspect_ = static_cast<double>(extent.width) / extent.height;
   view_proj_ = render::view_projection(scene_, aspect_);
+  instrument_rects_.clear();
+  for (const Box& b : instrument_boxes_)
+    instrument_rects_.push_back(
+        screen_rect(view_proj_, static_cast<int>(extent.width), static_cast<int>(extent.height), b));
   depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, settings_.samples,
                       VK_IMAGE_ASPECT_DEPTH_BIT);
   msaa_color_ = {};
@@ -650,6 +659,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                     over_background ? over_background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
+  shadow_redraws_ = 0;
   if (over_background) {
     // The instruments again, only where the sphere's shadow can fall.
     const PixelRect shadow =
@@ -663,7 +673,13 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                        {static_cast<std::uint32_t>(shadow.x1 - shadow.x0),
                         static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
-      for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::only_shadowed_pixels);
+      // Only the instruments whose screen box meets the shadow's: a detailed model's other
+      // bars cost nothing (each instance's box is projected once per image size).
+      for (std::size_t k = 0; k < instruments_.size(); ++k)
+        if (overlap(instrument_rects_[k], shadow)) {
+          draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
+          ++shadow_redraws_;
+        }
       vkCmdSetScissor(cmd, 0, 1, &whole);
     }
     // The lit bars again, whole, with their light (and the shadow where it falls on them).

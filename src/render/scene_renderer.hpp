@@ -106,6 +106,10 @@ class SceneRenderer {
   std::size_t triangle_count() const;
   //! How many times the cached background was drawn: once per image size it met.
   std::uint64_t background_builds() const { return background_builds_; }
+  //! How many instruments the last frame redrew over the cached background for the
+  //! shadow (those whose screen box meets it), of instrument_count().
+  std::size_t shadow_redraws() const { return shadow_redraws_; }
+  std::size_t instrument_count() const { return instruments_.size(); }
 
  private:
   struct GpuMaterial {
@@ -171,11 +175,14 @@ class SceneRenderer {
   VkExtent2D attachment_extent_{};
   GpuImage depth_, msaa_color_;
   Box instruments_box_;                         //!< world bounds of everything that receives the shadow
+  std::vector<Box> instrument_boxes_;           //!< each of instruments_', world metres
+  std::vector<PixelRect> instrument_rects_;     //!< each of instruments_' on the image (attachment_extent_)
   GpuImage background_color_, background_depth_;  //!< the instruments alone, at attachment_extent_
   GpuImage background_msaa_color_, background_msaa_depth_;  //!< drawn into, then resolved (background_samples)
   std::optional<std::uint32_t> background_scratch_slot_;   //!< the slot of the frame that drew them
   bool background_ready_ = false;
   std::uint64_t background_builds_ = 0;
+  std::size_t shadow_redraws_ = 0;
   const FontAtlas* atlas_source_ = nullptr;
   GpuImage atlas_;
   VkDescriptorSet atlas_set_ = VK_NULL_HANDLE;

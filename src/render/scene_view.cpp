@@ -128,11 +128,14 @@ PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const
   Box region;
   region.lo = glm::max(glm::min(s.centre, end) - reach, receivers.lo);
   region.hi = glm::min(glm::max(s.centre, end) + reach, receivers.hi);
-  if (region.empty()) return {};
+  return screen_rect(view_proj, width, height, region);
+}
 
+PixelRect screen_rect(const glm::mat4& view_proj, int width, int height, const Box& box) {
+  if (box.empty() || width <= 0 || height <= 0) return {};
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (int i = 0; i < 8; ++i) {
-    const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(region.corner(i), 1.0);
+    const glm::dvec4 clip = glm::dmat4(view_proj) * glm::dvec4(box.corner(i), 1.0);
     if (clip.w <= 1e-9) return {0, 0, width, height};  // reaches behind the eye
     const double x = (clip.x / clip.w + 1) / 2 * width, y = (clip.y / clip.w + 1) / 2 * height;
     x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);

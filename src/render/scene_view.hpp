@@ -83,6 +83,14 @@ struct SphereShadow {
 //! shader computes it in floats; here in doubles, for checks.
 double sphere_visibility(const SphereShadow& s, glm::dvec3 p);
 
+//! The pixels a world box covers on a width × height image (its eight corners projected,
+//! two pixels of margin, clamped); the whole image when the box reaches behind the eye,
+//! nothing for an empty box.
+PixelRect screen_rect(const glm::mat4& view_proj, int width, int height, const Box& box);
+inline bool overlap(const PixelRect& a, const PixelRect& b) {
+  return !a.empty() && !b.empty() && a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
 //! A screen rectangle (clamped to width × height) outside which the sphere darkens nothing
 //! inside `receivers`: every point of the box with visibility < 1 projects into it. Empty
 //! when the sphere shadows nothing there; the whole image when the region reaches behind

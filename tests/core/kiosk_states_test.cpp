@@ -54,6 +54,15 @@ TEST(KioskStates, StartsInAttractWithTheGhostAndTheInvitation) {
   EXPECT_EQ(hint_text(k.hint()), "Pick up the mallet and strike a bar");
 }
 
+TEST(KioskStates, TheInvitationAsksForWhatTheSceneIsPlayedWith) {
+  EXPECT_EQ(hint_text(KioskHint::invitation, SceneKind::percussion), "Pick up the mallet and strike a bar");
+  EXPECT_EQ(hint_text(KioskHint::invitation, SceneKind::texture), "Pick up the mallet and move it over the disc");
+  EXPECT_EQ(hint_text(KioskHint::invitation, SceneKind::wall), "Pick up the mallet and tap the wall");
+  // Neither second-paper scene has bars to strike.
+  for (SceneKind kind : {SceneKind::texture, SceneKind::wall})
+    EXPECT_EQ(hint_text(KioskHint::invitation, kind).find("bar"), std::string_view::npos) << to_string(kind);
+}
+
 using Event = std::function<bool(KioskStates&, Nanos)>;
 
 struct Row {
