@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "app/bench_kiosk_child.hpp"
 #include "app/bench_latency_child.hpp"
@@ -44,13 +46,22 @@ std::string settings_text(const std::filesystem::path& metrics) {
   return t;
 }
 
-//! The kiosk's line saying how its frames are paced ("render: frames paced ...").
-std::string pace_line(const std::string& tail) {
-  std::istringstream in(tail);
-  for (std::string line; std::getline(in, line);)
-    if (line.find("render: frames") != std::string::npos) return line.substr(line.find("render: frames"));
-  return "(the kiosk did not say how its frames are paced)";
-}
+//! The kiosk's line saying how its frames are paced ("render: frames paced ..."), kept from
+//! its output as it comes (the reader thread).
+struct PaceLine {
+  std::mutex mutex;
+  std::string text = "(the kiosk did not say how its frames are paced)";
+  void see(std::string_view line) {
+    if (const std::size_t at = line.find("render: frames"); at != std::string_view::npos) {
+      std::lock_guard lock(mutex);
+      text = std::string(line.substr(at));
+    }
+  }
+  std::string get() {
+    std::lock_guard lock(mutex);
+    return text;
+  }
+};
 
 //! CPU time of a process so far; throws when it is gone.
 std::int64_t cpu_ns(pid_t pid, const char* what) {
@@ -92,6 +103,8 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
            {"XDG_RUNTIME_DIR", runtime.string()},
            {"MALLET_STATE_DIR", state.string()}};
   if (const std::optional<std::string> preload = latency::child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  auto pace = std::make_shared<PaceLine>();
+  o.on_line = [pace](Nanos, std::string_view line) { pace->see(line); };
   Child kiosk(std::move(o));
   auto wait_for = [&](const char* what, const std::function<bool()>& done) {
     latency::wait_for_kiosk(kiosk, "bench render", what, 60 * kNanosPerSecond, done, [] {
@@ -144,7 +157,7 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
     latency::sleep_ms(4);
   });
   kiosk.stop();
-  std::printf("  %s: %s\n", capped ? "capped" : "uncapped", pace_line(kiosk.tail(40)).c_str());
+  std::printf("  %s: %s\n", capped ? "capped" : "uncapped", pace->get().c_str());
 }
 
 }  // namespace

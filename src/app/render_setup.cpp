@@ -102,32 +102,40 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
 void ProductWindow::set_max_fps(double max_fps) {
   if (max_fps == max_fps_) return;
   max_fps_ = max_fps;
-  pace_chosen_ = false;
+  pace_said_ = false;
   pacer_.set_max_fps(0);
 }
 
 void ProductWindow::pace() {
-  constexpr std::uint64_t kLearningFrames = 120;  // the present model's period settles in ~60
+  held_ns_ = 0;
   if (max_fps_ < 0) {  // mallet run --no-frame-cap
-    if (!std::exchange(pace_chosen_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
+    if (!std::exchange(pace_said_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
     return;
   }
-  if (!pace_chosen_ && frames_ >= kLearningFrames) {
-    pace_chosen_ = true;
-    const double refresh = window->refresh_hz();
-    const double cap = max_fps_ > 0 ? std::min(max_fps_, refresh) : refresh;
-    const bool fifo = clock.pacing() == PresentPacing::fifo;
-    const bool display_paces = fifo && !clock.unpaced();
-    if (fifo && !display_paces) clock.keep_unpaced();
-    if (!display_paces || cap < refresh * 0.98) pacer_.set_max_fps(cap);
-    if (pacer_.max_fps() > 0)
+  // Decided before every frame from the present model, which judges the display by the
+  // frames' own pace (the budget's waits left out), so a cap never hides an unpaced display.
+  const double refresh = window->refresh_hz();
+  const double cap = max_fps_ > 0 ? std::min(max_fps_, refresh) : refresh;
+  const bool fifo = clock.pacing() == PresentPacing::fifo;
+  const bool display_paces = fifo && !clock.unpaced();
+  const bool pace = !display_paces || cap < refresh * 0.98;
+  if (pace != (pacer_.max_fps() > 0)) pacer_.set_max_fps(pace ? cap : 0);
+  constexpr std::uint64_t kSettledFrames = 120;  // the present model's estimate settles in ~60
+  if (frames_ >= kSettledFrames && !std::exchange(pace_said_, true)) {
+    if (pace)
       std::fprintf(stderr, "<6>render: frames paced at %.0f a second (%s)\n", cap,
                    display_paces ? "[render] max_fps, below the display's refresh"
-                                 : fifo ? "the display does not hold them back" : "mailbox or immediate presenting");
+                   : fifo        ? "the display does not hold them back"
+                                 : "mailbox or immediate presenting");
     else
       std::fprintf(stderr, "<6>render: frames paced by the display at its %.0f Hz refresh\n", refresh);
   }
-  sleep_until_monotonic(pacer_.begin(monotonic_now()));
+  if (!pace) return;
+  const Nanos now = monotonic_now();
+  const Nanos wake = pacer_.begin(now);
+  if (wake <= now) return;
+  sleep_until_monotonic(wake);
+  held_ns_ = monotonic_now() - now;
 }
 
 bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,

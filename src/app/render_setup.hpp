@@ -109,15 +109,15 @@ struct ProductWindow {
                        const std::function<void()>& drop, const std::function<void()>& make);
   std::uint64_t devices_lost() const { return devices_lost_; }
   //! The frame budget ([render] max_fps; 0 = the refresh, never above it; < 0, only from
-  //! `mallet run --no-frame-cap`: none): called before
-  //! each frame, it waits until the frame's slot. The first frames run free, so that the
-  //! present model can learn whether the display paces them itself; a FIFO display that
-  //! does is left to pace them (unless max_fps is below its refresh). Says once in the log
-  //! what it chose. set_max_fps with another value (a reload) chooses again.
+  //! `mallet run --no-frame-cap`: none): called before each frame, it waits until the
+  //! frame's slot. A FIFO display that paces the frames itself (the present model's
+  //! judgement, from the frames' own pace) is left to do so, unless max_fps is below its
+  //! refresh. Says in the log what it chose once the model has settled (120 frames), and
+  //! again after set_max_fps with another value (a reload).
   void pace();
   void set_max_fps(double max_fps);
-  //! The pace chosen: 0 while learning, or when the display paces the frames itself.
-  double paced_fps() const { return pacer_.max_fps(); }
+  //! How long the last pace() held the frame back: PresentClock::frame_started's held_ns.
+  Nanos held_ns() const { return held_ns_; }
 
   render::WindowSystem glfw;
   PresentClock clock;  //!< outlives every window target made for this window
@@ -136,7 +136,8 @@ struct ProductWindow {
  private:
   std::uint64_t frames_ = 0, devices_lost_ = 0;
   double max_fps_ = 0;
-  bool pace_chosen_ = false;
+  bool pace_said_ = false;
+  Nanos held_ns_ = 0;
   FramePacer pacer_;
   std::vector<std::uint64_t> inject_lost_at_;  //!< frame counts, ascending
 };

@@ -172,7 +172,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     if (!banner_.empty()) draw_banner(o, banner_, w, h);
     if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
     render::FrameState state;
-    win_.window->present_clock().frame_started(now);
+    win_.window->present_clock().frame_started(now, win_.held_ns());
     const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = route_->view().displayed(present);
     state.overlay = win_.overlay.get();

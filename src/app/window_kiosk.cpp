@@ -881,7 +881,7 @@ int WindowKiosk::run() {
 
     draw_overlay(now, frame_ms);
     render::FrameState state;
-    win_.window->present_clock().frame_started(now);
+    win_.window->present_clock().frame_started(now, win_.held_ns());
     const Nanos present = win_.window->predicted_present(now);
     if (!latency_test_.empty()) latency_test_frame(present);
     const StrikeLoop::View view = !states_->visitor_plays() ? route.view()

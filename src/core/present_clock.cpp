@@ -32,20 +32,21 @@ PresentClock::PresentClock(double refresh_hz, PresentPacing pacing, Nanos frame_
     : pacing_(static_cast<int>(pacing)),
       period_ns_(period_of(refresh_hz)),
       refresh_ns_(period_of(refresh_hz)),
+      unheld_ns_(period_of(refresh_hz)),
       cost_ns_(frame_cost_ns) {}
 
 void PresentClock::set_refresh_hz(double hz) {
   period_ns_.store(period_of(hz), std::memory_order_relaxed);
   refresh_ns_.store(period_of(hz), std::memory_order_relaxed);
+  unheld_ns_.store(period_of(hz), std::memory_order_relaxed);
 }
 
 bool PresentClock::unpaced() const {
   return pacing() == PresentPacing::fifo &&
-         (kept_unpaced_.load(std::memory_order_relaxed) ||
-          period_ns_.load(std::memory_order_relaxed) * 20 < refresh_ns_.load(std::memory_order_relaxed) * 17);
+         unheld_ns_.load(std::memory_order_relaxed) * 20 < refresh_ns_.load(std::memory_order_relaxed) * 17;
 }
 
-void PresentClock::frame_started(Nanos t) {
+void PresentClock::frame_started(Nanos t, Nanos held_ns) {
   const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
   if (last < 0 || t <= last) return;
   // The period follows the measured frame interval slowly (a display that does not pace
@@ -55,6 +56,9 @@ void PresentClock::frame_started(Nanos t) {
   const Nanos interval = t - last;
   if (interval > 3 * period) return;
   period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
+  const Nanos unheld = unheld_ns_.load(std::memory_order_relaxed);
+  const Nanos own = std::max<Nanos>(0, interval - held_ns);
+  unheld_ns_.store(std::max<Nanos>(500'000, unheld + (own - unheld) / 16), std::memory_order_relaxed);
 }
 
 Nanos PresentClock::next_start(Nanos t) const {

@@ -15,9 +15,9 @@
 // FIFO swapchain whose frames come much faster than the display's refresh is not paced by
 // it (a virtual X server: no vblank at all): its frames are shown as soon as they are done,
 // one frame's work after they start (measured with bench latency: 2–7 ms, not two
-// refreshes). The window's frame budget (core/frame_pacer.hpp) then slows them to max_fps,
-// after which their rate no longer tells: the window says so once it has seen it
-// (keep_unpaced), and the clock remembers.
+// refreshes). Whether the display paces is judged from the frames' own pace: the interval
+// between frame starts less the time the window's frame budget (core/frame_pacer.hpp) held
+// the frame back, so slowing the frames to max_fps does not make the display look paced.
 // Written by the render thread, read by the input threads: every field is one atomic.
 #include <atomic>
 #include <string>
@@ -38,9 +38,11 @@ class PresentClock {
   explicit PresentClock(double refresh_hz = 60.0, PresentPacing pacing = PresentPacing::fifo,
                         Nanos frame_cost_ns = 3'000'000);
 
-  //! The render thread: a frame began recording at `t` (after its acquire). Refines the
-  //! grid's phase and, from the interval since the previous start, its period.
-  void frame_started(Nanos t);
+  //! The render thread: a frame began recording at `t` (after its acquire), `held_ns` of
+  //! the interval since the previous start spent waiting for the frame budget's slot.
+  //! Refines the grid's phase and, from that interval, its period; and from the interval
+  //! less the wait, whether the display paces the frames.
+  void frame_started(Nanos t, Nanos held_ns = 0);
   void set_pacing(PresentPacing pacing) { pacing_.store(static_cast<int>(pacing), std::memory_order_relaxed); }
   void set_refresh_hz(double hz);
 
@@ -51,12 +53,10 @@ class PresentClock {
   Nanos first_shown(Nanos t, Nanos not_before) const;
 
   Nanos period_ns() const { return period_ns_.load(std::memory_order_relaxed); }
-  //! FIFO frames that come at under 85 % of the refresh period (a display that paces FIFO
-  //! never shows them faster than its refresh; or did, before the frame
-  //! budget slowed them: keep_unpaced): nothing paces them.
+  //! FIFO frames that would come at under 85 % of the refresh period, were the frame
+  //! budget not holding them back (a display that paces FIFO never shows them faster than
+  //! its refresh): nothing paces them.
   bool unpaced() const;
-  //! The display was seen not to pace FIFO: it stays so whatever the frames' rate now.
-  void keep_unpaced() { kept_unpaced_.store(true, std::memory_order_relaxed); }
   PresentPacing pacing() const { return static_cast<PresentPacing>(pacing_.load(std::memory_order_relaxed)); }
   //! "fifo, 60.0 Hz (measured 16.7 ms)": for the operator page.
   std::string describe() const;
@@ -68,7 +68,7 @@ class PresentClock {
   std::atomic<Nanos> period_ns_;
   std::atomic<Nanos> refresh_ns_;      //!< the display's nominal refresh period
   std::atomic<Nanos> last_start_{-1};  //!< the latest frame start: the grid's anchor (0 before any)
-  std::atomic<bool> kept_unpaced_{false};
+  std::atomic<Nanos> unheld_ns_;  //!< the frame interval without the frame budget's wait, smoothed
   const Nanos cost_ns_;  //!< one frame's work (mailbox, immediate)
   static_assert(std::atomic<Nanos>::is_always_lock_free);
 };

@@ -55,11 +55,14 @@ TEST(PresentClock, AnUnpacedDisplayStaysSoWhenTheFrameBudgetSlowsItsFramesToTheR
   Nanos t = 0;
   for (int i = 0; i < 400; ++i) c.frame_started(t += 2 * kMs);  // 500 fps: unpaced
   ASSERT_TRUE(c.unpaced());
-  c.keep_unpaced();
-  for (int i = 0; i < 400; ++i) c.frame_started(t += 16'666'667);  // max_fps = 60 from now on
+  // max_fps = 60 from now on: each frame's 2 ms of work, then held back 14.67 ms.
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 16'666'667, 14'666'667);
+  EXPECT_NEAR(static_cast<double>(c.period_ns()), 16'666'667.0, 1e5);
   EXPECT_TRUE(c.unpaced());
   EXPECT_EQ(c.present_of_frame_started(t), t + 3 * kMs);  // shown when done, not two refreshes on
+  // And a display seen paced is paced from the start: frames that were never held back.
   PresentClock paced(60.0, PresentPacing::fifo);
+  EXPECT_FALSE(paced.unpaced());
   for (int i = 0; i < 400; ++i) paced.frame_started(t += 16'666'667);
   EXPECT_FALSE(paced.unpaced());
   // A software renderer at 1080p on a busy machine: 80 frames a second on a 60 Hz display is
