@@ -1,11 +1,35 @@
 #include "core/attract_tune.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace mallet {
 namespace {
 
-constexpr int kDegrees[] = {0, 2, 4, 7, 4};
+//! One note: its degree (bar of the row from C), how many beats until the next, and how
+//! hard it is struck (a factor of the tune's speed).
+struct Note {
+  int degree;
+  double beats;
+  double dynamic;
+};
+
+// The first line of "Ode to Joy": rising to the G, falling back, a breath, and the closing
+// half-cadence, its last note held.
+constexpr Note kOdeToJoy[] = {{2, 1, 0.8}, {2, 1, 0.9}, {3, 1, 1.0}, {4, 1, 1.3},  {4, 1, 1.6},
+                              {3, 1, 1.2}, {2, 1, 1.0}, {1, 1, 0.8}, {0, 1, 0.6},  {0, 1, 0.7},
+                              {1, 1, 0.9}, {2, 1, 1.1}, {2, 1.5, 1.4}, {1, 1, 0.8}, {1, 2, 0.6}};
+// "Twinkle, Twinkle, Little Star", its first two lines: soft, up to the A, down to the tonic.
+constexpr Note kTwinkle[] = {{0, 1, 0.6}, {0, 1, 0.6}, {4, 1, 1.0}, {4, 1, 1.1}, {5, 1, 1.4},
+                             {5, 1, 1.5}, {4, 2, 1.2}, {3, 1, 0.9}, {3, 1, 0.9}, {2, 1, 0.8},
+                             {2, 1, 0.8}, {1, 1, 0.7}, {1, 1, 0.6}, {0, 2, 0.5}};
+
+struct Tune {
+  const Note* notes;
+  std::size_t size;
+};
+constexpr Tune kTunes[] = {{kOdeToJoy, std::size(kOdeToJoy)}, {kTwinkle, std::size(kTwinkle)}};
 
 Nanos beats(double n, const AttractTune& tune) { return static_cast<Nanos>(std::llround(n * tune.beat_s * 1e9)); }
 
@@ -13,23 +37,32 @@ Nanos beats(double n, const AttractTune& tune) { return static_cast<Nanos>(std::
 
 std::vector<ScriptedStrike> attract_phrase(const Scene& scene, Nanos start_ns, const AttractTune& tune) {
   std::vector<ScriptedStrike> strikes;
-  int step = 0;
+  double beat = 0;
+  std::size_t played = 0;
   for (const Instrument& inst : scene.instruments) {
     if (inst.targets.empty()) continue;
-    for (int degree : kDegrees) {
-      const int bar = inst.targets[std::min<std::size_t>(degree, inst.targets.size() - 1)];
-      strikes.push_back({bar, start_ns + beats(step++, tune), tune.speed_m_per_s});
+    const Tune& t = kTunes[played++ % std::size(kTunes)];
+    for (std::size_t i = 0; i < t.size; ++i) {
+      const Note& n = t.notes[i];
+      const int bar = inst.targets[std::min<std::size_t>(static_cast<std::size_t>(n.degree), inst.targets.size() - 1)];
+      strikes.push_back({bar, start_ns + beats(beat, tune), tune.speed_m_per_s * n.dynamic});
+      beat += n.beats;
     }
-    ++step;  // a breath between the instruments, for the travel
+    beat += 1;  // a breath between the instruments, for the travel
   }
   return strikes;
 }
 
 Nanos attract_period(const Scene& scene, const AttractTune& tune) {
-  std::size_t n = 0;
-  for (const Instrument& inst : scene.instruments)
-    if (!inst.targets.empty()) n += std::size(kDegrees) + 1;
-  return beats(static_cast<double>(n) + tune.rest_beats, tune);
+  double total = 0;
+  std::size_t played = 0;
+  for (const Instrument& inst : scene.instruments) {
+    if (inst.targets.empty()) continue;
+    const Tune& t = kTunes[played++ % std::size(kTunes)];
+    for (std::size_t i = 0; i < t.size; ++i) total += t.notes[i].beats;
+    total += 1;
+  }
+  return beats(total + tune.rest_beats, tune);
 }
 
 namespace {

@@ -1,7 +1,9 @@
 #pragma once
-// The attract mode's tune: what the ghost player strikes when nobody is playing. A
-// short phrase that walks up the xylophone and answers on the glockenspiel, so a
-// passer-by sees (and hears and, holding the stick, feels) both materials.
+// The attract mode's tune: what the ghost player strikes when nobody is playing. A tune a
+// passer-by knows on each instrument, the first line of Beethoven's "Ode to Joy" on the
+// xylophone answered by "Twinkle, Twinkle, Little Star" on the glockenspiel, phrased with
+// soft and hard strikes, so that they see (and hear and, holding the stick, feel) both
+// materials and how a strike's speed changes the bounce, the note and the actuator.
 #include <vector>
 
 #include "core/ghost_player.hpp"
@@ -13,12 +15,14 @@ namespace mallet {
 struct AttractTune {
   double beat_s = 0.42;        //!< time between strikes
   double rest_beats = 4;       //!< silence after the phrase before it repeats
-  double speed_m_per_s = 1.2;  //!< every strike's speed (loud enough to feel)
+  double speed_m_per_s = 1.2;  //!< mezzo-forte; the phrasing plays from half of it to 1.6 times it
 };
 
-//! The phrase's strikes starting at `start_ns`: on each instrument (left to right in
-//! the scene) bars 0, 2, 4, 7, 4 of its row (C E G C' G for an octave from C), as far as
-//! the instrument has bars. Empty for a scene without instruments.
+//! The phrase's strikes starting at `start_ns`: on each instrument (left to right in the
+//! scene) its tune, the first instrument "Ode to Joy" (E E F G G F E D C C D E E D D), the
+//! next "Twinkle, Twinkle" (C C G G A A G F F E E D D C), then again in turn; a note's
+//! degree is its bar in the row (an octave from C), as far as the instrument has bars (a
+//! wall taps its one target in the tune's rhythm). Empty for a scene without instruments.
 std::vector<ScriptedStrike> attract_phrase(const Scene& scene, Nanos start_ns, const AttractTune& tune = {});
 
 //! How long one phrase and its rest last.
