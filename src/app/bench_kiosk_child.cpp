@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace mallet::app::latency {
 
@@ -27,6 +28,48 @@ TempDir::TempDir(const std::string& prefix) {
 TempDir::~TempDir() {
   std::error_code ec;
   std::filesystem::remove_all(path_, ec);
+}
+
+KioskFolders::KioskFolders(const std::string& prefix)
+    : temp(prefix),
+      runtime(temp.path() / "runtime"),
+      state(temp.path() / "state"),
+      metrics(temp.path() / "kiosk.prom"),
+      settings(temp.path() / "settings.toml") {
+  std::filesystem::create_directories(runtime);
+  std::filesystem::create_directories(state);
+  std::filesystem::permissions(runtime, std::filesystem::perms::owner_all);
+}
+
+std::vector<std::pair<std::string, std::string>> KioskFolders::kiosk_env(const std::string& display,
+                                                                         const std::string& jack_server) const {
+  std::vector<std::pair<std::string, std::string>> env = {{"DISPLAY", display},
+                                                          {"JACK_DEFAULT_SERVER", jack_server},
+                                                          {"JACK_NO_START_SERVER", "1"},
+                                                          {"XDG_RUNTIME_DIR", runtime.string()},
+                                                          {"MALLET_STATE_DIR", state.string()}};
+  if (const std::optional<std::string> preload = child_preload()) env.emplace_back("LD_PRELOAD", *preload);
+  return env;
+}
+
+std::string read_all(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void require_x_and_jack(const std::string& bench) {
+  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
+    if (find_program(program).empty())
+      throw std::runtime_error(bench + " needs " + program + ": install the Debian package " + package);
+}
+
+std::filesystem::path this_executable(const std::string& bench) {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error(bench + ": cannot find this executable (/proc/self/exe)");
+  return exe;
 }
 
 void write_text(const std::filesystem::path& p, const std::string& text) {

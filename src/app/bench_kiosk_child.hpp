@@ -11,6 +11,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "app/bench_latency_child.hpp"
 #include "core/time.hpp"
@@ -30,8 +32,28 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+//! The kiosk under test's own folders in a TempDir: its XDG_RUNTIME_DIR (mode 700), its
+//! state folder, and where its settings file and its metrics file go.
+struct KioskFolders {
+  explicit KioskFolders(const std::string& prefix);
+  //! The kiosk's environment: the bench's X server and JACK server, these folders, and
+  //! LD_PRELOAD made safe (child_preload).
+  std::vector<std::pair<std::string, std::string>> kiosk_env(const std::string& display,
+                                                             const std::string& jack_server) const;
+  TempDir temp;
+  std::filesystem::path runtime, state, metrics, settings;
+};
+
 //! Writes `text` to `p`; throws naming the file when it cannot.
 void write_text(const std::filesystem::path& p, const std::string& text);
+//! All of a file ("" when it cannot be read: a metrics file not written yet).
+std::string read_all(const std::filesystem::path& p);
+
+//! Throws "BENCH needs PROGRAM: install the Debian package PACKAGE" unless Xvfb and jackd
+//! are installed: every bench that runs the real kiosk starts its own servers.
+void require_x_and_jack(const std::string& bench);
+//! This program's own executable (/proc/self/exe), to start the kiosk under test from.
+std::filesystem::path this_executable(const std::string& bench);
 
 //! LD_PRELOAD without the Vulkan validation layer (the sanitizer tests preload it; GLFW
 //! looks vkGetInstanceProcAddr up by name and a preloaded layer would answer). Nothing

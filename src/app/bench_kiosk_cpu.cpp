@@ -1,7 +1,6 @@
 // The windowed kiosk's CPU: see bench_kiosk_cpu.hpp.
 #include "app/bench_kiosk_cpu.hpp"
 
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -29,13 +28,6 @@ namespace {
 using latency::Child;
 
 constexpr double kIdleAfterS = 2.0;
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string settings_text(const std::filesystem::path& metrics) {
   std::string t = "# written by `mallet bench render` for the kiosk under test\n";
@@ -71,38 +63,27 @@ std::int64_t cpu_ns(pid_t pid, const char* what) {
 }
 
 std::uint64_t frames_of(const std::filesystem::path& metrics) {
-  const std::optional<soak::KioskFigures> f = soak::parse_kiosk_figures(read_all(metrics));
+  const std::optional<soak::KioskFigures> f = soak::parse_kiosk_figures(latency::read_all(metrics));
   return f ? f->frames : 0;
 }
 
 //! One kiosk, its two phases.
 void measure_one(bool capped, int width, int height, double seconds, const std::string& device,
                  std::vector<KioskCpuRow>& rows) {
-  latency::TempDir temp("mallet-bench-cpu");
-  const std::filesystem::path runtime = temp.path() / "runtime", state = temp.path() / "state";
-  std::filesystem::create_directories(runtime);
-  std::filesystem::create_directories(state);
-  chmod(runtime.c_str(), 0700);
-  const std::filesystem::path metrics = temp.path() / "kiosk.prom", settings = temp.path() / "settings.toml";
-  latency::write_text(settings, settings_text(metrics));
+  const latency::KioskFolders folders("mallet-bench-cpu");
+  const std::filesystem::path& metrics = folders.metrics;
+  latency::write_text(folders.settings, settings_text(metrics));
   const Scene scene = config::load_scene(default_scene());
 
   latency::VirtualDisplay x(width, height);
   latency::JackServer jack("mallet-cpu-" + std::to_string(getpid()), 48000, 256);
   latency::FakePointer hand(x.name());
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("bench render: cannot find this executable (/proc/self/exe)");
+  const std::filesystem::path exe = latency::this_executable("bench render");
   latency::ChildOptions o;
-  o.argv = {exe.string(), "run", "--config", settings.string(), "--idle-after", std::to_string(kIdleAfterS)};
+  o.argv = {exe.string(), "run", "--config", folders.settings.string(), "--idle-after", std::to_string(kIdleAfterS)};
   if (!capped) o.argv.emplace_back("--no-frame-cap");
   if (!device.empty()) o.argv.insert(o.argv.end(), {"--device", device});
-  o.env = {{"DISPLAY", x.name()},
-           {"JACK_DEFAULT_SERVER", jack.name()},
-           {"JACK_NO_START_SERVER", "1"},
-           {"XDG_RUNTIME_DIR", runtime.string()},
-           {"MALLET_STATE_DIR", state.string()}};
-  if (const std::optional<std::string> preload = latency::child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  o.env = folders.kiosk_env(x.name(), jack.name());
   auto pace = std::make_shared<PaceLine>();
   o.on_line = [pace](Nanos, std::string_view line) { pace->see(line); };
   Child kiosk(std::move(o));
@@ -163,10 +144,7 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
 }  // namespace
 
 std::vector<KioskCpuRow> measure_kiosk_cpu(int width, int height, double seconds, const std::string& device) {
-  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
-    if (latency::find_program(program).empty())
-      throw std::runtime_error(std::string("bench render: the kiosk's CPU needs ") + program +
-                               ": install the Debian package " + package);
+  latency::require_x_and_jack("bench render (the kiosk's CPU)");
   latency::StopSignals signals;
   std::vector<KioskCpuRow> rows;
   measure_one(true, width, height, seconds, device, rows);

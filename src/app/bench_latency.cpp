@@ -467,9 +467,7 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
   const std::filesystem::path settings = rig.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
   write_text(settings, settings_text(config));
 
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("bench latency: cannot find this executable (/proc/self/exe)");
+  const std::filesystem::path exe = this_executable("bench latency");
   auto log = std::make_shared<KioskLog>();
   ChildOptions o;
   o.argv = {exe.string(),
@@ -634,10 +632,7 @@ std::string cell(const std::optional<double>& v) {
 
 void run_bench_latency(const LatencyOptions& options) {
   // The servers, named by their Debian packages when they are missing.
-  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
-    if (find_program(program).empty())
-      throw std::runtime_error(std::string("bench latency needs ") + program + ": install the Debian package " +
-                               package);
+  require_x_and_jack("bench latency");
   StopSignals signals;
   const int strokes = options.strokes > 0 ? options.strokes : options.quick ? 6 : 20;
   const std::vector<std::string> presets =

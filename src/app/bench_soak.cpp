@@ -1,7 +1,6 @@
 // `mallet bench soak`: see bench_soak.hpp.
 #include "app/bench_soak.hpp"
 
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -84,13 +83,6 @@ std::string settings_text(const std::filesystem::path& metrics) {
   t += "[attract]\nidle_after_s = " + std::to_string(kIdleAfterS) + "\n";
   t += "[metrics]\ntextfile = \"" + metrics.string() + "\"\ninterval_s = 5\n";
   return t;
-}
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 //! Every logged strike checked against the recorded channels, once its window is recorded.
@@ -206,18 +198,12 @@ void write_file(const std::filesystem::path& p, const std::string& text) { laten
 }  // namespace
 
 int run_bench_soak(const SoakOptions& options) {
-  for (const auto& [program, package] : {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"jackd", "jackd2"}})
-    if (latency::find_program(program).empty())
-      throw std::runtime_error(std::string("bench soak needs ") + program + ": install the Debian package " + package);
+  latency::require_x_and_jack("bench soak");
   latency::StopSignals signals;
   std::filesystem::create_directories(options.out);
-  latency::TempDir temp("mallet-bench-soak");
-  const std::filesystem::path runtime = temp.path() / "runtime", state = temp.path() / "state";
-  std::filesystem::create_directories(runtime);
-  std::filesystem::create_directories(state);
-  chmod(runtime.c_str(), 0700);
-  const std::filesystem::path metrics = temp.path() / "kiosk.prom", settings = temp.path() / "settings.toml";
-  latency::write_text(settings, settings_text(metrics));
+  const latency::KioskFolders folders("mallet-bench-soak");
+  const std::filesystem::path& metrics = folders.metrics;
+  latency::write_text(folders.settings, settings_text(metrics));
   const Scene scene = config::load_scene(default_scene());
   if (scene.targets.empty()) throw std::runtime_error("bench soak: the shipped scene has no bars");
 
@@ -229,19 +215,12 @@ int run_bench_soak(const SoakOptions& options) {
   auto log = std::make_shared<KioskLog>();
   log->file.open(options.out / "kiosk.log");
   if (!log->file) throw std::runtime_error("bench soak: cannot write " + (options.out / "kiosk.log").string());
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("bench soak: cannot find this executable (/proc/self/exe)");
+  const std::filesystem::path exe = latency::this_executable("bench soak");
   latency::ChildOptions o;
   o.argv = {exe.string(), "run", "--windowed", "--size", std::to_string(kWidth) + "x" + std::to_string(kHeight),
-            "--config", settings.string()};
+            "--config", folders.settings.string()};
   if (!options.device.empty()) o.argv.insert(o.argv.end(), {"--device", options.device});
-  o.env = {{"DISPLAY", x.name()},
-           {"JACK_DEFAULT_SERVER", jack.name()},
-           {"JACK_NO_START_SERVER", "1"},
-           {"XDG_RUNTIME_DIR", runtime.string()},
-           {"MALLET_STATE_DIR", state.string()}};
-  if (const std::optional<std::string> preload = latency::child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  o.env = folders.kiosk_env(x.name(), jack.name());
   o.on_line = [log](Nanos, std::string_view line) { log->line(line); };
   Child kiosk(std::move(o));
 
@@ -257,7 +236,7 @@ int run_bench_soak(const SoakOptions& options) {
   });
   wait_for("a window on the screen", [&] { return hand.find_window(kWidth, kHeight).has_value(); });
   wait_for("audio ports on the JACK server", [&] { return !recorder.connect_source(std::chrono::milliseconds(0)).empty(); });
-  wait_for("its metrics file", [&] { return parse_kiosk_figures(read_all(metrics)).has_value(); });
+  wait_for("its metrics file", [&] { return parse_kiosk_figures(latency::read_all(metrics)).has_value(); });
 
   std::ofstream csv(options.out / "soak.csv");
   csv << csv_header() << '\n' << std::flush;
@@ -279,7 +258,7 @@ int run_bench_soak(const SoakOptions& options) {
   const Nanos period = static_cast<Nanos>(options.sample_every_s * 1e9);
   const Nanos strike_every = static_cast<Nanos>(options.strike_every_s * 1e9);
   Nanos next_sample = start + period, next_stroke = start + kNanosPerSecond, next_clock = start;
-  std::optional<KioskFigures> before = parse_kiosk_figures(read_all(metrics));
+  std::optional<KioskFigures> before = parse_kiosk_figures(latency::read_all(metrics));
   std::uint64_t strokes = 0, audited[4] = {0, 0, 0, 0}, xruns_before = recorder.xruns();
   std::string failure;
   while (!latency::stop_signal()) {
@@ -314,7 +293,7 @@ int run_bench_soak(const SoakOptions& options) {
         m.fds = p->fds;
         m.threads = p->threads;
       }
-      const std::optional<KioskFigures> f = parse_kiosk_figures(read_all(metrics));
+      const std::optional<KioskFigures> f = parse_kiosk_figures(latency::read_all(metrics));
       if (f) {
         m.vulkan_mib = f->vulkan_bytes / (1 << 20);
         m.frames = before ? f->frames - before->frames : f->frames;
