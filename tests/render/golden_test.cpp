@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <ostream>
 
 #include <gtest/gtest.h>
 
@@ -113,6 +114,9 @@ struct ScreenShape {
   const char* name;  //!< the golden's suffix
   std::uint32_t width, height;
 };
+
+//! The shape's name in the test's name (not the bytes of its pointer).
+void PrintTo(const ScreenShape& shape, std::ostream* out) { *out << shape.name; }
 
 class GoldenScreenShape : public ::testing::TestWithParam<ScreenShape> {};
 
