@@ -576,8 +576,11 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
       Grab g;
       if (rig.eye->grab(rig.bars[i].strip, g)) rest = lowest_white_row(g, rig.bars[i].strip);
     });
+    // The head's lowest white pixels lie between its centre (the lit top half of a round
+    // head is the white one) and its bottom, a radius below: not higher.
     const double centre = rig.map.row_of_y(rig.bars[i].contact_y_m);
-    if (!rest || *rest < centre - 4 || *rest > rig.bars[i].strip.y + rig.bars[i].strip.height - 2)
+    const double radius_rows = rig.map.row_of_y(rig.bars[i].contact_y_m - rig.map.scene->mallet_radius_m) - centre;
+    if (!rest || *rest < centre - radius_rows / 2 || *rest > rig.bars[i].strip.y + rig.bars[i].strip.height - 2)
       kiosk_failed(kiosk, "does not show the mallet resting on " + rig.bars[i].name +
                               " where expected (lowest white row " +
                               (rest ? std::to_string(*rest) : std::string("none")) + ", head centre row " +

@@ -50,14 +50,16 @@ void PresentClock::frame_started(Nanos t, Nanos held_ns) {
   const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
   if (last < 0 || t <= last) return;
   // The period follows the measured frame interval slowly (a display that does not pace
-  // FIFO, such as a virtual X server, shows frames as fast as they come); an interval of
-  // several periods (a hiccup, a minimised window) is not a period.
+  // FIFO, such as a virtual X server, shows frames as fast as they come), and so does the
+  // frames' own pace, the interval less the frame budget's wait. A frame that took several
+  // times the frames' own pace (a hiccup, a minimised window) tells neither; a wait the
+  // budget added does not make one.
   const Nanos period = period_ns_.load(std::memory_order_relaxed);
-  const Nanos interval = t - last;
-  if (interval > 3 * period) return;
-  period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
   const Nanos unheld = unheld_ns_.load(std::memory_order_relaxed);
+  const Nanos interval = t - last;
   const Nanos own = std::max<Nanos>(0, interval - held_ns);
+  if (own > 3 * unheld) return;
+  period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
   unheld_ns_.store(std::max<Nanos>(500'000, unheld + (own - unheld) / 16), std::memory_order_relaxed);
 }
 

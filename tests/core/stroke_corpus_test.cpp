@@ -131,7 +131,7 @@ TEST(StrokeCorpus, SampledAtItsRateWithDropsAndCameraNoise) {
   const std::vector<Stroke> clean = make_stroke_corpus(scene, noise_free(noisy));
   ASSERT_EQ(a.size(), clean.size());
   const double m_per_px = metres_per_camera_px(scene, noisy);
-  EXPECT_NEAR(m_per_px, 0.84 / 1024, 1e-12);
+  EXPECT_NEAR(m_per_px, 0.832 / 1024, 1e-12);  // the percussion scene's 0.832 m over 1024 camera px
   std::size_t kept = 0, grid = 0;
   double sum_sq = 0;
   std::size_t compared = 0;
