@@ -82,8 +82,9 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   for (Nanos t = 0; t <= end; t += frame) {
     loop.advance(t);
     overlay.clear();
-    draw_banner(overlay, hint_text(KioskHint::invitation, scene.kind), static_cast<float>(ho.size.width),
-                static_cast<float>(ho.size.height));
+    const float width = static_cast<float>(ho.size.width), height = static_cast<float>(ho.size.height);
+    if (config.note_names) draw_note_names(overlay, scene, render::view_projection(scene, width / height), width, height);
+    draw_banner(overlay, hint_text(KioskHint::invitation, scene.kind), width, height);
     render::FrameState state;
     const StrikeLoop::View view = loop.strike_loop().view();
     state.mallet_centre = view.displayed(t);

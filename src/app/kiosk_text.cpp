@@ -3,6 +3,8 @@
 #include <cstdio>
 
 #include "app/simulate.hpp"
+#include "core/note_name.hpp"
+#include "render/scene_view.hpp"
 
 namespace mallet::app {
 
@@ -23,6 +25,22 @@ void draw_banner(render::Overlay& overlay, std::string_view text, float width, f
   const float x = (width - w) / 2, y = height * 0.08f;
   overlay.fill_rect(x, y, w, h, {0.0f, 0.0f, 0.0f, 0.55f});
   overlay.text(width / 2, y + h / 2 + px * 0.35f, text, {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
+}
+
+void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height) {
+  if (scene.kind != SceneKind::percussion) return;
+  const float px = overlay.atlas().pixel_height();
+  for (const Target& t : scene.targets) {
+    // On the bar's top, a little in from its near end (the end towards the visitor).
+    const glm::dvec3 at{(t.x_min + t.x_max) / 2, t.top_y, t.length_m / 2 - 0.03};
+    const glm::dvec2 s = render::project_to_screen(view_proj, at);
+    const std::string name = note_name(t.note);
+    const float x = static_cast<float>(s.x) * width, y = static_cast<float>(s.y) * height;
+    const float w = overlay.atlas().measure(name) + px * 0.4f;
+    overlay.fill_rect(x - w / 2, y - px * 0.95f, w, px * 1.2f, {0.0f, 0.0f, 0.0f, 0.45f});
+    overlay.text(x, y, name, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center);
+  }
 }
 
 }  // namespace mallet::app

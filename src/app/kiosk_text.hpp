@@ -6,6 +6,8 @@
 
 #include "core/impact.hpp"
 #include "core/scene.hpp"
+#include <glm/glm.hpp>
+
 #include "render/overlay.hpp"
 
 namespace mallet::app {
@@ -15,5 +17,10 @@ std::string strike_line(const Scene& scene, const Impact& impact);
 
 //! The text centred near the top of a width×height screen, on a translucent band.
 void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
+
+//! Each bar's note name ([visual] note_names) on its near end, as `view_proj` shows the bar
+//! on a width×height image, on a small translucent band so it reads on wood and metal alike.
+void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height);
 
 }  // namespace mallet::app

@@ -721,6 +721,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
   const float px = win_.font->pixel_height();
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
+  else if (stage_->config.note_names)
+    draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
   if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
     draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);

@@ -144,6 +144,7 @@ struct AppConfig {
   Quality quality = Quality::balanced;  //!< the preset the knobs below started from
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
+  bool note_names = false;  //!< [visual] note_names: each bar's note name on its near end
   ActuatorConfig actuator;
   AudioConfig audio;
   OneEuroConfig pointer;     //!< [pointer]: the 1€ filter of the displayed cursor

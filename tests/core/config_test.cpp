@@ -154,6 +154,8 @@ TEST(AppConfig, ShippedFileEqualsTheBuiltInDefaults) {
   EXPECT_EQ(shipped.contact.min_impact_speed_m_per_s, defaults.contact.min_impact_speed_m_per_s);
   EXPECT_EQ(shipped.contact.max_impact_speed_m_per_s, defaults.contact.max_impact_speed_m_per_s);
   EXPECT_EQ(shipped.bounce, defaults.bounce);
+  EXPECT_EQ(shipped.note_names, defaults.note_names);
+  EXPECT_EQ(shipped.render.max_fps, defaults.render.max_fps);
   EXPECT_EQ(shipped.actuator.gain, defaults.actuator.gain);
   EXPECT_EQ(shipped.actuator.soft_clip_knee, defaults.actuator.soft_clip_knee);
   EXPECT_EQ(shipped.audio.sample_rate_hz, defaults.audio.sample_rate_hz);
@@ -297,6 +299,14 @@ TEST(AppConfig, BadValuesAreRefusedWithTheirLine) {
   const FileError bounce = file_error_of([] { config::parse_app_config("[visual]\nbounce = \"wobbly\"\n", "c.toml"); });
   EXPECT_EQ(bounce.line(), 2u);
   EXPECT_NE(std::string(bounce.what()).find("visual.bounce"), std::string::npos);
+  const FileError names = file_error_of([] { config::parse_app_config("[visual]\nnote_names = 3\n", "c.toml"); });
+  EXPECT_EQ(names.line(), 2u);
+  EXPECT_NE(std::string(names.what()).find("visual.note_names"), std::string::npos) << names.what();
+  const FileError fps = file_error_of([] { config::parse_app_config("[render]\n\nmax_fps = 2000\n", "c.toml"); });
+  EXPECT_EQ(fps.line(), 3u);
+  EXPECT_NE(std::string(fps.what()).find("render.max_fps"), std::string::npos) << fps.what();
+  EXPECT_TRUE(config::parse_app_config("[visual]\nnote_names = true\n", "c.toml").note_names);
+  EXPECT_EQ(config::parse_app_config("[render]\nmax_fps = 30\n", "c.toml").render.max_fps, 30.0);
 
   const FileError routing = file_error_of(
       [] { config::parse_app_config("[audio.routing]\nchannels = 2\nactuator = 2\n", "c.toml"); });

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/kiosk_text.hpp"
 #include "app/render_setup.hpp"
 #include "app/replay.hpp"
 #include "render/font_atlas.hpp"
@@ -106,6 +107,18 @@ TEST(Golden, MetalBarThirtyMillisecondsAfterAStrike) {
   // 30 ms into Eq. 1 with the metal's visual triple the head is visibly off the surface.
   ASSERT_GT(std::abs(r.cursor_at(t).offset), 1e-3);
   expect_matches_golden(render_at(r, t), "metal_bar_30ms_after_strike");
+}
+
+TEST(Golden, NoteNamesOnTheBarsNearEnds) {
+  // [visual] note_names: C5 … C6 on the xylophone, C6 … C7 on the glockenspiel, each on a
+  // small band on its bar's near end, placed by the same framing as the bars.
+  const render::FontAtlas font(render::FontAtlas::default_font(), 15.0f);
+  render::Overlay overlay(font);
+  draw_note_names(overlay, percussion(), render::view_projection(percussion(), 640.0 / 360.0), 640, 360);
+  render::FrameState state;
+  state.mallet_centre = replay_of({{0.0, -0.21, 0.22}}).cursor_at(0).shown;
+  state.overlay = &overlay;
+  expect_matches_golden(renderer().render(state), "note_names_on_bars");
 }
 
 // ---- every museum screen's shape: the scene framed, never stretched ----

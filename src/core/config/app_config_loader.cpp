@@ -31,6 +31,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     if (bounce == "signed") c.bounce = BounceMode::signed_eq1;
     else if (bounce == "rectified") c.bounce = BounceMode::rectified;
     else t->fail("bounce", "expected \"signed\" or \"rectified\", got \"" + bounce + "\"");
+    c.note_names = t->boolean_or("note_names", c.note_names);
     t->finish();
   }
   if (auto t = top.optional_table("actuator")) {
