@@ -1,7 +1,8 @@
 #!/bin/bash
-# Takes docs/screens/play-NAME.png (and, with a third argument "operator", operator-NAME.png)
+# Takes OUT/play-NAME.png (and, with a fourth argument "operator", OUT/operator-NAME.png)
 # from the real kiosk on a screen of one shape: run it under an Xvfb screen of that size.
-#   run: for s in 1920x1200:16x10 1024x768:4x3 1280x1024:5x4 2560x1080:21x9 1080x1920:9x16; do
+#   usage: take-shape.sh MALLET OUT NAME [operator], e.g. for every shape:
+#   for s in 1920x1200:16x10 1024x768:4x3 1280x1024:5x4 2560x1080:21x9 1080x1920:9x16; do
 #          xvfb-run -a -s "-screen 0 ${s%:*}x24" docs/screens/take-shape.sh build/debug/mallet docs/screens ${s#*:}
 #        done
 # The kiosk fullscreen, as on a museum's screen; a visitor's mouse sweeps down onto the
