@@ -83,7 +83,8 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     loop.advance(t);
     overlay.clear();
     const float width = static_cast<float>(ho.size.width), height = static_cast<float>(ho.size.height);
-    if (config.note_names) draw_note_names(overlay, scene, render::view_projection(scene, width / height), width, height);
+    if (config.note_names)
+      draw_note_names(overlay, scene, render::view_projection(scene, width / height), width, height);
     draw_banner(overlay, hint_text(KioskHint::invitation, scene.kind), width, height);
     render::FrameState state;
     const StrikeLoop::View view = loop.strike_loop().view();
