@@ -155,6 +155,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     win_.pace();  // the frame budget: [render] max_fps
     glfwPollEvents();
     const Nanos now = monotonic_now();
+    win_.window->present_clock().frame_started(now, win_.held_ns());  // before this frame's stimuli
     for (const Press& p : pressed_)
       if (p.key == GLFW_KEY_ESCAPE || p.key == GLFW_KEY_Q) quit_ = true;
     if (win_.window->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;
@@ -172,7 +173,6 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     if (!banner_.empty()) draw_banner(o, banner_, w, h);
     if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
     render::FrameState state;
-    win_.window->present_clock().frame_started(now, win_.held_ns());
     const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = route_->view().displayed(present);
     state.overlay = win_.overlay.get();

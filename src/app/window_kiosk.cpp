@@ -813,6 +813,9 @@ int WindowKiosk::run() {
     win_.pace();  // the frame budget: [render] max_fps
     glfwPollEvents();
     const Nanos now = monotonic_now();
+    // This frame begins now: strikes this frame decides (the window system's mouse, the ghost)
+    // are shown by it, so the present model's grid is anchored here before they are fed.
+    win_.window->present_clock().frame_started(now, win_.held_ns());
     frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
     last_frame = now;
     ++polls_;
@@ -883,7 +886,6 @@ int WindowKiosk::run() {
 
     draw_overlay(now, frame_ms);
     render::FrameState state;
-    win_.window->present_clock().frame_started(now, win_.held_ns());
     const Nanos present = win_.window->predicted_present(now);
     if (!latency_test_.empty()) latency_test_frame(present);
     const StrikeLoop::View view = !states_->visitor_plays() ? route.view()
