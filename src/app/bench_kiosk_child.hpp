@@ -32,8 +32,9 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-//! The kiosk under test's own folders in a TempDir: its XDG_RUNTIME_DIR (mode 700), its
-//! state folder, and where its settings file and its metrics file go.
+//! The kiosk under test's own folders in a TempDir (which the bench may use for its own
+//! files too): its XDG_RUNTIME_DIR (mode 700), its state folder, and where its settings file
+//! and its metrics file go.
 struct KioskFolders {
   explicit KioskFolders(const std::string& prefix);
   //! The kiosk's environment: the bench's X server and JACK server, these folders, and

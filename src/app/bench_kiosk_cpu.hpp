@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_report.hpp"
+
 namespace mallet::app {
 
 struct KioskCpuRow {
@@ -23,7 +25,7 @@ struct KioskCpuRow {
 //! reason when Xvfb or jackd is missing or the kiosk does not come up.
 std::vector<KioskCpuRow> measure_kiosk_cpu(int width, int height, double seconds, const std::string& device);
 
-//! The rows as the bench prints them (a Markdown table).
-std::string kiosk_cpu_table(const std::vector<KioskCpuRow>& rows, int width, int height);
+//! The rows as `bench render` prints them and the bench report writes them.
+TextTable kiosk_cpu_table(const std::vector<KioskCpuRow>& rows, int width, int height);
 
 }  // namespace mallet::app

@@ -4,7 +4,6 @@
 #include "app/bench_latency.hpp"
 
 #include <signal.h>
-#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -255,8 +254,8 @@ struct ConfigResult {
 
 //! Everything the runs share: the servers, the recorder, the hand, the eye.
 struct Rig {
-  TempDir temp{"mallet-bench-latency"};
-  std::filesystem::path scene_file, runtime_dir, state_dir;
+  KioskFolders folders{"mallet-bench-latency"};  //!< the kiosk's runtime and state folders, and ours
+  std::filesystem::path scene_file;
   Scene scene;
   Mapping map;
   std::vector<Bar> bars;
@@ -459,12 +458,12 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
   RemoteScript script;
   if (config.source == "remote") {
     if (rig.rest_row[0] < 0) throw std::logic_error("bench latency: a remote run needs a mouse run's warm-up first");
-    config.replay_file = rig.temp.path() / ("remote-" + config.preset + "-" + config.align + ".replay");
+    config.replay_file = rig.folders.temp.path() / ("remote-" + config.preset + "-" + config.align + ".replay");
     script = write_remote_script(rig, config.replay_file, strokes, lead);
   }
   ConfigResult result;
   result.config = config;
-  const std::filesystem::path settings = rig.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
+  const std::filesystem::path settings = rig.folders.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
   write_text(settings, settings_text(config));
 
   const std::filesystem::path exe = this_executable("bench latency");
@@ -480,12 +479,7 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
             "--scene",
             rig.scene_file.string()};
   if (!device.empty()) o.argv.insert(o.argv.end(), {"--device", device});
-  o.env = {{"DISPLAY", rig.x->name()},
-           {"JACK_DEFAULT_SERVER", rig.jack->name()},
-           {"JACK_NO_START_SERVER", "1"},
-           {"XDG_RUNTIME_DIR", rig.runtime_dir.string()},
-           {"MALLET_STATE_DIR", rig.state_dir.string()}};
-  if (const std::optional<std::string> preload = child_preload()) o.env.emplace_back("LD_PRELOAD", *preload);
+  o.env = rig.folders.kiosk_env(rig.x->name(), rig.jack->name());
   o.on_line = [log](Nanos, std::string_view line) { log->line(line); };
   Child kiosk(std::move(o));
 
@@ -648,12 +642,7 @@ void run_bench_latency(const LatencyOptions& options) {
   std::filesystem::create_directories(options.out);
 
   Rig rig;
-  rig.runtime_dir = rig.temp.path() / "runtime";
-  rig.state_dir = rig.temp.path() / "state";
-  std::filesystem::create_directories(rig.runtime_dir);
-  std::filesystem::create_directories(rig.state_dir);
-  chmod(rig.runtime_dir.c_str(), 0700);
-  rig.scene_file = still_scene(rig.temp.path());
+  rig.scene_file = still_scene(rig.folders.temp.path());
   rig.scene = config::load_scene(rig.scene_file);
   for (const Material& m : rig.scene.materials)
     if (m.visual.amplitude != 0.0) throw std::runtime_error("bench latency: the still scene still has a bounce");

@@ -237,7 +237,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
   if (kiosk_cpu_s > 0) {
     std::fflush(stdout);
     const std::vector<KioskCpuRow> cpu = measure_kiosk_cpu(1920, 1080, kiosk_cpu_s, device);
-    std::printf("%s\n", kiosk_cpu_table(cpu, 1920, 1080).c_str());
+    std::printf("%s", markdown(kiosk_cpu_table(cpu, 1920, 1080)).c_str());
   }
 }
 

@@ -48,6 +48,9 @@ struct TextTable {
   std::string note;
 };
 
+//! The table as the report writes it: its title as a heading, the Markdown table, its note.
+std::string markdown(const TextTable& table);
+
 struct ReportOptions {
   std::filesystem::path scene;
   std::filesystem::path out = "bench-report";

@@ -195,21 +195,7 @@ void measure_kiosk_cpu_part(const Scene&, const ReportOptions& o, ReportSections
     out.skipped.push_back(std::string("the kiosk's CPU: ") + e.what());
     return;
   }
-  TextTable t;
-  t.title = "The kiosk's CPU at 1920x1080, with and without the frame budget";
-  t.header = {"frames", "phase", "kiosk CPU % of a core", "frames/s", "X server CPU %"};
-  char buf[3][32];
-  for (const KioskCpuRow& r : rows) {
-    std::snprintf(buf[0], sizeof buf[0], "%.1f", r.cpu_percent);
-    std::snprintf(buf[1], sizeof buf[1], "%.1f", r.fps);
-    std::snprintf(buf[2], sizeof buf[2], "%.1f", r.x_server_percent);
-    t.rows.push_back({r.capped ? "capped (max_fps = refresh)" : "uncapped (--no-frame-cap)", r.phase, buf[0], buf[1],
-                      buf[2]});
-  }
-  t.note = "The real kiosk, fullscreen on its own Xvfb (lavapipe), its sound on its own JACK server, 10 s per "
-           "phase: the attract mode with nobody there, then play (an XTest pointer sweeping over the bars). The X "
-           "server's share is the virtual display's copy of each frame, which a real display does not cost.";
-  out.tables.push_back(t);
+  out.tables.push_back(kiosk_cpu_table(rows, 1920, 1080));
 }
 
 }  // namespace mallet::app

@@ -73,6 +73,23 @@ std::string escape(const std::string& s) {
 
 }  // namespace
 
+std::string markdown(const TextTable& t) {
+  std::ostringstream md;
+  md << "## " << t.title << "\n\n|";
+  for (const std::string& h : t.header) md << ' ' << escape(h) << " |";
+  md << "\n|";
+  for (std::size_t i = 0; i < t.header.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : t.rows) {
+    md << "|";
+    for (const std::string& c : row) md << ' ' << escape(c) << " |";
+    md << "\n";
+  }
+  if (!t.note.empty()) md << "\n" << t.note << "\n";
+  md << "\n";
+  return md.str();
+}
+
 std::vector<std::string> write_report(const ReportSections& in, const ReportOptions& o) {
   ReportSections s = in;
   for (TradeTable& t : s.trades) mark_front(t);
@@ -98,20 +115,7 @@ std::vector<std::string> write_report(const ReportSections& in, const ReportOpti
     md << "\n";
     write_plot(t, o.out);
   }
-  for (const TextTable& t : s.tables) {
-    md << "## " << t.title << "\n\n|";
-    for (const std::string& h : t.header) md << ' ' << escape(h) << " |";
-    md << "\n|";
-    for (std::size_t i = 0; i < t.header.size(); ++i) md << "---|";
-    md << "\n";
-    for (const auto& row : t.rows) {
-      md << "|";
-      for (const std::string& c : row) md << ' ' << escape(c) << " |";
-      md << "\n";
-    }
-    if (!t.note.empty()) md << "\n" << t.note << "\n";
-    md << "\n";
-  }
+  for (const TextTable& t : s.tables) md << markdown(t);
   std::vector<std::string> lines;
   if (!plots) {
     md << "## Plots skipped\n\ngnuplot is not installed (`apt-get install gnuplot-nox`); the data is in the .dat files "

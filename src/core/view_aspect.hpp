@@ -20,16 +20,15 @@ class ViewAspect {
       aspect_.store(static_cast<double>(width_px) / height_px, std::memory_order_relaxed);
   }
   double get() const { return aspect_.load(std::memory_order_relaxed); }
-  //! The rectangle of the world this screen shows.
-  ScreenToWorld frame(const ScreenToWorld& content) const { return framed(content, get()); }
 
  private:
   std::atomic<double> aspect_;
 };
 
-//! `content` framed for `aspect`'s screen; nullptr: as it is.
+//! The rectangle of the world `aspect`'s screen shows: `content` framed for it; nullptr (or
+//! proportions not known yet): `content` as it is.
 inline ScreenToWorld framed(const ScreenToWorld& content, const ViewAspect* aspect) {
-  return aspect ? aspect->frame(content) : content;
+  return aspect ? framed(content, aspect->get()) : content;
 }
 
 }  // namespace mallet

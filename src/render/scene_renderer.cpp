@@ -406,8 +406,7 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   if (extent.width == attachment_extent_.width && extent.height == attachment_extent_.height) return;
   vkDeviceWaitIdle(ctx_.device());  // resizes are rare; the old attachments may be in use
   // The scene framed for the image's proportions: nothing stretched, all of it in view.
-  aspect_ = static_cast<double>(extent.width) / extent.height;
-  view_proj_ = render::view_projection(scene_, aspect_);
+  view_proj_ = render::view_projection(scene_, static_cast<double>(extent.width) / extent.height);
   instrument_rects_.clear();
   for (const Box& b : instrument_boxes_)
     instrument_rects_.push_back(
@@ -581,7 +580,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
 
   FrameUniform u;
   u.view_proj = view_proj_;
-  u.sphere_view_proj = sphere_view_projection(scene_, aspect_, state.mallet_centre);
+  u.sphere_view_proj =
+      sphere_view_projection(scene_, static_cast<double>(extent.width) / extent.height, state.mallet_centre);
   u.eye = glm::vec4(eye_position(scene_), 1.0f);
   u.light_dir = glm::vec4(kToLight, kLightTanRadius);
   const bool caster = settings_.shadow && state.draw_mallet;

@@ -160,7 +160,6 @@ class SceneRenderer {
   VkFormat color_format_;
   RenderSettings settings_;
   glm::mat4 view_proj_;
-  double aspect_ = 0;  //!< the image's width over height (0: the scene's own)
   std::vector<Instance> instruments_;
   std::map<std::string, GpuModel> models_;
   GpuImage white_;

@@ -76,12 +76,12 @@ TEST(Framing, PortraitGrowsUpAndDownAndUltraWideGrowsLeftAndRight) {
 TEST(ViewAspect, AWindowsSizeSetsItAndAMinimisedWindowKeepsTheLastOne) {
   ViewAspect a;
   const ScreenToWorld content{-0.4, 0.4, 0.3, -0.15};
-  EXPECT_EQ(a.frame(content).left_m, content.left_m);  // not known yet: the content's own
+  EXPECT_EQ(framed(content, &a).left_m, content.left_m);  // not known yet: the content's own
   a.set(1280, 1024);
   EXPECT_DOUBLE_EQ(a.get(), 1.25);
   a.set(0, 0);  // minimised
   EXPECT_DOUBLE_EQ(a.get(), 1.25);
-  EXPECT_NEAR(a.frame(content).height_m(), 0.8 / 1.25, 1e-12);
+  EXPECT_NEAR(framed(content, &a).height_m(), 0.8 / 1.25, 1e-12);
   EXPECT_EQ(framed(content, static_cast<const ViewAspect*>(nullptr)).top_m, content.top_m);
 }
 
