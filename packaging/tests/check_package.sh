@@ -53,6 +53,10 @@ for f in "${configs[@]}"; do
   expect_file "/usr/share/mallet/config/$f" -rw-r--r--
   expect_file "/etc/mallet/$f" -rw-r--r--
 done
+# The visitor languages' catalogues (po/LINGUAS), where gettext looks for them.
+mapfile -t languages < <(grep -E '^[a-z]' "$src/po/LINGUAS")
+((${#languages[@]} > 0)) || fail "po/LINGUAS names no language"
+for l in "${languages[@]}"; do expect_file "/usr/share/locale/$l/LC_MESSAGES/mallet.mo" -rw-r--r--; done
 for f in /etc/mallet/mallet.toml /etc/mallet/materials.toml /etc/mallet/instruments.toml \
   /etc/mallet/scenes/percussion.toml /etc/mallet/trajectories/demo.csv; do
   expect_file "$f"
@@ -62,7 +66,8 @@ for path in "${!mode[@]}"; do
   case $path in
   /usr/bin/mallet | /usr/libexec/mallet/* | /usr/share/mallet/* | /etc/mallet/* | /etc/pam.d/mallet | \
     /lib/udev/rules.d/70-mallet-wiimote.rules | /lib/systemd/system/mallet.service | \
-    /usr/share/man/man1/mallet.1.gz | /usr/share/doc/mallet/* | /usr/share/lintian/overrides/mallet) ;;
+    /usr/share/man/man1/mallet.1.gz | /usr/share/doc/mallet/* | /usr/share/lintian/overrides/mallet | \
+    /usr/share/locale/*/LC_MESSAGES/mallet.mo) ;;
   *) fail "unexpected file $path" ;;
   esac
 done

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <system_error>
 
+#include "core/visitor_language.hpp"
+
 namespace mallet::app {
 
 CalibrationScreen::CalibrationScreen(CalibrationSessionConfig config, std::optional<std::filesystem::path> save_to,
@@ -55,16 +57,19 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
   if (step == CalibrationStep::round_rejected || step == CalibrationStep::failed) {
     char buf[200];
     if (const auto& fit = session_.last_fit())
-      std::snprintf(buf, sizeof buf, "Round %d: largest error %.1f px (limit %.1f px): measuring again",
+      std::snprintf(buf, sizeof buf, tr("Round %d: largest error %.1f px (limit %.1f px): measuring again"),
                     session_.round(), fit->max_px, session_.config().max_error_screen_px);
     else
-      std::snprintf(buf, sizeof buf, "Round %d refused: %s", session_.round(), session_.failure().c_str());
+      std::snprintf(buf, sizeof buf, tr("Round %d refused: %s"), session_.round(), session_.failure().c_str());
     last_round_ = buf;
   }
   if (step == CalibrationStep::accepted) accept();
   if (step == CalibrationStep::failed) {
     outcome_ = Outcome::failed;
-    message_ = "Calibration failed (" + session_.failure() + "); the previous calibration stays";
+    char buf[240];
+    std::snprintf(buf, sizeof buf, tr("Calibration failed (%s); the previous calibration stays"),
+                  session_.failure().c_str());
+    message_ = buf;
   }
   return step;
 }
@@ -74,12 +79,12 @@ void CalibrationScreen::accept() {
   if (sensitivity_chosen_) result_->ir_sensitivity = sensitivity_;  // kept with it: restored at start-up
   const auto& fit = session_.last_fit();
   char buf[160];
-  std::snprintf(buf, sizeof buf, "Calibrated: reprojection error %.1f px rms, %.1f px max", fit ? fit->rms_px : 0.0,
+  std::snprintf(buf, sizeof buf, tr("Calibrated: reprojection error %.1f px rms, %.1f px max"), fit ? fit->rms_px : 0.0,
                 fit ? fit->max_px : 0.0);
   message_ = buf;
   if (!save_to_) {
     outcome_ = Outcome::accepted;
-    message_ += remote_ == "mouse" ? " (mouse: not saved)" : " (not saved)";
+    message_ += remote_ == "mouse" ? tr(" (mouse: not saved)") : tr(" (not saved)");
     return;
   }
   try {
@@ -87,12 +92,12 @@ void CalibrationScreen::accept() {
     std::filesystem::create_directories(save_to_->parent_path(), ec);  // a failure shows in the write
     write_calibration_file(*save_to_, *result_);
     outcome_ = Outcome::accepted;
-    message_ += ", saved";
+    message_ += tr(", saved");
   } catch (const std::exception& e) {
     // Not written: the kiosk keeps its previous calibration, and the operator sees why.
     outcome_ = Outcome::failed;
     result_.reset();
-    message_ = std::string("Calibration not saved: ") + e.what();
+    message_ = std::string(tr("Calibration not saved: ")) + e.what();
   }
 }
 
@@ -104,8 +109,8 @@ std::string CalibrationScreen::status_line() const {
   const std::size_t count = session_.targets().size();
   const int target = session_.current_target().value_or(static_cast<int>(count) - 1);
   char status[200];
-  std::snprintf(status, sizeof status, "Target %d of %zu, round %d   %s", target + 1, count, session_.round() + 1,
-                dot_seen_ ? "light seen" : "no light seen");
+  std::snprintf(status, sizeof status, tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1,
+                dot_seen_ ? tr("light seen") : tr("no light seen"));
   return status;
 }
 
@@ -115,19 +120,19 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
       done{0.35f, 0.85f, 0.45f, 1.0f}, ring{1.0f, 0.78f, 0.2f, 1.0f};
   o.fill_rect(0, 0, w, h, {0.02f, 0.02f, 0.04f, 0.86f});
   // The words sit between the target rows (0.1, 0.5, 0.9 of the height by default).
-  o.text(w / 2, h * 0.27f, "Calibration", white, render::TextAlign::center);
-  o.text(w / 2, h * 0.27f + px * 1.5f, "Hold the mallet's light still on the ring until it fills", {1, 1, 1, 0.8f},
+  o.text(w / 2, h * 0.27f, tr("Calibration"), white, render::TextAlign::center);
+  o.text(w / 2, h * 0.27f + px * 1.5f, tr("Hold the mallet's light still on the ring until it fills"), {1, 1, 1, 0.8f},
          render::TextAlign::center);
 
   if (tuning()) {
     const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
     const auto& verdicts = tuner_->verdicts();
-    o.text(w / 2, h * 0.27f + px * 3.0f, "First, hold the mallet's light up towards the camera", {1, 1, 1, 0.8f},
+    o.text(w / 2, h * 0.27f + px * 3.0f, tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f},
            render::TextAlign::center);
     o.progress_ring(cx, cy, r, 8.0f,
                     static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
-    const std::string line = "Choosing the IR sensitivity: trying " + std::string(tuner_->preset()) +
-                             (dot_seen_ ? "   light seen" : "   no light seen");
+    const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) + std::string(tuner_->preset()) + "   " +
+                             (dot_seen_ ? tr("light seen") : tr("no light seen"));
     o.text(w / 2, h * 0.70f, line, white, render::TextAlign::center);
     return;
   }

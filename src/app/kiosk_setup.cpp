@@ -4,6 +4,7 @@
 
 #include "app/data_paths.hpp"
 #include "app/settings_source.hpp"
+#include "app/visitor_catalogues.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
 
@@ -38,6 +39,7 @@ KioskSetup load_kiosk_setup(const KioskOptions& o) {
   const std::filesystem::path scene =
       o.scene.empty() ? named_scene(o.config, sc.start, sc.start_at, "scenes.start") : o.scene;
   s.scene = config::load_scene(scene);
+  start_visitor_language(s.config.language, s.problems);
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "app/data_paths.hpp"
+#include "app/visitor_catalogues.hpp"
 #include "core/file_error.hpp"
 #include "render/vk_error.hpp"
 
@@ -76,7 +77,16 @@ render::RenderSettings render_settings(const render::Context& ctx, const RenderC
 
 std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
   const float shorter = static_cast<float>(std::min(extent.width, extent.height));
-  return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), std::max(14.0f, shorter / 24.0f));
+  const float px = std::max(14.0f, shorter / 24.0f);
+  try {  // every visitor language's glyphs, Japanese's from the CJK font
+    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
+                                               render::FontAtlas::default_cjk_font());
+  } catch (const FileError& e) {
+    if (e.file() == render::FontAtlas::default_font().string()) throw;
+    std::fprintf(stderr, "<4>font: %s: Japanese shows as '?'\n", e.what());
+    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
+                                               std::filesystem::path{});
+  }
 }
 
 ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,

@@ -22,6 +22,7 @@
 #include "core/study/results_csv.hpp"
 #include "core/study/simulated_observer.hpp"
 #include "core/study/trial_timeline.hpp"
+#include "core/visitor_language.hpp"
 
 namespace mallet::app {
 
@@ -199,8 +200,8 @@ std::vector<AnswerKey> answer_keys(const StudyProtocol& protocol) {
 
 std::string answer_prompt(const StudyProtocol& protocol) {
   const std::vector<AnswerKey> keys = answer_keys(protocol);
-  if (protocol.task == StudyTask::two_afc_harder) return "Which tap felt harder? Press 1 or 2";
-  std::string text = "Which material?";
+  if (protocol.task == StudyTask::two_afc_harder) return tr("Which tap felt harder? Press 1 or 2");
+  std::string text = tr("Which material?");
   for (std::size_t i = 0; i < keys.size(); ++i)
     text += std::string(i ? ", " : " ") + keys[i].key + " " + keys[i].answer;
   return text;

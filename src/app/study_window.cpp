@@ -8,6 +8,7 @@
 #include <deque>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -18,6 +19,8 @@
 #include "app/render_setup.hpp"
 #include "app/strike_route.hpp"
 #include "app/study_stimuli.hpp"
+#include "app/visitor_catalogues.hpp"
+#include "core/visitor_language.hpp"
 #include "audio/portaudio_output.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
@@ -92,7 +95,9 @@ class StudyWindow final : public StudyStage, public AnswerSource {
   }
   void present(const Impact& impact) override {
     ++tap_;
-    banner_ = plan_.stimuli_per_trial() > 1 ? "Tap " + std::to_string(tap_) : "Tap";
+    char tap[64];
+    std::snprintf(tap, sizeof tap, tr("Tap %d"), tap_);
+    banner_ = plan_.stimuli_per_trial() > 1 ? tap : tr("Tap");
     route_->present(impact, monotonic_now());
     // The actuator's signal, rendered offline by the same engine on its own clock: the
     // device's output is not read back.
@@ -107,7 +112,9 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     ++trials_shown_;
     tap_ = 0;
     banner_.clear();
-    status_ = "Trial " + std::to_string(trial.number) + " of " + std::to_string(plan_.schedule.size());
+    char status[96];
+    std::snprintf(status, sizeof status, tr("Trial %d of %zu"), trial.number, plan_.schedule.size());
+    status_ = status;
   }
 
   // --- AnswerSource
@@ -134,7 +141,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
 
   //! "Thank you" until a key, the close button or --quit-after.
   void thank_you() {
-    banner_ = "Thank you";
+    banner_ = tr("Thank you");
     status_.clear();
     pressed_.clear();
     thanking_ = true;
@@ -223,6 +230,9 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  std::vector<std::string> problems;  // the participant reads the settings' [kiosk] language
+  start_visitor_language(plan.config.language, problems);
+  for (const std::string& p : problems) std::fprintf(stderr, "<4>%s\n", p.c_str());
   StudyWindow w(plan, scene, window);
   StudyRunResult result = run_session(plan, scene, w, w, options.after_row);
   if (!w.quit()) w.thank_you();

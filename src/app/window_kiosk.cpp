@@ -5,6 +5,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
@@ -34,6 +35,7 @@
 #include "core/file_error.hpp"
 #include "core/kiosk_metrics.hpp"
 #include "core/kiosk_states.hpp"
+#include "core/language_choice.hpp"
 #include "core/operator_knobs.hpp"
 #include "input/clock.hpp"
 #include "input/evdev/evdev_mouse.hpp"
@@ -41,6 +43,7 @@
 #include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 #include "core/quality.hpp"
+#include "core/visitor_language.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
@@ -153,6 +156,7 @@ class WindowKiosk {
   std::unique_ptr<Stage> stage_;
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
+  LanguageChoice language_;  //!< [kiosk] language, [attract] languages, the page's L
   input::wiimote::HidDeviceFinder finder_;
   input::SteadyClock clock_;
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
@@ -235,6 +239,8 @@ void WindowKiosk::build(KioskSetup setup) {
   seed_strike_labels(stage_->scene, strikes_retired_);
   metrics_file_.configure(stage_->config.metrics);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
+  language_ = LanguageChoice(c.language, c.attract.languages,
+                             static_cast<Nanos>(std::llround(c.attract.language_every_s * 1e9)));
   // The operator who reloaded from the page (S, or a SIGHUP while it is open) stays on it,
   // as after M, the volume or the gain.
   const bool on_page = states_ && states_->state() == KioskState::operator_page;
@@ -584,6 +590,10 @@ void WindowKiosk::handle_keys(Nanos now) {
         break;
       case GLFW_KEY_M: next_wall_material(); break;
       case GLFW_KEY_S: next_scene(); break;
+      case GLFW_KEY_L:
+        use_visitor_language(language_.next());
+        std::fprintf(stderr, "<5>operator: language %s\n", visitor_language().c_str());
+        break;
       case GLFW_KEY_T: start_latency_test(now); break;
       case GLFW_KEY_D:
         if (doctor_.empty()) doctor_asked_ = true;
@@ -727,7 +737,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
   if (states_->overlay().mouse_notice)
-    o.text(px, h - px, stage_->config.input.source == "auto" ? "Mouse (no Wii Remote)" : "Mouse",
+    o.text(px, h - px, stage_->config.input.source == "auto" ? tr("Mouse (no Wii Remote)") : tr("Mouse"),
            {1.0f, 1.0f, 1.0f, 0.35f});
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();
@@ -740,35 +750,38 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   char buf[240];
   std::vector<std::string> lines;
   const double uptime = to_seconds(now - started_);
-  std::snprintf(buf, sizeof buf, "Mallet: operator page   quality: %s", to_string(stage_->config.quality));
+  // The page's words are the operator's language; its status lines (input, audio, timing,
+  // settings, the doctor's checks) stay as the journal and `mallet doctor` write them.
+  std::snprintf(buf, sizeof buf, tr("Mallet: operator page   quality: %s   language: %s"),
+                to_string(stage_->config.quality), visitor_language().c_str());
   lines.emplace_back(buf);
   lines.push_back(input_line());
   lines.push_back(stage_->audio_status);
   std::snprintf(buf, sizeof buf, "frame: %.1f ms (its work %.1f ms)   uptime: %.0f h %02.0f min", frame_ms, work_ms_,
                 std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
   lines.emplace_back(buf);
-  std::snprintf(buf, sizeof buf, "volume %.0f %%  (Up / Down)", volume_ * 100);
+  std::snprintf(buf, sizeof buf, tr("volume %.0f %%  (Up / Down)"), volume_ * 100);
   lines.emplace_back(buf);
-  std::snprintf(buf, sizeof buf, "actuator gain %.2f  (Left / Right)", gain_);
+  std::snprintf(buf, sizeof buf, tr("actuator gain %.2f  (Left / Right)"), gain_);
   lines.emplace_back(buf);
-  lines.emplace_back("R recalibrate    T latency test    D doctor    Q quit    Esc close");
+  lines.emplace_back(tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close"));
   const int wall = stage_->route->loop().wall_material();
   const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str() : "";
-  std::snprintf(buf, sizeof buf, "scene: %s  (S next)%s%s%s",
-                std::filesystem::path(stage_->scene.file).filename().c_str(), wall >= 0 ? "   wall: " : "", wall_name,
-                wall >= 0 ? "  (M next)" : "");
+  std::snprintf(buf, sizeof buf, tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().c_str());
+  if (wall >= 0)
+    std::snprintf(buf + std::strlen(buf), sizeof buf - std::strlen(buf), tr("   wall: %s  (M next)"), wall_name);
   lines.emplace_back(buf);
   const std::string& tuned = stage_->calibration_status_sensitivity;
   lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
-                                 : "calibration: R runs the screen with the mouse (not saved)");
+                                 : tr("calibration: R runs the screen with the mouse (not saved)"));
   lines.push_back(timing_line());
   lines.push_back(stage_->settings_line);
   for (const std::string& p : stage_->problems) lines.push_back("! " + p);
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
     lines.resize(1);
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
-    lines.emplace_back("Each check with its fix: journalctl -u mallet -g doctor");
-    lines.emplace_back("D back to the page    Esc close");
+    lines.emplace_back(tr("Each check with its fix: journalctl -u mallet -g doctor"));
+    lines.emplace_back(tr("D back to the page    Esc close"));
   }
   const float pw = std::min(w - 2 * px, px * 40);
   // Long lines (how the input is read and why, the timing figures) wrap at a comma or a
@@ -884,6 +897,9 @@ int WindowKiosk::run() {
       ghost_.reset();
     }
 
+    // The visitor's language for this frame: the attract mode's turn, or the one kept.
+    if (const std::string& l = language_.at(states_->state(), states_->since(), now); l != visitor_language())
+      use_visitor_language(l);
     draw_overlay(now, frame_ms);
     render::FrameState state;
     const Nanos present = win_.window->predicted_present(now);

@@ -102,6 +102,10 @@ struct TimingConfig {
 struct AttractConfig {
   double idle_after_s = 45.0;  //!< no real movement for this long → the ghost player plays
   double volume = 0.5;         //!< the speaker's volume while it plays (a fraction of audio.volume)
+  //! The visitor languages it shows in turn, each for language_every_s (empty: [kiosk]
+  //! language only). A visitor who starts playing keeps the one on the screen then.
+  std::vector<std::string> languages;
+  double language_every_s = 15.0;
 };
 
 //! [render]: the screen. Values are names so the core stays free of Vulkan.
@@ -145,6 +149,7 @@ struct AppConfig {
   ContactConfig contact;
   BounceMode bounce = BounceMode::signed_eq1;
   bool note_names = false;  //!< [visual] note_names: each bar's note name on its near end
+  std::string language = "en";  //!< [kiosk] language: the texts' (core/visitor_language.hpp)
   ActuatorConfig actuator;
   AudioConfig audio;
   OneEuroConfig pointer;     //!< [pointer]: the 1€ filter of the displayed cursor

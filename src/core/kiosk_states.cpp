@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/visitor_language.hpp"
+
 namespace mallet {
 
 namespace {
@@ -36,12 +38,12 @@ std::string_view hint_text(KioskHint hint, SceneKind scene) {
   switch (hint) {
     case KioskHint::none: return "";
     case KioskHint::invitation:
-      return scene == SceneKind::texture ? "Pick up the mallet and move it over the disc"
-             : scene == SceneKind::wall  ? "Pick up the mallet and tap the wall"
-                                         : "Pick up the mallet and strike a bar";
-    case KioskHint::point_at_screen: return "Point the mallet at the screen";
-    case KioskHint::close_needs_chord: return "This kiosk closes from the operator page only";
-    case KioskHint::remote_missing: return "The mallet is resting: please ask a member of staff";
+      return scene == SceneKind::texture ? tr("Pick up the mallet and move it over the disc")
+             : scene == SceneKind::wall  ? tr("Pick up the mallet and tap the wall")
+                                         : tr("Pick up the mallet and strike a bar");
+    case KioskHint::point_at_screen: return tr("Point the mallet at the screen");
+    case KioskHint::close_needs_chord: return tr("This kiosk closes from the operator page only");
+    case KioskHint::remote_missing: return tr("The mallet is resting: please ask a member of staff");
   }
   return "";
 }

@@ -108,6 +108,7 @@ std::u32string decode_utf8(std::string_view utf8) {
 
 struct FontAtlas::Face {
   std::vector<std::uint8_t> ttf;
+  int offset = 0;         // the font's offset in ttf (a collection holds several)
   stbtt_fontinfo info{};  // points into ttf: Face is never copied or moved once built
   //! What each baked code point draws as: itself, or '?' where the font has no glyph.
   std::array<char32_t, kCount> drawn{};
@@ -121,19 +122,18 @@ struct FontAtlas::Face {
   }
 };
 
-std::filesystem::path FontAtlas::default_font() { return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"; }
+namespace {
 
-FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pixel_height_(pixel_height) {
-  if (!(pixel_height > 0.0f && pixel_height <= kMaxPixelHeight))
-    throw std::invalid_argument("FontAtlas: pixel_height must be in (0, 256], got " + std::to_string(pixel_height));
+//! The font file read and checked: every table inside it, stb_truetype's parse accepted.
+std::shared_ptr<FontAtlas::Face> load_face(const std::filesystem::path& ttf, const char* package) {
   const std::string name = ttf.string();
   std::error_code ec;
   const auto status = std::filesystem::status(ttf, ec);
   if (!std::filesystem::exists(status))
-    throw FileError(name, 0, 0, "no such font file (Debian: apt install fonts-dejavu-core)");
+    throw FileError(name, 0, 0, std::string("no such font file (Debian: apt install ") + package + ")");
   if (std::filesystem::is_directory(status)) throw FileError(name, 0, 0, "is a directory, not a font file");
 
-  auto face = std::make_shared<Face>();
+  auto face = std::make_shared<FontAtlas::Face>();
   {
     std::ifstream in(ttf, std::ios::binary);
     if (!in) throw FileError(name, 0, 0, "cannot open the font file");
@@ -147,10 +147,38 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
   if (face->ttf.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw FileError(name, 0, 0, "font file too large");
   // GetFontOffsetForIndex reads a collection's header unchecked: 16 bytes at least.
-  const int offset = face->ttf.size() < 16 ? -1 : stbtt_GetFontOffsetForIndex(face->ttf.data(), 0);
-  if (offset < 0 || !tables_inside(face->ttf, static_cast<std::size_t>(offset)) ||
-      stbtt_InitFont(&face->info, face->ttf.data(), offset) == 0)
+  face->offset = face->ttf.size() < 16 ? -1 : stbtt_GetFontOffsetForIndex(face->ttf.data(), 0);
+  if (face->offset < 0 || !tables_inside(face->ttf, static_cast<std::size_t>(face->offset)) ||
+      stbtt_InitFont(&face->info, face->ttf.data(), face->offset) == 0)
     throw FileError(name, 0, 0, "not a usable TrueType font");
+  return face;
+}
+
+//! The atlas area (texels) stb's packer will ask for a glyph, oversampling and padding included.
+std::uint64_t packed_area(const stbtt_fontinfo* info, float scale, int glyph) {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  stbtt_GetGlyphBitmapBoxSubpixel(info, glyph, scale * kOversampleX, scale * kOversampleY, 0, 0, &x0, &y0, &x1, &y1);
+  return static_cast<std::uint64_t>(x1 - x0 + kPadding + int{kOversampleX} - 1) *
+         static_cast<std::uint64_t>(y1 - y0 + kPadding + int{kOversampleY} - 1);
+}
+
+}  // namespace
+
+std::filesystem::path FontAtlas::default_font() { return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"; }
+
+std::filesystem::path FontAtlas::default_cjk_font() {
+  return "/usr/share/fonts/opentype/ipafont-gothic/ipag.ttf";
+}
+
+FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : FontAtlas(ttf, pixel_height, {}, {}) {}
+
+FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height, std::string_view also,
+                     const std::filesystem::path& also_font)
+    : pixel_height_(pixel_height) {
+  if (!(pixel_height > 0.0f && pixel_height <= kMaxPixelHeight))
+    throw std::invalid_argument("FontAtlas: pixel_height must be in (0, 256], got " + std::to_string(pixel_height));
+  const std::string name = ttf.string();
+  std::shared_ptr<Face> face = load_face(ttf, "fonts-dejavu-core");
   stbtt_fontinfo* info = &face->info;
 
   scale_ = stbtt_ScaleForPixelHeight(info, pixel_height);
@@ -160,7 +188,7 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
   descent_ = -static_cast<float>(descent) * scale_;
   line_gap_ = static_cast<float>(line_gap) * scale_;
 
-  // Pack only the code points the font has (stb's packer reports a failure for a missing one,
+  // Pack only the code points a font has (stb's packer reports a failure for a missing one,
   // which would read as "does not fit"); the others draw as '?'.
   std::vector<int> present;
   std::uint64_t min_area = 0;
@@ -169,18 +197,36 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
     face->drawn[cp - kFirst] = glyph != 0 ? cp : kFallback;
     if (glyph == 0) continue;
     present.push_back(static_cast<int>(cp));
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the same rectangle stb's packer will ask for
-    stbtt_GetGlyphBitmapBoxSubpixel(info, glyph, scale_ * kOversampleX, scale_ * kOversampleY, 0, 0, &x0, &y0, &x1,
-                                    &y1);
-    min_area += static_cast<std::uint64_t>(x1 - x0 + kPadding + int{kOversampleX} - 1) *
-                static_cast<std::uint64_t>(y1 - y0 + kPadding + int{kOversampleY} - 1);
+    min_area += packed_area(info, scale_, glyph);
   }
   if (face->draws_as(kFallback) != kFallback) throw FileError(name, 0, 0, "the font has no '?' glyph");
+
+  // The code points beyond Latin-1 that `also` uses, each once, in order: the main font's
+  // where it has them, the second font's for the rest.
+  std::u32string beyond = decode_utf8(also);
+  std::erase_if(beyond, [](char32_t cp) { return cp <= kLast || cp == U'\uFFFD'; });
+  std::sort(beyond.begin(), beyond.end());
+  beyond.erase(std::unique(beyond.begin(), beyond.end()), beyond.end());
+  std::shared_ptr<Face> second;
+  std::vector<int> from_second;
+  for (const char32_t cp : beyond) {
+    if (const int glyph = stbtt_FindGlyphIndex(info, static_cast<int>(cp)); glyph != 0) {
+      present.push_back(static_cast<int>(cp));
+      min_area += packed_area(info, scale_, glyph);
+      continue;
+    }
+    if (also_font.empty()) continue;
+    if (!second) second = load_face(also_font, "fonts-ipafont-gothic");
+    if (const int glyph = stbtt_FindGlyphIndex(&second->info, static_cast<int>(cp)); glyph != 0) {
+      from_second.push_back(static_cast<int>(cp));
+      min_area += packed_area(&second->info, stbtt_ScaleForPixelHeight(&second->info, pixel_height), glyph);
+    }
+  }
 
   // Smallest power-of-two atlas, square or twice as wide as high, that the packer fills:
   // 32×32, 64×32, 64×64, 128×64, ... Sizes with too little area for the glyphs are skipped
   // without packing.
-  std::vector<stbtt_packedchar> packed(present.size());
+  std::vector<stbtt_packedchar> packed(present.size()), packed_second(from_second.size());
   bool fits = false;
   for (int w = 32, h = 32; !fits;) {
     if (w > kMaxAtlasSide)
@@ -195,12 +241,17 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
                           h - kReservedRows, w, kPadding, nullptr) == 0)
         throw std::bad_alloc();
       stbtt_PackSetOversampling(&pack, kOversampleX, kOversampleY);
-      stbtt_pack_range range{};
-      range.font_size = pixel_height;
-      range.array_of_unicode_codepoints = present.data();
-      range.num_chars = static_cast<int>(present.size());
-      range.chardata_for_range = packed.data();
-      fits = stbtt_PackFontRanges(&pack, face->ttf.data(), offset, &range, 1) != 0;
+      auto pack_from = [&](const Face& f, std::vector<int>& code_points, std::vector<stbtt_packedchar>& out) {
+        if (code_points.empty()) return true;
+        stbtt_pack_range range{};
+        range.font_size = pixel_height;
+        range.array_of_unicode_codepoints = code_points.data();
+        range.num_chars = static_cast<int>(code_points.size());
+        range.chardata_for_range = out.data();
+        // stb takes the font's index in a collection; a plain font file's offset 0 is index 0.
+        return stbtt_PackFontRanges(&pack, f.ttf.data(), f.offset, &range, 1) != 0;
+      };
+      fits = pack_from(*face, present, packed) && (!second || pack_from(*second, from_second, packed_second));
       stbtt_PackEnd(&pack);
       if (fits) {
         width_ = w;
@@ -221,9 +272,8 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
 
   glyphs_.assign(kCount, GlyphQuad{});
   const float iw = 1.0f / static_cast<float>(width_), ih = 1.0f / static_cast<float>(height_);
-  for (std::size_t i = 0; i < present.size(); ++i) {
-    const stbtt_packedchar& p = packed[i];
-    GlyphQuad& q = glyphs_[static_cast<std::size_t>(present[i]) - kFirst];
+  auto quad = [&](const stbtt_packedchar& p) {
+    GlyphQuad q;
     q.x0 = p.xoff;
     q.y0 = p.yoff;
     q.x1 = p.xoff2;
@@ -233,15 +283,38 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height) : pix
     q.v0 = static_cast<float>(p.y0 + kReservedRows) * ih;
     q.v1 = static_cast<float>(p.y1 + kReservedRows) * ih;
     q.advance = p.xadvance;
+    return q;
+  };
+  for (std::size_t i = 0; i < present.size(); ++i) {
+    const auto cp = static_cast<char32_t>(present[i]);
+    if (cp <= kLast) glyphs_[cp - kFirst] = quad(packed[i]);
+    else beyond_.emplace_back(cp, quad(packed[i]));
   }
+  for (std::size_t i = 0; i < from_second.size(); ++i)
+    beyond_.emplace_back(static_cast<char32_t>(from_second[i]), quad(packed_second[i]));
+  std::sort(beyond_.begin(), beyond_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (char32_t cp = kFirst; cp <= kLast; ++cp)
     if (face->drawn[cp - kFirst] != cp) glyphs_[cp - kFirst] = glyphs_[kFallback - kFirst];
   face_ = std::move(face);
 }
 
-GlyphQuad FontAtlas::glyph(char32_t code_point) const { return glyphs_[face_->draws_as(code_point) - kFirst]; }
+bool FontAtlas::has(char32_t code_point) const {
+  if (code_point <= kLast) return face_->draws_as(code_point) == code_point;
+  return std::binary_search(beyond_.begin(), beyond_.end(), std::pair<char32_t, GlyphQuad>{code_point, {}},
+                            [](const auto& a, const auto& b) { return a.first < b.first; });
+}
+
+GlyphQuad FontAtlas::glyph(char32_t code_point) const {
+  if (code_point > kLast) {
+    const auto it = std::lower_bound(beyond_.begin(), beyond_.end(), code_point,
+                                     [](const auto& entry, char32_t cp) { return entry.first < cp; });
+    if (it != beyond_.end() && it->first == code_point) return it->second;
+  }
+  return glyphs_[face_->draws_as(code_point) - kFirst];
+}
 
 float FontAtlas::kerning(char32_t left, char32_t right) const {
+  if (left > kLast || right > kLast) return 0;  // beyond Latin-1 (CJK): set solid, no pairs
   const int k = stbtt_GetCodepointKernAdvance(&face_->info, static_cast<int>(face_->draws_as(left)),
                                               static_cast<int>(face_->draws_as(right)));
   return static_cast<float>(k) * scale_;

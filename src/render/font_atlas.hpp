@@ -1,11 +1,14 @@
 #pragma once
 // Glyphs of one TrueType font (DejaVu Sans from Debian's fonts-dejavu-core by default)
-// baked with stb_truetype into a single-channel coverage atlas at one pixel size.
+// baked with stb_truetype into a single-channel coverage atlas at one pixel size; the glyphs
+// of other scripts a text needs (Japanese) from a second font (IPAGothic, Debian's
+// fonts-ipafont-gothic) in the same atlas.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace mallet::render {
@@ -28,8 +31,17 @@ class FontAtlas {
   //! std::invalid_argument for a pixel_height outside (0, 256]. Code points the font lacks
   //! (DejaVu: the C1 controls U+007F..U+009F) draw as '?'.
   FontAtlas(const std::filesystem::path& ttf, float pixel_height);
+  //! Also bakes every code point of `also` (UTF-8: the visitor languages' translations)
+  //! beyond Latin-1: from `ttf` where it has the glyph, else from `also_font` (the same checks
+  //! and errors as `ttf`; empty: none), else it draws as '?'.
+  FontAtlas(const std::filesystem::path& ttf, float pixel_height, std::string_view also,
+            const std::filesystem::path& also_font);
 
   static std::filesystem::path default_font();  //!< /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+  //! /usr/share/fonts/opentype/ipafont-gothic/ipag.ttf: kana and kanji (Japanese's glyph forms).
+  static std::filesystem::path default_cjk_font();
+  //! Whether `code_point` draws as itself (false: it draws as '?').
+  bool has(char32_t code_point) const;
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -47,17 +59,19 @@ class FontAtlas {
   float measure(std::string_view utf8) const;
   float kerning(char32_t left, char32_t right) const;  //!< pixels
 
+  //! A font file and its stbtt_fontinfo (defined in font_atlas.cpp). stbtt_fontinfo points
+  //! into the file's bytes, so the two live together behind one pointer that copies share.
+  struct Face;
+
  private:
   int width_ = 0, height_ = 0;
   float pixel_height_ = 0, ascent_ = 0, descent_ = 0, line_gap_ = 0;
   float solid_u_ = 0, solid_v_ = 0;
   std::vector<std::uint8_t> coverage_;
   std::vector<GlyphQuad> glyphs_;   //!< U+0020..U+00FF
+  std::vector<std::pair<char32_t, GlyphQuad>> beyond_;  //!< baked code points past U+00FF, sorted
   float scale_ = 0;                 //!< stb_truetype's scale for pixel_height
-  //! The font file and its stbtt_fontinfo, kept for kerning. stbtt_fontinfo points into the
-  //! file's bytes, so the two live together behind one pointer that copies share.
-  struct Face;
-  std::shared_ptr<const Face> face_;
+  std::shared_ptr<const Face> face_;  //!< the main font, kept for kerning
 };
 
 }  // namespace mallet::render

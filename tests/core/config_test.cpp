@@ -286,6 +286,12 @@ TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
       {"[render]\n\nmonitor = 99\n", 3, "render.monitor: must be in [0, 15], got 99"},
       {"[attract]\nidle_after_s = 0\n", 2, "attract.idle_after_s: must be in [1, 86400], got 0"},
       {"[attract]\nvolume = 1.5\n", 2, "attract.volume: must be in [0, 1], got 1.5"},
+      {"[kiosk]\nlanguage = \"xx\"\n", 2,
+       "kiosk.language: \"xx\" has no catalogue; expected one of en, de, fr, ja"},
+      {"[kiosk]\nlanguage = \"\"\n", 2, "kiosk.language: \"\" has no catalogue"},
+      {"[attract]\n\nlanguages = [\"en\", \"DE\"]\n", 3,
+       "attract.languages: \"DE\" has no catalogue; expected some of en, de, fr, ja"},
+      {"[attract]\nlanguage_every_s = 0.5\n", 2, "attract.language_every_s: must be in [1, 3600], got 0.5"},
   };
   for (const Case& k : cases) {
     const FileError e = file_error_of([&] { config::parse_app_config(k.text, "c.toml"); });

@@ -1,6 +1,7 @@
 // The font atlas: DejaVu Sans baked at one size holds every Latin-1 glyph in a power-of-two
 // atlas, with real coverage, real metrics and the font's kerning; a solid texel for shapes;
-// broken UTF-8 and unknown code points draw as '?'; a bad font file is reported by name.
+// broken UTF-8 and unknown code points draw as '?'; a bad font file is reported by name; the
+// glyphs of a text in another script (Japanese) come from a second font into the same atlas.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -232,6 +233,43 @@ TEST(FontAtlas, BiggerTextNeedsABiggerAtlas) {
   const FontAtlas big(FontAtlas::default_font(), 64.0f);
   EXPECT_LT(static_cast<long>(small.width()) * small.height(), static_cast<long>(big.width()) * big.height());
   EXPECT_NEAR(big.measure("Mallet") / small.measure("Mallet"), 64.0 / 12.0, 0.15);
+}
+
+// ---- the visitor languages' other scripts: extra code points, from a second font ----
+
+TEST(FontAtlas, TextBeyondLatinOneIsBakedFromTheMainFontOrTheSecond) {
+  // "€" is DejaVu's own; the kana and kanji are IPAGothic's (fonts-ipafont-gothic).
+  const FontAtlas a(FontAtlas::default_font(), kPixelHeight, "Tap €  マレット鍵盤", FontAtlas::default_cjk_font());
+  for (const char32_t cp : {U'\u20AC', U'マ', U'レ', U'ッ', U'ト', U'鍵', U'盤'}) {
+    EXPECT_TRUE(a.has(cp)) << static_cast<unsigned>(cp);
+    const GlyphQuad q = a.glyph(cp);
+    EXPECT_FALSE(same_quad(q, a.glyph(U'?'))) << static_cast<unsigned>(cp);
+    EXPECT_GT(ink(a, q), 0u) << static_cast<unsigned>(cp);
+    EXPECT_GE(q.u0, 0.0f);
+    EXPECT_LE(q.u1, 1.0f);
+    EXPECT_LE(q.v1, 1.0f);
+  }
+  EXPECT_FALSE(a.has(U'猫'));  // not in the text: not baked
+  EXPECT_TRUE(same_quad(a.glyph(U'猫'), a.glyph(U'?')));
+  // A full-width kanji is about a pixel height wide; Latin-1 is as before.
+  EXPECT_NEAR(a.glyph(U'鍵').advance, kPixelHeight, kPixelHeight * 0.2f);
+  EXPECT_FLOAT_EQ(a.measure("AV"), atlas().measure("AV"));  // kerning kept
+}
+
+TEST(FontAtlas, WithoutASecondFontTheOtherScriptsDrawAsQuestionMarks) {
+  const FontAtlas a(FontAtlas::default_font(), kPixelHeight, "マレット", {});
+  EXPECT_FALSE(a.has(U'マ'));
+  EXPECT_TRUE(same_quad(a.glyph(U'マ'), a.glyph(U'?')));
+  EXPECT_EQ(a.width(), atlas().width());
+}
+
+TEST(FontAtlas, AMissingSecondFontIsReportedByName) {
+  const FontAtlas latin(FontAtlas::default_font(), kPixelHeight, "only Latin-1: é", "/no/such/cjk.ttf");
+  EXPECT_TRUE(latin.has(U'é'));  // not needed, not opened
+  const FileError e =
+      test::file_error_of([] { FontAtlas(FontAtlas::default_font(), kPixelHeight, "マ", "/no/such/cjk.ttf"); });
+  EXPECT_EQ(e.file(), "/no/such/cjk.ttf");
+  EXPECT_NE(std::string(e.what()).find("fonts-ipafont-gothic"), std::string::npos) << e.what();
 }
 
 }  // namespace

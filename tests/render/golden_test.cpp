@@ -8,13 +8,19 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "app/kiosk_text.hpp"
 #include "app/render_setup.hpp"
 #include "app/replay.hpp"
+#include "app/visitor_catalogues.hpp"
+#include "core/kiosk_states.hpp"
+#include "core/visitor_language.hpp"
 #include "render/font_atlas.hpp"
 #include "render/image.hpp"
 #include "render/overlay.hpp"
@@ -120,6 +126,34 @@ TEST(Golden, NoteNamesOnTheBarsNearEnds) {
   state.overlay = &overlay;
   expect_matches_golden(renderer().render(state), "note_names_on_bars");
 }
+
+// ---- the attract screen in every shipped language ----
+
+class GoldenLanguage : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GoldenLanguage, TheAttractScreenInvitesInTheVisitorsLanguage) {
+  // The invitation from the built catalogue, in the kiosk's own font at this size (DejaVu
+  // Sans, and IPAGothic's kana and kanji for Japanese), over the scene with the mallet at rest.
+  std::vector<std::string> problems;
+  start_visitor_language(GetParam(), problems);
+  ASSERT_TRUE(problems.empty()) << problems.front();
+  ASSERT_EQ(visitor_language(), GetParam());
+  const std::unique_ptr<render::FontAtlas> font = overlay_font({640, 360});
+  render::Overlay overlay(*font);
+  const std::string invitation(hint_text(KioskHint::invitation));
+  use_visitor_language("en");
+  if (GetParam() != "en") ASSERT_NE(invitation, hint_text(KioskHint::invitation));
+  for (const char32_t cp : render::decode_utf8(invitation)) ASSERT_TRUE(font->has(cp)) << std::hex << cp;
+  draw_banner(overlay, invitation, 640, 360);
+  const Target& bar = percussion().targets.at(2);
+  render::FrameState state;
+  state.mallet_centre = replay_of({{0.0, (bar.x_min + bar.x_max) / 2, -0.01}}).cursor_at(0).shown;
+  state.overlay = &overlay;
+  expect_matches_golden(renderer().render(state), "attract_" + GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Languages, GoldenLanguage, ::testing::ValuesIn(visitor_languages()),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
 
 // ---- every museum screen's shape: the scene framed, never stretched ----
 

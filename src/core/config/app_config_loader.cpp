@@ -4,6 +4,7 @@
 #include "core/config/toml_reader.hpp"
 #include "core/present_clock.hpp"
 #include "core/quality.hpp"
+#include "core/visitor_language.hpp"
 
 namespace mallet::config {
 
@@ -32,6 +33,12 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     else if (bounce == "rectified") c.bounce = BounceMode::rectified;
     else t->fail("bounce", "expected \"signed\" or \"rectified\", got \"" + bounce + "\"");
     c.note_names = t->boolean_or("note_names", c.note_names);
+    t->finish();
+  }
+  if (auto t = top.optional_table("kiosk")) {
+    c.language = t->string_or("language", c.language);
+    if (!is_visitor_language(c.language))
+      t->fail("language", "\"" + c.language + "\" has no catalogue; expected one of " + visitor_languages_text());
     t->finish();
   }
   if (auto t = top.optional_table("actuator")) {
@@ -165,6 +172,12 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->require_range("idle_after_s", a.idle_after_s, 1, 86400);
     a.volume = t->number_or("volume", a.volume);
     t->require_range("volume", a.volume, 0, 1);
+    if (t->has("languages")) a.languages = t->strings("languages");
+    for (const std::string& l : a.languages)
+      if (!is_visitor_language(l))
+        t->fail("languages", "\"" + l + "\" has no catalogue; expected some of " + visitor_languages_text());
+    a.language_every_s = t->number_or("language_every_s", a.language_every_s);
+    t->require_range("language_every_s", a.language_every_s, 1, 3600);
     t->finish();
   }
   if (auto t = top.optional_table("render")) {

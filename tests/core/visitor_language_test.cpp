@@ -1,0 +1,109 @@
+// The visitor's language: the texts come from the catalogues msgfmt built from po/*.po
+// (MALLET_LOCALE_DIR, set by the test runner), English is the code's own text, a language
+// switches live, and a catalogue that is missing or malformed is a one-line problem.
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/config/app_config_loader.hpp"
+#include "core/kiosk_states.hpp"
+#include "core/visitor_language.hpp"
+#include "test_paths.hpp"
+
+namespace mallet {
+namespace {
+
+std::filesystem::path built_catalogues() {
+  const char* dir = std::getenv("MALLET_LOCALE_DIR");
+  return dir ? dir : "";
+}
+
+class VisitorLanguage : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_FALSE(built_catalogues().empty()) << "run through ctest: it sets MALLET_LOCALE_DIR";
+    EXPECT_EQ(bind_visitor_catalogues(built_catalogues()), "");
+  }
+  void TearDown() override { use_visitor_language("en"); }
+};
+
+TEST(VisitorLanguages, AreEnglishAndEachCatalogueInPoLinguas) {
+  std::ifstream in(test::source_dir() / "po" / "LINGUAS");
+  std::vector<std::string> expected{"en"};
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') expected.push_back(line);
+  EXPECT_EQ(visitor_languages(), expected);
+  EXPECT_EQ(visitor_languages_text(), "en, de, fr, ja");
+  EXPECT_TRUE(is_visitor_language("ja"));
+  EXPECT_FALSE(is_visitor_language("JA"));
+  EXPECT_FALSE(is_visitor_language(""));
+}
+
+TEST_F(VisitorLanguage, EveryShippedLanguageInvitesInItsOwnWords) {
+  EXPECT_STREQ(hint_text(KioskHint::invitation).data(), "Pick up the mallet and strike a bar");
+  use_visitor_language("de");
+  EXPECT_EQ(visitor_language(), "de");
+  EXPECT_EQ(hint_text(KioskHint::invitation), "Nimm den Schlägel und schlag auf einen Klangstab");
+  EXPECT_EQ(hint_text(KioskHint::invitation, SceneKind::wall), "Nimm den Schlägel und klopfe an die Wand");
+  use_visitor_language("fr");  // switched live: the next lookup answers in the new language
+  EXPECT_EQ(hint_text(KioskHint::invitation), "Prends la mailloche et frappe une lame");
+  use_visitor_language("ja");
+  EXPECT_EQ(hint_text(KioskHint::invitation), "マレットを持って、鍵盤をたたいてみよう");
+  EXPECT_STREQ(tr("Thank you"), "ありがとうございました");
+  use_visitor_language("en");
+  EXPECT_EQ(hint_text(KioskHint::invitation), "Pick up the mallet and strike a bar");
+}
+
+TEST_F(VisitorLanguage, AnUnknownLanguageOrTextShowsTheEnglish) {
+  use_visitor_language("xx");
+  EXPECT_EQ(visitor_language(), "en");
+  use_visitor_language("de");
+  EXPECT_STREQ(tr("a text no catalogue has"), "a text no catalogue has");
+}
+
+TEST_F(VisitorLanguage, NumbersStillReadWithAPointWhateverTheLanguage) {
+  use_visitor_language("de");  // only LC_MESSAGES changed: the settings' 0.5 is not "0,5"
+  const AppConfig c = config::parse_app_config("[attract]\nvolume = 0.5\n", "c.toml");
+  EXPECT_EQ(c.attract.volume, 0.5);
+  std::ostringstream out;
+  out << 0.25;
+  EXPECT_EQ(out.str(), "0.25");
+}
+
+TEST(CatalogueTexts, HoldEveryTranslationForTheFont) {
+  std::vector<std::string> problems;
+  const std::string texts = catalogue_texts(built_catalogues(), problems);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  EXPECT_NE(texts.find("Schlägel"), std::string::npos);
+  EXPECT_NE(texts.find("Étalonnage"), std::string::npos);
+  EXPECT_NE(texts.find("鍵盤"), std::string::npos);
+  EXPECT_EQ(texts.find("Project-Id-Version"), std::string::npos);  // not the catalogues' headers
+}
+
+TEST(CatalogueTexts, AMissingOrMalformedCatalogueIsOneLineNamingItsFileAndByte) {
+  const std::filesystem::path dir = test::scratch_dir();
+  for (const char* l : {"de", "fr", "ja"}) std::filesystem::create_directories(dir / l / "LC_MESSAGES");
+  std::ofstream(dir / "de" / "LC_MESSAGES" / "mallet.mo") << "not a catalogue at all, but long enough";
+  // A real header whose translation table lies far past the end of the file.
+  std::string cut(28, '\0');
+  const unsigned char header[] = {0xde, 0x12, 0x04, 0x95, 0, 0, 0, 0, 5, 0, 0, 0, 28, 0, 0, 0, 0xff, 0xff, 0, 0};
+  for (std::size_t i = 0; i < sizeof header; ++i) cut[i] = static_cast<char>(header[i]);
+  std::ofstream(dir / "fr" / "LC_MESSAGES" / "mallet.mo", std::ios::binary) << cut;
+  std::vector<std::string> problems;
+  EXPECT_EQ(catalogue_texts(dir, problems), "");
+  ASSERT_EQ(problems.size(), 3u);
+  EXPECT_EQ(problems[0], (dir / "de" / "LC_MESSAGES" / "mallet.mo").string() +
+                             ": byte 0: not a gettext catalogue (.mo): wrong magic number");
+  EXPECT_NE(problems[1].find("fr/LC_MESSAGES/mallet.mo: byte 12: its table of texts runs past the end"),
+            std::string::npos)
+      << problems[1];
+  EXPECT_NE(problems[2].find("ja/LC_MESSAGES/mallet.mo: cannot open the catalogue"), std::string::npos)
+      << problems[2];
+}
+
+}  // namespace
+}  // namespace mallet
