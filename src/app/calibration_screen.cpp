@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "core/visitor_language.hpp"
+#include "render/text_wrap.hpp"
 
 namespace mallet::app {
 
@@ -120,15 +121,23 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
       done{0.35f, 0.85f, 0.45f, 1.0f}, ring{1.0f, 0.78f, 0.2f, 1.0f};
   o.fill_rect(0, 0, w, h, {0.02f, 0.02f, 0.04f, 0.86f});
   // The words sit between the target rows (0.1, 0.5, 0.9 of the height by default).
-  o.text(w / 2, h * 0.27f, tr("Calibration"), white, render::TextAlign::center);
-  o.text(w / 2, h * 0.27f + px * 1.5f, tr("Hold the mallet's light still on the ring until it fills"), {1, 1, 1, 0.8f},
-         render::TextAlign::center);
+  // Each instruction on as many centred lines as the screen's width needs (a long language,
+  // a portrait screen); the next one below it.
+  float pen = h * 0.27f;
+  auto say = [&](std::string_view text, std::array<float, 4> colour) {
+    for (const std::string& line : render::wrap_text(o.atlas(), text, w - 4 * px)) {
+      o.text(w / 2, pen, line, colour, render::TextAlign::center);
+      pen += px * 1.3f;
+    }
+    pen += px * 0.2f;
+  };
+  say(tr("Calibration"), white);
+  say(tr("Hold the mallet's light still on the ring until it fills"), {1, 1, 1, 0.8f});
 
   if (tuning()) {
     const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
     const auto& verdicts = tuner_->verdicts();
-    o.text(w / 2, h * 0.27f + px * 3.0f, tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f},
-           render::TextAlign::center);
+    say(tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f});
     o.progress_ring(cx, cy, r, 8.0f,
                     static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
     const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) + std::string(tuner_->preset()) + "   " +

@@ -1,10 +1,13 @@
 #include "app/kiosk_text.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "app/simulate.hpp"
 #include "core/note_name.hpp"
 #include "render/scene_view.hpp"
+#include "render/text_wrap.hpp"
 
 namespace mallet::app {
 
@@ -21,10 +24,26 @@ std::string strike_line(const Scene& scene, const Impact& i) {
 void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height) {
   const render::FontAtlas& font = overlay.atlas();
   const float px = font.pixel_height();
-  const float w = font.measure(text) + 2 * px, h = px * 1.8f;
+  // As many lines as the screen's width needs (a portrait screen, a long language), each
+  // centred and about as long as each other; the band as wide as the widest.
+  std::vector<std::string> lines = render::wrap_text(font, text, width - 4 * px);
+  if (lines.size() > 1) {  // balanced: the narrowest width that still needs no more lines
+    float lo = font.measure(text) / static_cast<float>(lines.size()), hi = width - 4 * px;
+    for (int i = 0; i < 12; ++i) {
+      const float mid = (lo + hi) / 2;
+      (render::wrap_text(font, text, mid).size() > lines.size() ? lo : hi) = mid;
+    }
+    lines = render::wrap_text(font, text, hi);
+  }
+  float widest = 0;
+  for (const std::string& l : lines) widest = std::max(widest, font.measure(l));
+  const float line = px * 1.3f;
+  const float w = widest + 2 * px, h = px * 1.8f + line * static_cast<float>(lines.size() > 1 ? lines.size() - 1 : 0);
   const float x = (width - w) / 2, y = height * 0.08f;
   overlay.fill_rect(x, y, w, h, {0.0f, 0.0f, 0.0f, 0.55f});
-  overlay.text(width / 2, y + h / 2 + px * 0.35f, text, {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    overlay.text(width / 2, y + px * 0.9f + px * 0.35f + line * static_cast<float>(i), lines[i],
+                 {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
 }
 
 void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,

@@ -15,7 +15,8 @@ namespace mallet::app {
 //! "strike t=12.345678901 bar=3 xylophone note=77 speed=1.200 m/s"
 std::string strike_line(const Scene& scene, const Impact& impact);
 
-//! The text centred near the top of a width×height screen, on a translucent band.
+//! The text centred near the top of a width×height screen, on a translucent band; wrapped
+//! onto more lines where one would not fit the screen's width (render/text_wrap.hpp).
 void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
 
 //! Each bar's note name ([visual] note_names) on its near end, as `view_proj` shows the bar

@@ -47,6 +47,7 @@
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
+#include "render/text_wrap.hpp"
 #include "render/vk_handle.hpp"
 #include "render/window_target.hpp"
 
@@ -736,9 +737,11 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
     draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
+  // Subdued but readable: half-white over the room's grey is 8.3:1 (WCAG 2.1's AAA asks
+  // 7:1 of body text; measured on the screenshot: docs/operators.md).
   if (states_->overlay().mouse_notice)
     o.text(px, h - px, stage_->config.input.source == "auto" ? tr("Mouse (no Wii Remote)") : tr("Mouse"),
-           {1.0f, 1.0f, 1.0f, 0.35f});
+           {1.0f, 1.0f, 1.0f, 0.5f});
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();
     return;
@@ -785,22 +788,33 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   }
   const float pw = std::min(w - 2 * px, px * 40);
   // Long lines (how the input is read and why, the timing figures) wrap at a comma or a
-  // semicolon onto indented continuation lines; a glyph is about half the pixel height wide.
+  // semicolon onto indented continuation lines, else at a space (a translated key legend);
+  // the widths are the font's own, in every language.
+  const render::FontAtlas& font = o.atlas();
+  const float room = pw - 2 * px;
   std::vector<std::string> page;
-  const auto fits = static_cast<std::size_t>(std::max(20.0f, (pw - 2 * px) / (px * 0.5f)));
   for (std::string text : lines) {
     if (!doctor_.empty()) {  // a check a line, cut to the page; the whole line is in the log
-      page.push_back(text.size() > fits ? text.substr(0, fits - 3) + "..." : text);
+      const std::vector<std::string> cut = render::wrap_text(font, text, room - font.measure("..."));
+      page.push_back(cut.size() > 1 ? cut.front() + "..." : text);
       continue;
     }
     std::string indent;
-    while (text.size() > fits) {
+    while (font.measure(indent + text) > room) {
       std::size_t cut = std::string::npos;
       for (const char* sep : {"; ", ", ", " ("})
-        if (const std::size_t at = text.rfind(sep, fits - 1); at != std::string::npos && at > 8 &&
-                                                               (cut == std::string::npos || at > cut))
-          cut = at;
-      if (cut == std::string::npos) break;
+        for (std::size_t at = text.find(sep); at != std::string::npos; at = text.find(sep, at + 1))
+          if (at > 8 && (cut == std::string::npos || at > cut) && font.measure(indent + text.substr(0, at + 1)) <= room)
+            cut = at;
+      if (cut == std::string::npos) {  // no separator that fits: the words that do
+        const std::vector<std::string> words = render::wrap_text(font, text, room - font.measure(indent));
+        if (words.size() < 2) break;
+        page.push_back(indent + words.front());
+        text.erase(0, words.front().size());  // the first line is the text's start, as written
+        text.erase(0, text.find_first_not_of(' '));
+        indent = "    ";
+        continue;
+      }
       const bool keep_paren = text.compare(cut, 2, " (") == 0;
       page.push_back(indent + text.substr(0, keep_paren ? cut : cut + 1));
       text = text.substr(cut + (keep_paren ? 1 : 2));

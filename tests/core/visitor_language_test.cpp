@@ -58,6 +58,28 @@ TEST_F(VisitorLanguage, EveryShippedLanguageInvitesInItsOwnWords) {
   EXPECT_EQ(hint_text(KioskHint::invitation), "Pick up the mallet and strike a bar");
 }
 
+TEST_F(VisitorLanguage, EveryVisitorLineIsShortEnoughToReadAtAGlance) {
+  // The Smithsonian Guidelines for Accessible Exhibition Design (section B, label text): at
+  // most 55 characters a line on average, and no sentence over 25 words. Each hint is one
+  // line; counted in characters (code points), not bytes.
+  for (const std::string& language : visitor_languages()) {
+    use_visitor_language(language);
+    for (const KioskHint hint : {KioskHint::invitation, KioskHint::point_at_screen, KioskHint::close_needs_chord,
+                                 KioskHint::remote_missing})
+      for (const SceneKind scene : {SceneKind::percussion, SceneKind::texture, SceneKind::wall}) {
+        const std::string_view text = hint_text(hint, scene);
+        std::size_t characters = 0, words = 1;
+        for (const char c : text) {
+          characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+          words += c == ' ';
+        }
+        EXPECT_GT(characters, 0u);
+        EXPECT_LE(characters, 55u) << language << ": " << text;
+        EXPECT_LE(words, 25u) << language << ": " << text;
+      }
+  }
+}
+
 TEST_F(VisitorLanguage, AnUnknownLanguageOrTextShowsTheEnglish) {
   use_visitor_language("xx");
   EXPECT_EQ(visitor_language(), "en");
