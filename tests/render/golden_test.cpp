@@ -142,8 +142,11 @@ TEST_P(GoldenLanguage, TheAttractScreenInvitesInTheVisitorsLanguage) {
   render::Overlay overlay(*font);
   const std::string invitation(hint_text(KioskHint::invitation));
   use_visitor_language("en");
-  if (GetParam() != "en") ASSERT_NE(invitation, hint_text(KioskHint::invitation));
-  for (const char32_t cp : render::decode_utf8(invitation)) ASSERT_TRUE(font->has(cp)) << std::hex << cp;
+  if (GetParam() != "en") {
+    ASSERT_NE(invitation, hint_text(KioskHint::invitation));
+  }
+  for (const char32_t cp : render::decode_utf8(invitation))
+    ASSERT_TRUE(font->has(cp)) << "U+" << std::hex << static_cast<std::uint32_t>(cp);
   draw_banner(overlay, invitation, 640, 360);
   const Target& bar = percussion().targets.at(2);
   render::FrameState state;
