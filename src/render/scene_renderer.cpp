@@ -3,20 +3,28 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
+#include <vector>
 
 #include "core/file_error.hpp"
 #include "render/gltf_model.hpp"
 #include "render/vk_error.hpp"
 #include "shaders/overlay_frag.h"
 #include "shaders/overlay_vert.h"
+#include "shaders/gbuffer_frag.h"
 #include "shaders/scene_frag.h"
 #include "shaders/scene_vert.h"
+#include "shaders/shadow_frag.h"
+#include "shaders/shadow_vert.h"
 
 namespace mallet::render {
 namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+//! The cached background's light per pixel (gbuffer.frag): linear, unclamped.
+constexpr VkFormat kLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr std::uint32_t kMaxModelSets = 256;
+constexpr std::uint32_t kShadowTextures = 3;  //!< shadow.frag's: unshadowed, shadow share, depth
 
 //! The key light: nearly overhead and a little in front, so the sphere's shadow falls
 //! just behind the point under it, where the eye (above and in front) sees it.
@@ -37,6 +45,10 @@ struct DrawConstants {
   glm::vec4 emissive;  //!< rgb: light the surface gives off (a lit bar), linear
 };
 static_assert(sizeof(DrawConstants) == 112, "push constants: 128 bytes guaranteed, 112 used");
+struct ShadowConstants {
+  glm::mat4 inverse_view_proj;
+  glm::vec4 inverse_size;
+};
 
 //! How brightly the bar `target` is lit this frame (the brighter of its lights); 0 when it
 //! is not, and for what is not a bar (-1).
@@ -79,15 +91,15 @@ struct VertexInput {
   VertexInput(const VertexInput&) = delete;
 };
 
-//! Begins rendering into `color` and `depth` over all of `extent`, the viewport and the
+//! Begins rendering into `colors` and `depth` over all of `extent`, the viewport and the
 //! scissor set to it.
-void begin_rendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& color,
+void begin_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
                      const VkRenderingAttachmentInfo& depth, VkExtent2D extent) {
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, extent};
   ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &color;
+  ri.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
+  ri.pColorAttachments = colors.data();
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   const VkViewport viewport{0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1};
@@ -152,11 +164,19 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   lci.pBindings = &tex;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &raw_layout), "creating a descriptor set layout");
   image_layout_ = vk::DescriptorSetLayout(dev, raw_layout);
+  std::array<VkDescriptorSetLayoutBinding, kShadowTextures> cached{};
+  for (std::uint32_t b = 0; b < kShadowTextures; ++b)
+    cached[b] = {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  lci.bindingCount = kShadowTextures;
+  lci.pBindings = cached.data();
+  check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &raw_layout), "creating a descriptor set layout");
+  shadow_layout_ = vk::DescriptorSetLayout(dev, raw_layout);
 
-  const std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
-                                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxModelSets}}};
+  const std::array<VkDescriptorPoolSize, 2> sizes{
+      {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSlots},
+       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxModelSets + kShadowTextures}}};
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pci.maxSets = kSlots + kMaxModelSets;
+  pci.maxSets = kSlots + kMaxModelSets + 1;
   pci.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   pci.pPoolSizes = sizes.data();
   VkDescriptorPool raw_pool;
@@ -171,6 +191,10 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   VkSampler raw_sampler;
   check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
   sampler_ = vk::Sampler(dev, raw_sampler);
+  sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;  // the cached light and depth: read texel by texel
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
+  nearest_sampler_ = vk::Sampler(dev, raw_sampler);
   const std::array<std::uint8_t, 4> white{255, 255, 255, 255};
   white_ = make_texture(ctx, {1, 1}, VK_FORMAT_R8G8B8A8_SRGB, white, 4);
 
@@ -308,7 +332,8 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
   enum class Depth { none, test_and_write, test_only };
   auto build = [&](VkShaderModule vs, VkShaderModule fs, const VkPipelineVertexInputStateCreateInfo& input,
                    Depth depth, bool blend, VkPipelineLayout layout, const char* what,
-                   VkSampleCountFlagBits samples) {
+                   VkSampleCountFlagBits samples, std::vector<VkFormat> formats = {}) {
+    if (formats.empty()) formats.push_back(color_format_);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs,
                  "main", nullptr};
@@ -347,16 +372,17 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
       att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
       att.alphaBlendOp = VK_BLEND_OP_ADD;
     }
+    const std::vector<VkPipelineColorBlendAttachmentState> atts(formats.size(), att);
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = 1;
-    cb.pAttachments = &att;
+    cb.attachmentCount = static_cast<std::uint32_t>(atts.size());
+    cb.pAttachments = atts.data();
     const std::array<VkDynamicState, 2> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dy.dynamicStateCount = static_cast<std::uint32_t>(dyn.size());
     dy.pDynamicStates = dyn.data();
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &color_format_;
+    rendering.colorAttachmentCount = static_cast<std::uint32_t>(formats.size());
+    rendering.pColorAttachmentFormats = formats.data();
     rendering.depthAttachmentFormat = kDepthFormat;
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.pNext = &rendering;
@@ -390,6 +416,28 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
       background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
                                    scene_pipeline_layout_.get(), "creating the background pipeline",
                                    background_samples());
+    vk::ShaderModule light = make_shader(dev, gbuffer_frag_spv);
+    if (screen_space_shadow())
+      light_pipeline_ = build(vs.get(), light.get(), input.info, Depth::test_and_write, false,
+                            scene_pipeline_layout_.get(), "creating the cached light's pipeline", VK_SAMPLE_COUNT_1_BIT,
+                            {kLightFormat, kLightFormat});
+  }
+  {
+    std::array<VkDescriptorSetLayout, 2> sets{frame_layout_.get(), shadow_layout_.get()};
+    VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(ShadowConstants)};
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = 2;
+    ci.pSetLayouts = sets.data();
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &push;
+    VkPipelineLayout raw;
+    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the shadow pipeline layout");
+    shadow_pipeline_layout_ = vk::PipelineLayout(dev, raw);
+    vk::ShaderModule vs = make_shader(dev, shadow_vert_spv), fs = make_shader(dev, shadow_frag_spv);
+    VkPipelineVertexInputStateCreateInfo none{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    if (screen_space_shadow())
+      shadow_pipeline_ = build(vs.get(), fs.get(), none, Depth::none, false, shadow_pipeline_layout_.get(),
+                               "creating the shadow pipeline", settings_.samples);
   }
   {
     vk::ShaderModule vs = make_shader(dev, overlay_vert_spv), fs = make_shader(dev, overlay_frag_spv);
@@ -429,6 +477,33 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
                                    settings_.samples, VK_IMAGE_ASPECT_COLOR_BIT);
     background_depth_ = make_image(ctx_, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    settings_.samples, VK_IMAGE_ASPECT_DEPTH_BIT);
+  }
+  light_unshadowed_ = {};
+  light_share_ = {};
+  light_depth_ = {};
+  if (screen_space_shadow()) {
+    // The shadow's inputs, read by shadow.frag: the light per pixel and where it lies.
+    constexpr VkImageUsageFlags cached = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    light_unshadowed_ = make_image(ctx_, extent, kLightFormat, cached, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    light_share_ = make_image(ctx_, extent, kLightFormat, cached, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    light_depth_ = make_image(ctx_, extent, kDepthFormat,
+                              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                              VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (shadow_set_ == VK_NULL_HANDLE) shadow_set_ = allocate_set(shadow_layout_.get());
+    std::array<VkDescriptorImageInfo, kShadowTextures> images{};
+    const std::array<VkImageView, kShadowTextures> views{light_unshadowed_.view.get(), light_share_.view.get(),
+                                                         light_depth_.view.get()};
+    std::array<VkWriteDescriptorSet, kShadowTextures> writes{};
+    for (std::uint32_t b = 0; b < kShadowTextures; ++b) {
+      images[b] = {nearest_sampler_.get(), views[b], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      writes[b].dstSet = shadow_set_;
+      writes[b].dstBinding = b;
+      writes[b].descriptorCount = 1;
+      writes[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      writes[b].pImageInfo = &images[b];
+    }
+    vkUpdateDescriptorSets(ctx_.device(), kShadowTextures, writes.data(), 0, nullptr);
   }
   background_ready_ = false;
   attachment_extent_ = extent;
@@ -549,14 +624,15 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
     depth.resolveImageView = background_depth_.view.get();
     depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   }
-  begin_rendering(cmd, color, depth, attachment_extent_);
+  begin_rendering(cmd, {&color, 1}, depth, attachment_extent_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     resolve ? background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
-  // Unshadowed: wherever the sphere darkens them, the frame redraws them.
+  // Unshadowed: wherever the sphere darkens them, the frame shades them again (shadow.frag).
   for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::none);
   vkCmdEndRendering(cmd);
+
   // Every later frame copies the colour and tests against the depth; neither changes again.
   transition(cmd, background_color_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, color_stage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
@@ -564,6 +640,51 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
   transition(cmd, background_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
              VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
              depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  if (screen_space_shadow()) record_cached_light(cmd, slot);
+}
+
+void SceneRenderer::record_cached_light(VkCommandBuffer cmd, const Slot& slot) {
+  const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  // The same instruments' light per pixel, at one sample a pixel, and their depth: what the
+  // shadow takes from each pixel, shaded on the screen by every later frame.
+  for (const GpuImage* c : {&light_unshadowed_, &light_share_})
+    transition(cmd, c->image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_stage, VK_ACCESS_2_NONE, color_stage,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  transition(cmd, light_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+             VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_NONE, depth_stages,
+             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  std::array<VkRenderingAttachmentInfo, 2> lights{};
+  for (std::size_t k = 0; k < lights.size(); ++k) {
+    lights[k] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    lights[k].imageView = (k == 0 ? light_unshadowed_ : light_share_).view.get();
+    lights[k].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    lights[k].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    lights[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    lights[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  }
+  VkRenderingAttachmentInfo light_depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  light_depth.imageView = light_depth_.view.get();
+  light_depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  light_depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  light_depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  light_depth.clearValue.depthStencil = {1.0f, 0};
+  begin_rendering(cmd, lights, light_depth, attachment_extent_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
+                          nullptr);
+  for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::none);
+  vkCmdEndRendering(cmd);
+  const VkPipelineStageFlags2 fragment = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  for (const GpuImage* c : {&light_unshadowed_, &light_share_})
+    transition(cmd, c->image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, color_stage, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, fragment,
+               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  transition(cmd, light_depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+             fragment, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
 void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& state,
@@ -653,15 +774,15 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth.clearValue.depthStencil = {1.0f, 0};
   }
-  begin_rendering(cmd, color, depth, extent);
+  begin_rendering(cmd, {&color, 1}, depth, extent);
   const VkRect2D whole{{0, 0}, extent};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     over_background ? over_background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
-  shadow_redraws_ = 0;
+  shadow_passes_ = 0;
   if (over_background) {
-    // The instruments again, only where the sphere's shadow can fall.
+    // The shadow shaded on the screen, only where the sphere's shadow can fall.
     const PixelRect shadow =
         caster ? shadow_bounds(view_proj_, static_cast<int>(extent.width), static_cast<int>(extent.height),
                                {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
@@ -673,13 +794,32 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                        {static_cast<std::uint32_t>(shadow.x1 - shadow.x0),
                         static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
-      // Only the instruments whose screen box meets the shadow's: a detailed model's other
-      // bars cost nothing (each instance's box is projected once per image size).
-      for (std::size_t k = 0; k < instruments_.size(); ++k)
-        if (overlap(instrument_rects_[k], shadow)) {
-          draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
-          ++shadow_redraws_;
-        }
+      if (!screen_space_shadow()) {
+        // Multisampled frames: the instruments whose screen box meets the shadow's, redrawn
+        // with each sample's coverage (each instance's box is projected once per image size).
+        for (std::size_t k = 0; k < instruments_.size(); ++k)
+          if (overlap(instrument_rects_[k], shadow)) {
+            draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
+            ++shadow_passes_;
+          }
+      } else {
+        // One triangle over the rectangle, whatever the models' triangles: each pixel's
+        // point, light and shadow come from the cache (shadow.frag).
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipeline_.get());
+        const std::array<VkDescriptorSet, 2> sets{slot.frame_set, shadow_set_};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipeline_layout_.get(), 0, 2,
+                                sets.data(), 0, nullptr);
+        const ShadowConstants sc{glm::inverse(view_proj_),
+                                 {1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height),
+                                  0.0f, 0.0f}};
+        vkCmdPushConstants(cmd, shadow_pipeline_layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sc), &sc);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        ++shadow_passes_;
+        // Back to the scene's pipeline (and its layout's frame set) for the bars and the mallet.
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1,
+                                &slot.frame_set, 0, nullptr);
+      }
       vkCmdSetScissor(cmd, 0, 1, &whole);
     }
     // The lit bars again, whole, with their light (and the shadow where it falls on them).

@@ -106,9 +106,17 @@ class SceneRenderer {
   std::size_t triangle_count() const;
   //! How many times the cached background was drawn: once per image size it met.
   std::uint64_t background_builds() const { return background_builds_; }
-  //! How many instruments the last frame redrew over the cached background for the
-  //! shadow (those whose screen box meets it), of instrument_count().
-  std::size_t shadow_redraws() const { return shadow_redraws_; }
+  //! How the last frame drew the sphere's shadow over the cached background. Single-sampled
+  //! frames (a CPU rasteriser's): shaded on the screen from the cached light and depth, one
+  //! pass over the shadow's rectangle (1), whatever the models' triangles. Multisampled
+  //! frames (a GPU's), whose bar edges need each sample's coverage: the instruments whose
+  //! screen box meets the shadow's rectangle, redrawn (one pass each). 0: the shadow falls
+  //! on nothing drawn.
+  std::size_t shadow_passes() const { return shadow_passes_; }
+  //! Whether the shadow is shaded on the screen (single-sampled frames over the cache).
+  bool screen_space_shadow() const {
+    return settings_.background_cache && settings_.samples == VK_SAMPLE_COUNT_1_BIT;
+  }
   std::size_t instrument_count() const { return instruments_.size(); }
 
  private:
@@ -141,6 +149,8 @@ class SceneRenderer {
   void ensure_attachments(VkExtent2D extent);
   void ensure_atlas(const FontAtlas& atlas);
   void record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index);
+  //! The cached instruments' light per pixel and depth (screen_space_shadow()).
+  void record_cached_light(VkCommandBuffer cmd, const Slot& slot);
   //! The shader's params.z: whether a draw receives the sphere's shadow, and whether it is
   //! the redraw over the cached background, which keeps only the pixels the shadow darkens.
   //! the_sphere: the mallet itself, which receives none and is projected as seen from
@@ -163,12 +173,14 @@ class SceneRenderer {
   std::vector<Instance> instruments_;
   std::map<std::string, GpuModel> models_;
   GpuImage white_;
-  vk::Sampler sampler_;
-  vk::DescriptorSetLayout frame_layout_, image_layout_;
+  vk::Sampler sampler_, nearest_sampler_;
+  vk::DescriptorSetLayout frame_layout_, image_layout_, shadow_layout_;
   vk::DescriptorPool pool_;
-  vk::PipelineLayout scene_pipeline_layout_, overlay_pipeline_layout_;
+  vk::PipelineLayout scene_pipeline_layout_, overlay_pipeline_layout_, shadow_pipeline_layout_;
   vk::Pipeline scene_pipeline_, overlay_pipeline_;
   vk::Pipeline over_background_pipeline_;  //!< depth-tested against the cached depth, never writing it
+  vk::Pipeline light_pipeline_;   //!< the cached light per pixel (gbuffer.frag), one sample a pixel
+  vk::Pipeline shadow_pipeline_;  //!< the shadow over the cached background, shaded on the screen
   vk::Pipeline background_pipeline_;       //!< at background_samples, when they differ from the frames' 
   std::array<Slot, kSlots> slots_;
   VkExtent2D attachment_extent_{};
@@ -178,10 +190,14 @@ class SceneRenderer {
   std::vector<PixelRect> instrument_rects_;     //!< each of instruments_' on the image (attachment_extent_)
   GpuImage background_color_, background_depth_;  //!< the instruments alone, at attachment_extent_
   GpuImage background_msaa_color_, background_msaa_depth_;  //!< drawn into, then resolved (background_samples)
+  //! The cached instruments' light per pixel, unshadowed and the share a full shadow takes
+  //! (linear), and their depth: shadow.frag's inputs, at attachment_extent_.
+  GpuImage light_unshadowed_, light_share_, light_depth_;
+  VkDescriptorSet shadow_set_ = VK_NULL_HANDLE;
   std::optional<std::uint32_t> background_scratch_slot_;   //!< the slot of the frame that drew them
   bool background_ready_ = false;
   std::uint64_t background_builds_ = 0;
-  std::size_t shadow_redraws_ = 0;
+  std::size_t shadow_passes_ = 0;
   const FontAtlas* atlas_source_ = nullptr;
   GpuImage atlas_;
   VkDescriptorSet atlas_set_ = VK_NULL_HANDLE;

@@ -1,6 +1,7 @@
-// The renderer's cached background (the instruments drawn once per image size; each frame
-// copies them in, redraws them only where the mallet's shadow can fall, and draws the
-// mallet over them) must give exactly the pixels of drawing the whole scene every frame.
+// The renderer's cached background (the instruments drawn once per image size, with their
+// light per pixel; each frame copies them in, shades the mallet's shadow on the screen where
+// it can fall, and draws the mallet over them) must give the pixels of drawing the whole
+// scene every frame.
 // Frames follow one another in one renderer, so a shadow left behind by the frame before
 // would show as a difference too.
 #include <memory>
@@ -48,6 +49,11 @@ std::vector<Vec2> places(const Scene& scene) {
   return out;
 }
 
+//! Single-sampled frames shade the shadow on the screen from the cached light (half floats)
+//! and depth: a few of its pixels round to the next 8-bit level (measured: at most 22 of a
+//! 480×270 frame, 1/255 each). Everything else is exact.
+constexpr int kShadowRounding = 1;
+
 void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples) {
   auto cached = renderer(scene, true, samples);
   auto whole = renderer(scene, false, samples);
@@ -63,8 +69,12 @@ void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples) {
                         BarLight{scene.targets.at(scene.targets.size() / 2).id, 0.8f}};
       const ImageDiff d = compare_images(cached->render(s), whole->render(s), 0);
       ASSERT_TRUE(d.same_size);
-      EXPECT_EQ(d.max_channel_delta, 0) << "mallet at (" << c.x << ", " << c.y << "), drawn " << shadow_on_frame
-                                        << ": " << d.differing_pixels << " pixels differ";
+      EXPECT_LE(d.max_channel_delta, kShadowRounding) << "mallet at (" << c.x << ", " << c.y << "), drawn "
+                                                      << shadow_on_frame << ": " << d.differing_pixels
+                                                      << " pixels differ";
+      if (samples != VK_SAMPLE_COUNT_1_BIT) {
+        EXPECT_EQ(d.max_channel_delta, 0) << "multisampled frames redraw the bars: exactly the whole scene";
+      }
       ++frames;
     }
   }
@@ -75,20 +85,33 @@ void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples) {
   EXPECT_EQ(cached->context().validation_messages(), 0u) << cached->context().first_validation_message();
 }
 
-TEST(BackgroundCache, TheShadowRedrawsOnlyTheBarsItsScreenBoxMeets) {
-  // A detailed model costs only where the shadow falls: resting on one bar, the sphere's
-  // shadow meets that bar, its neighbours and the rails under them, not the whole set.
+TEST(BackgroundCache, TheShadowIsOneScreenPassWhereItFallsAndNoneElsewhere) {
+  // A detailed model costs nothing more for the shadow: it is shaded on the screen from the
+  // cached light and depth, one pass over the shadow's rectangle, whatever the triangles.
   auto cached = renderer(test::percussion(), true);
+  ASSERT_TRUE(cached->renderer().screen_space_shadow());
   const Target& t = test::percussion().targets.at(3);
   FrameState s;
   s.mallet_centre = {(t.x_min + t.x_max) / 2, t.top_y + test::percussion().mallet_radius_m};
   cached->render(s);
-  EXPECT_GE(cached->renderer().shadow_redraws(), 1u);
-  EXPECT_LE(cached->renderer().shadow_redraws(), 6u) << "of " << cached->renderer().instrument_count();
-  EXPECT_GE(cached->renderer().instrument_count(), 20u);
+  EXPECT_EQ(cached->renderer().shadow_passes(), 1u);
   s.mallet_centre = {2.0, 0.05};  // far beside the instruments: its shadow falls on nothing drawn
   cached->render(s);
-  EXPECT_EQ(cached->renderer().shadow_redraws(), 0u);
+  EXPECT_EQ(cached->renderer().shadow_passes(), 0u);
+}
+
+TEST(BackgroundCache, MultisampledFramesRedrawOnlyTheBarsTheShadowsScreenBoxMeets) {
+  // A GPU's multisampled frames need each sample's coverage at the bars' edges: the shadow
+  // redraws the bars it meets, its neighbours and the rails under them, not the whole set.
+  auto cached = renderer(test::percussion(), true, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_4_BIT);
+  ASSERT_FALSE(cached->renderer().screen_space_shadow());
+  const Target& t = test::percussion().targets.at(3);
+  FrameState s;
+  s.mallet_centre = {(t.x_min + t.x_max) / 2, t.top_y + test::percussion().mallet_radius_m};
+  cached->render(s);
+  EXPECT_GE(cached->renderer().shadow_passes(), 1u);
+  EXPECT_LE(cached->renderer().shadow_passes(), 6u) << "of " << cached->renderer().instrument_count();
+  EXPECT_GE(cached->renderer().instrument_count(), 20u);
 }
 
 TEST(BackgroundCache, PercussionFramesAreTheWholeScenesPixels) {
@@ -155,7 +178,7 @@ TEST(BackgroundCache, IsRedrawnWhenTheImageSizeChanges) {
     const ImageDiff d = compare_images(a, b, 0);
     ASSERT_TRUE(d.same_size);
     EXPECT_EQ(a.width, static_cast<int>(size.width));
-    EXPECT_EQ(d.max_channel_delta, 0) << size.width << "x" << size.height << ": " << d.differing_pixels;
+    EXPECT_LE(d.max_channel_delta, kShadowRounding) << size.width << "x" << size.height << ": " << d.differing_pixels;
   }
   EXPECT_EQ(cached.background_builds(), 3u);
   EXPECT_EQ(ctx.validation_messages(), 0u) << ctx.first_validation_message();
