@@ -1,6 +1,7 @@
 #version 450
 // The cached background's light, per pixel, for the shadow shaded on the screen
-// (shadow.frag): drawn once per image size with the instruments, at one sample a pixel.
+// (shadow.frag): drawn once per image size with the instruments, at one sample a pixel, with
+// which bar each pixel shows (for a detailed bar's glow when it is lit).
 #extension GL_GOOGLE_include_directive : require
 #include "scene_common.glsl"
 
@@ -13,10 +14,10 @@ layout(location = 1) in vec3 world_normal;
 layout(location = 2) in vec2 uv;
 
 layout(location = 0) out vec4 out_unshadowed;    // the pixel as scene.frag shades it with no shadow
-layout(location = 1) out vec4 out_shadow_share;  // what a full shadow takes from it
+layout(location = 1) out vec4 out_shadow_share;  // rgb: what a full shadow takes from it; a: the bar's id + 1 (0: no bar)
 
 void main() {
   SurfaceLight s = surface_light(world_position, world_normal, uv);
   out_unshadowed = vec4(s.direct + s.ambient + draw.emissive.rgb, s.alpha);
-  out_shadow_share = vec4(s.direct + (1.0 - kShadowedAmbient) * s.ambient, 0.0);
+  out_shadow_share = vec4(s.direct + (1.0 - kShadowedAmbient) * s.ambient, draw.emissive.w);
 }

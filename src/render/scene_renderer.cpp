@@ -48,7 +48,17 @@ static_assert(sizeof(DrawConstants) == 112, "push constants: 128 bytes guarantee
 struct ShadowConstants {
   glm::mat4 inverse_view_proj;
   glm::vec4 inverse_size;
+  glm::vec4 lit;          //!< the lit bars shaded on the screen: x, z their ids + 1 (0: none); y, w their glow
+  glm::vec4 glow_color;   //!< rgb: kBarGlowColor
+  glm::vec4 shadow_rect;  //!< where the shadow can fall, pixels: x0, y0, x1, y1
 };
+static_assert(sizeof(ShadowConstants) <= 128, "push constants: 128 bytes guaranteed");
+
+//! A lit bar with more triangles than this is lit on the screen from the cached bars (a pass
+//! over its rectangle, whatever the triangles); one with fewer is cheaper to redraw (the
+//! shipped bar has 12; measured at 1080p on lavapipe, the screen pass over a shipped bar's
+//! rectangle cost more than its redraw).
+constexpr std::uint32_t kRedrawLitBarTriangles = 1000;
 
 //! How brightly the bar `target` is lit this frame (the brighter of its lights); 0 when it
 //! is not, and for what is not a bar (-1).
@@ -519,6 +529,12 @@ void SceneRenderer::ensure_atlas(const FontAtlas& atlas) {
   atlas_source_ = &atlas;
 }
 
+std::uint32_t SceneRenderer::triangles_of(const Instance& instance) const {
+  std::uint32_t n = 0;
+  for (const GpuPrimitive& p : models_.at(instance.model).primitives) n += p.index_count / 3;
+  return n;
+}
+
 std::size_t SceneRenderer::triangle_count() const {
   std::size_t n = 0;
   auto count = [&](const std::string& name) {
@@ -540,7 +556,8 @@ void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance,
     DrawConstants dc{instance.transform,
                      {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]},
                      {m.metallic, m.roughness, static_cast<float>(shadow), m.textured ? 1.0f : 0.0f},
-                     glm::vec4(kBarGlowColor * glow, 0.0f)};
+                     // w: the bar's id + 1 (0: not a bar), which the cached light keeps per pixel
+                     glm::vec4(kBarGlowColor * glow, static_cast<float>(instance.target + 1))};
     vkCmdPushConstants(cmd, scene_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                        0, sizeof(dc), &dc);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 1, 1, &m.set, 0,
@@ -782,49 +799,80 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                           nullptr);
   shadow_passes_ = 0;
   if (over_background) {
-    // The shadow shaded on the screen, only where the sphere's shadow can fall.
+    // The instruments change only where the sphere's shadow can fall and on the lit bars.
     const PixelRect shadow =
         caster ? shadow_bounds(view_proj_, static_cast<int>(extent.width), static_cast<int>(extent.height),
                                {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
                                 glm::dvec3(kToLight), kLightTanRadius},
                                instruments_box_)
                : PixelRect{};
-    if (!shadow.empty()) {
-      const VkRect2D r{{shadow.x0, shadow.y0},
-                       {static_cast<std::uint32_t>(shadow.x1 - shadow.x0),
-                        static_cast<std::uint32_t>(shadow.y1 - shadow.y0)}};
+    auto scissor = [&](const PixelRect& p) {
+      const VkRect2D r{{p.x0, p.y0}, {static_cast<std::uint32_t>(p.x1 - p.x0), static_cast<std::uint32_t>(p.y1 - p.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
-      if (!screen_space_shadow()) {
-        // Multisampled frames: the instruments whose screen box meets the shadow's, redrawn
-        // with each sample's coverage (each instance's box is projected once per image size).
-        for (std::size_t k = 0; k < instruments_.size(); ++k)
-          if (overlap(instrument_rects_[k], shadow)) {
-            draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
-            ++shadow_passes_;
-          }
-      } else {
-        // One triangle over the rectangle, whatever the models' triangles: each pixel's
-        // point, light and shadow come from the cache (shadow.frag).
+    };
+    std::vector<const Instance*> redrawn_lit;  // lit bars drawn again whole, with their light
+    if (screen_space_shadow()) {
+      // One triangle over each rectangle that changes (the shadow's, each lit detailed
+      // bar's), whatever the models' triangles: each pixel's point, light, bar and shadow
+      // come from the cache (shadow.frag).
+      std::vector<PixelRect> changed;
+      if (!shadow.empty()) changed.push_back(shadow);
+      ShadowConstants sc{glm::inverse(view_proj_),
+                         {1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height), 0.0f,
+                          0.0f},
+                         glm::vec4(0.0f),
+                         glm::vec4(kBarGlowColor, 0.0f),
+                         glm::vec4(static_cast<float>(shadow.x0), static_cast<float>(shadow.y0),
+                                   static_cast<float>(shadow.x1), static_cast<float>(shadow.y1))};
+      int shaded_lights = 0;
+      for (std::size_t k = 0; k < instruments_.size(); ++k) {
+        const Instance& i = instruments_[k];
+        const float glow = glow_of(state, i.target);
+        if (glow <= 0) continue;
+        if (triangles_of(i) <= kRedrawLitBarTriangles || shaded_lights == 2) {
+          redrawn_lit.push_back(&i);
+          continue;
+        }
+        sc.lit[2 * shaded_lights] = static_cast<float>(i.target + 1);
+        sc.lit[2 * shaded_lights + 1] = glow;
+        ++shaded_lights;
+        if (!instrument_rects_[k].empty()) changed.push_back(instrument_rects_[k]);
+      }
+      if (!changed.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipeline_.get());
         const std::array<VkDescriptorSet, 2> sets{slot.frame_set, shadow_set_};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipeline_layout_.get(), 0, 2,
                                 sets.data(), 0, nullptr);
-        const ShadowConstants sc{glm::inverse(view_proj_),
-                                 {1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height),
-                                  0.0f, 0.0f}};
         vkCmdPushConstants(cmd, shadow_pipeline_layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sc), &sc);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
-        ++shadow_passes_;
+        for (const PixelRect& p : changed) {  // where two overlap, both write the same value
+          scissor(p);
+          vkCmdDraw(cmd, 3, 1, 0, 0);
+          ++shadow_passes_;
+        }
+        vkCmdSetScissor(cmd, 0, 1, &whole);
         // Back to the scene's pipeline (and its layout's frame set) for the bars and the mallet.
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1,
                                 &slot.frame_set, 0, nullptr);
       }
-      vkCmdSetScissor(cmd, 0, 1, &whole);
+    } else {
+      // Multisampled frames, which need each sample's coverage at the bars' edges: the
+      // instruments whose screen box meets the shadow's, redrawn where it darkens them (each
+      // instance's box is projected once per image size).
+      if (!shadow.empty()) {
+        scissor(shadow);
+        for (std::size_t k = 0; k < instruments_.size(); ++k)
+          if (overlap(instrument_rects_[k], shadow)) {
+            draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
+            ++shadow_passes_;
+          }
+        vkCmdSetScissor(cmd, 0, 1, &whole);
+      }
+      for (const Instance& i : instruments_)
+        if (glow_of(state, i.target) > 0) redrawn_lit.push_back(&i);
     }
-    // The lit bars again, whole, with their light (and the shadow where it falls on them).
-    for (const Instance& i : instruments_)
-      if (const float glow = glow_of(state, i.target); glow > 0) draw_instance(cmd, i, Shadow::receives, glow);
+    // The other lit bars again, whole, with their light (and the shadow where it falls on them).
+    for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
   } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_of(state, i.target));
   }

@@ -106,12 +106,14 @@ class SceneRenderer {
   std::size_t triangle_count() const;
   //! How many times the cached background was drawn: once per image size it met.
   std::uint64_t background_builds() const { return background_builds_; }
-  //! How the last frame drew the sphere's shadow over the cached background. Single-sampled
-  //! frames (a CPU rasteriser's): shaded on the screen from the cached light and depth, one
-  //! pass over the shadow's rectangle (1), whatever the models' triangles. Multisampled
-  //! frames (a GPU's), whose bar edges need each sample's coverage: the instruments whose
-  //! screen box meets the shadow's rectangle, redrawn (one pass each). 0: the shadow falls
-  //! on nothing drawn.
+  //! How many passes the last frame drew over the cached background for the sphere's
+  //! shadow and the lit detailed bars. Single-sampled frames (a CPU rasteriser's): shaded on
+  //! the screen from the cached light, bars and depth, one pass over each rectangle that
+  //! changes (the shadow's; each lit bar's with more than kRedrawLitBarTriangles, whose glow
+  //! would cost more to redraw), whatever the models' triangles. Multisampled frames (a
+  //! GPU's), whose bar edges need each sample's coverage: one per instrument whose screen box
+  //! meets the shadow's rectangle, redrawn. 0: nothing changed (a lit shipped bar is redrawn,
+  //! whole, not counted).
   std::size_t shadow_passes() const { return shadow_passes_; }
   //! Whether the shadow is shaded on the screen (single-sampled frames over the cache).
   bool screen_space_shadow() const {
@@ -151,6 +153,7 @@ class SceneRenderer {
   void record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index);
   //! The cached instruments' light per pixel and depth (screen_space_shadow()).
   void record_cached_light(VkCommandBuffer cmd, const Slot& slot);
+  std::uint32_t triangles_of(const Instance& instance) const;
   //! The shader's params.z: whether a draw receives the sphere's shadow, and whether it is
   //! the redraw over the cached background, which keeps only the pixels the shadow darkens.
   //! the_sphere: the mallet itself, which receives none and is projected as seen from

@@ -4,12 +4,14 @@
 // scene every frame.
 // Frames follow one another in one renderer, so a shadow left behind by the frame before
 // would show as a difference too.
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "app/bench_detailed_model.hpp"
 #include "app/render_setup.hpp"
 #include "render/image.hpp"
 #include "render/offscreen_target.hpp"
@@ -22,8 +24,10 @@ namespace {
 
 std::unique_ptr<app::HeadlessRenderer> renderer(const Scene& scene, bool cache,
                                                 VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
-                                                VkSampleCountFlagBits background_samples = VK_SAMPLE_COUNT_1_BIT) {
+                                                VkSampleCountFlagBits background_samples = VK_SAMPLE_COUNT_1_BIT,
+                                                const std::filesystem::path& models = {}) {
   app::HeadlessOptions o;
+  o.models = models;
   o.size = {480, 270};
   o.settings.background_cache = cache;
   o.settings.samples = samples;
@@ -54,9 +58,9 @@ std::vector<Vec2> places(const Scene& scene) {
 //! 480×270 frame, 1/255 each). Everything else is exact.
 constexpr int kShadowRounding = 1;
 
-void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples) {
-  auto cached = renderer(scene, true, samples);
-  auto whole = renderer(scene, false, samples);
+void expect_same_frames(const Scene& scene, VkSampleCountFlagBits samples, const std::filesystem::path& models = {}) {
+  auto cached = renderer(scene, true, samples, VK_SAMPLE_COUNT_1_BIT, models);
+  auto whole = renderer(scene, false, samples, VK_SAMPLE_COUNT_1_BIT, models);
   int frames = 0;
   for (const Vec2 c : places(scene)) {
     for (bool shadow_on_frame : {true, false}) {
@@ -95,6 +99,11 @@ TEST(BackgroundCache, TheShadowIsOneScreenPassWhereItFallsAndNoneElsewhere) {
   s.mallet_centre = {(t.x_min + t.x_max) / 2, t.top_y + test::percussion().mallet_radius_m};
   cached->render(s);
   EXPECT_EQ(cached->renderer().shadow_passes(), 1u);
+  // A lit shipped bar (12 triangles) is redrawn whole, cheaper than a pass over its rectangle.
+  s.bar_lights = {BarLight{t.id, 0.2f}, BarLight{}};
+  cached->render(s);
+  EXPECT_EQ(cached->renderer().shadow_passes(), 1u);
+  s.bar_lights = {};
   s.mallet_centre = {2.0, 0.05};  // far beside the instruments: its shadow falls on nothing drawn
   cached->render(s);
   EXPECT_EQ(cached->renderer().shadow_passes(), 0u);
@@ -112,6 +121,30 @@ TEST(BackgroundCache, MultisampledFramesRedrawOnlyTheBarsTheShadowsScreenBoxMeet
   EXPECT_GE(cached->renderer().shadow_passes(), 1u);
   EXPECT_LE(cached->renderer().shadow_passes(), 6u) << "of " << cached->renderer().instrument_count();
   EXPECT_GE(cached->renderer().instrument_count(), 20u);
+}
+
+//! The shipped models with both bars cut into 1200 triangles each (bench_detailed_model.hpp):
+//! more than a lit bar is redrawn with, so their glow is shaded on the screen too.
+std::filesystem::path detailed_models() {
+  const std::filesystem::path dir = test::scratch_dir();
+  for (const auto& entry : std::filesystem::directory_iterator(app::models_dir()))
+    if (entry.path().extension() == ".glb") std::filesystem::copy_file(entry.path(), dir / entry.path().filename());
+  EXPECT_EQ(app::write_detailed_bar(dir / "wood_bar.glb", 10, {0.30, 0.10, 0.045, 1.0}, 0.0, 0.55), 1200u);
+  app::write_detailed_bar(dir / "metal_bar.glb", 10, {0.85, 0.85, 0.88, 1.0}, 1.0, 0.25);
+  return dir;
+}
+
+TEST(BackgroundCache, DetailedBarsShadowedAndLitOnTheScreenAreTheWholeScenesPixels) {
+  const std::filesystem::path models = detailed_models();
+  expect_same_frames(test::percussion(), VK_SAMPLE_COUNT_1_BIT, models);
+  // Their glow is a pass over each lit bar's rectangle, not a redraw of its triangles.
+  auto cached = renderer(test::percussion(), true, VK_SAMPLE_COUNT_1_BIT, VK_SAMPLE_COUNT_1_BIT, models);
+  const Target& t = test::percussion().targets.at(3);
+  FrameState s;
+  s.mallet_centre = {(t.x_min + t.x_max) / 2, t.top_y + test::percussion().mallet_radius_m};
+  s.bar_lights = {BarLight{t.id, 0.2f}, BarLight{test::percussion().targets.at(9).id, 0.9f}};
+  cached->render(s);
+  EXPECT_EQ(cached->renderer().shadow_passes(), 3u);  // the shadow's and two bars'
 }
 
 TEST(BackgroundCache, PercussionFramesAreTheWholeScenesPixels) {
