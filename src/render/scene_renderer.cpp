@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <span>
 #include <vector>
 
@@ -311,31 +312,28 @@ void SceneRenderer::load_model(const std::filesystem::path& file, const std::str
 
 void SceneRenderer::build_pipelines(VkPipelineCache cache) {
   VkDevice dev = ctx_.device();
+  auto layout_of = [dev](std::initializer_list<VkDescriptorSetLayout> sets, VkPushConstantRange push,
+                         const char* what) {
+    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    ci.setLayoutCount = static_cast<std::uint32_t>(sets.size());
+    ci.pSetLayouts = sets.begin();
+    ci.pushConstantRangeCount = 1;
+    ci.pPushConstantRanges = &push;
+    VkPipelineLayout raw;
+    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), what);
+    return vk::PipelineLayout(dev, raw);
+  };
   // Scene pipeline: set 0 the frame, set 1 the material's texture; push constants per draw.
-  {
-    std::array<VkDescriptorSetLayout, 2> sets{frame_layout_.get(), image_layout_.get()};
-    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)};
-    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    ci.setLayoutCount = 2;
-    ci.pSetLayouts = sets.data();
-    ci.pushConstantRangeCount = 1;
-    ci.pPushConstantRanges = &push;
-    VkPipelineLayout raw;
-    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the scene pipeline layout");
-    scene_pipeline_layout_ = vk::PipelineLayout(dev, raw);
-  }
-  {
-    VkDescriptorSetLayout set = image_layout_.get();
-    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(float) * 2};
-    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    ci.setLayoutCount = 1;
-    ci.pSetLayouts = &set;
-    ci.pushConstantRangeCount = 1;
-    ci.pPushConstantRanges = &push;
-    VkPipelineLayout raw;
-    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the overlay pipeline layout");
-    overlay_pipeline_layout_ = vk::PipelineLayout(dev, raw);
-  }
+  scene_pipeline_layout_ =
+      layout_of({frame_layout_.get(), image_layout_.get()},
+                {VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DrawConstants)},
+                "creating the scene pipeline layout");
+  overlay_pipeline_layout_ = layout_of({image_layout_.get()}, {VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(float) * 2},
+                                       "creating the overlay pipeline layout");
+  // The shadow on the screen: set 0 the frame, set 1 the cached light and depth.
+  shadow_pipeline_layout_ =
+      layout_of({frame_layout_.get(), shadow_layout_.get()},
+                {VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(ShadowConstants)}, "creating the shadow pipeline layout");
 
   // How a pipeline uses depth: the overlay not at all; the whole scene tests and writes
   // it; drawing over the cached background only tests against it (it stays the cache).
@@ -429,20 +427,10 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     vk::ShaderModule light = make_shader(dev, gbuffer_frag_spv);
     if (screen_space_shadow())
       light_pipeline_ = build(vs.get(), light.get(), input.info, Depth::test_and_write, false,
-                            scene_pipeline_layout_.get(), "creating the cached light's pipeline", VK_SAMPLE_COUNT_1_BIT,
-                            {kLightFormat, kLightFormat});
+                              scene_pipeline_layout_.get(), "creating the cached light's pipeline",
+                              VK_SAMPLE_COUNT_1_BIT, {kLightFormat, kLightFormat});
   }
   {
-    std::array<VkDescriptorSetLayout, 2> sets{frame_layout_.get(), shadow_layout_.get()};
-    VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(ShadowConstants)};
-    VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    ci.setLayoutCount = 2;
-    ci.pSetLayouts = sets.data();
-    ci.pushConstantRangeCount = 1;
-    ci.pPushConstantRanges = &push;
-    VkPipelineLayout raw;
-    check(vkCreatePipelineLayout(dev, &ci, nullptr, &raw), "creating the shadow pipeline layout");
-    shadow_pipeline_layout_ = vk::PipelineLayout(dev, raw);
     vk::ShaderModule vs = make_shader(dev, shadow_vert_spv), fs = make_shader(dev, shadow_frag_spv);
     VkPipelineVertexInputStateCreateInfo none{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (screen_space_shadow())
