@@ -73,19 +73,28 @@ Context::Context(const ContextOptions& options) {
     ici.ppEnabledLayerNames = &kValidationLayer;
     ici.pNext = &messenger;  // also covers instance creation and destruction
   }
-  check(vkCreateInstance(&ici, nullptr, &instance_),
+  auto injected = [&](const char* step) {
+    if (options.fail_after == step) throw RenderError(std::string("injected failure after the ") + step);
+  };
+  VkInstance instance = VK_NULL_HANDLE;
+  check(vkCreateInstance(&ici, nullptr, &instance),
         "creating the Vulkan instance (is a Vulkan driver installed? Debian: mesa-vulkan-drivers)");
+  instance_ = vk::Instance(instance);
+  injected("instance");
   if (validate) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    if (create) create(instance_, &messenger, nullptr, &messenger_);
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    VkDebugUtilsMessengerEXT made = VK_NULL_HANDLE;
+    if (create && create(instance, &messenger, nullptr, &made) == VK_SUCCESS)
+      messenger_ = vk::DebugMessenger(instance, made);
   }
+  injected("messenger");
 
   // The device: the named one, else the best kind that has Vulkan 1.3 and a graphics queue.
   std::uint32_t count = 0;
-  vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
-  vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
   int best_rank = -1;
   std::string seen;
   for (VkPhysicalDevice d : devices) {
@@ -110,9 +119,7 @@ Context::Context(const ContextOptions& options) {
       break;
     }
   }
-  if (physical_ == VK_NULL_HANDLE) {
-    vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
+  if (physical_ == VK_NULL_HANDLE) {  // the messenger and the instance go with the throw
     std::string want = options.device_name.empty() ? "" : " named '" + options.device_name + "'";
     throw RenderError("no Vulkan 1.3 device" + want + " with a graphics queue (seen: " +
                       (seen.empty() ? "none" : seen) + ")");
@@ -136,27 +143,24 @@ Context::Context(const ContextOptions& options) {
     dci.enabledExtensionCount = 1;
     dci.ppEnabledExtensionNames = &swapchain_ext;
   }
-  check(vkCreateDevice(physical_, &dci, nullptr, &device_), "creating the Vulkan device");
-  vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+  VkDevice device = VK_NULL_HANDLE;
+  check(vkCreateDevice(physical_, &dci, nullptr, &device), "creating the Vulkan device");
+  device_ = vk::Device(device);
+  vkGetDeviceQueue(device, queue_family_, 0, &queue_);
+  injected("device");
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = queue_family_;
   VkCommandPool pool;
-  check(vkCreateCommandPool(device_, &pci, nullptr, &pool), "creating a command pool");
-  pool_ = vk::CommandPool(device_, pool);
+  check(vkCreateCommandPool(device, &pci, nullptr, &pool), "creating a command pool");
+  pool_ = vk::CommandPool(device, pool);
+  injected("command pool");
 }
 
 Context::~Context() {
-  if (device_) vkDeviceWaitIdle(device_);
-  pool_.reset();
-  if (device_) vkDestroyDevice(device_, nullptr);
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-  }
-  if (instance_) vkDestroyInstance(instance_, nullptr);
+  if (device_) vkDeviceWaitIdle(device_.get());
+  // The members go in reverse order: the pool, the device, the messenger, the instance.
 }
 
 void Context::on_validation_message(const char* message) {
@@ -184,25 +188,25 @@ VkCommandBuffer Context::allocate_command_buffer() const {
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
-  check(vkAllocateCommandBuffers(device_, &ai, &cmd), "allocating a command buffer");
+  check(vkAllocateCommandBuffers(device_.get(), &ai, &cmd), "allocating a command buffer");
   return cmd;
 }
 
-void Context::free_command_buffer(VkCommandBuffer cmd) const { vkFreeCommandBuffers(device_, pool_.get(), 1, &cmd); }
+void Context::free_command_buffer(VkCommandBuffer cmd) const { vkFreeCommandBuffers(device_.get(), pool_.get(), 1, &cmd); }
 
 vk::Fence Context::make_fence(bool signaled) const {
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   if (signaled) fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;
   VkFence fence;
-  check(vkCreateFence(device_, &fci, nullptr, &fence), "creating a fence");
-  return vk::Fence(device_, fence);
+  check(vkCreateFence(device_.get(), &fci, nullptr, &fence), "creating a fence");
+  return vk::Fence(device_.get(), fence);
 }
 
 vk::Semaphore Context::make_semaphore() const {
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   VkSemaphore s;
-  check(vkCreateSemaphore(device_, &sci, nullptr, &s), "creating a semaphore");
-  return vk::Semaphore(device_, s);
+  check(vkCreateSemaphore(device_.get(), &sci, nullptr, &s), "creating a semaphore");
+  return vk::Semaphore(device_.get(), s);
 }
 
 void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
@@ -225,7 +229,7 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
   si.commandBufferInfoCount = 1;
   si.pCommandBufferInfos = &cbi;
   check(vkQueueSubmit2(queue_, 1, &si, fence.get()), "submitting to the GPU queue");
-  check(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX), "waiting for the GPU");
+  check(vkWaitForFences(device_.get(), 1, &raw_fence, VK_TRUE, UINT64_MAX), "waiting for the GPU");
 }
 
 const char* result_name(VkResult r) {

@@ -27,6 +27,9 @@ struct ContextOptions {
   std::vector<std::string> instance_extensions;  //!< e.g. what GLFW needs for a surface
   bool swapchain = false;                        //!< enable VK_KHR_swapchain on the device
   std::string device_name;                       //!< substring of the device to use; empty = best
+  //! Tests only: throw RenderError right after this step ("instance", "messenger",
+  //! "device" or "command pool"), to check that what was made by then is freed.
+  std::string fail_after;
 };
 
 class Context {
@@ -36,15 +39,15 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
-  VkInstance instance() const { return instance_; }
+  VkInstance instance() const { return instance_.get(); }
   VkPhysicalDevice physical_device() const { return physical_; }
-  VkDevice device() const { return device_; }
+  VkDevice device() const { return device_.get(); }
   VkQueue queue() const { return queue_; }
   std::uint32_t queue_family() const { return queue_family_; }
   VkCommandPool command_pool() const { return pool_.get(); }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::string device_name() const { return properties_.deviceName; }
-  bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+  bool validation_enabled() const { return static_cast<bool>(messenger_); }
 
   //! Messages the validation layers sent (warnings and errors) since creation.
   std::uint64_t validation_messages() const { return validation_messages_.load(); }
@@ -67,18 +70,22 @@ class Context {
   void on_validation_message(const char* message);
 
  private:
-  VkInstance instance_ = VK_NULL_HANDLE;
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
-  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
-  VkPhysicalDeviceProperties properties_{};
-  VkPhysicalDeviceMemoryProperties memory_{};
-  VkDevice device_ = VK_NULL_HANDLE;
-  VkQueue queue_ = VK_NULL_HANDLE;
-  std::uint32_t queue_family_ = 0;
-  vk::CommandPool pool_;
+  // The validation layer reports to these until the instance is gone: they come first, so
+  // they are destroyed last.
   std::atomic<std::uint64_t> validation_messages_{0};
   mutable std::mutex message_mutex_;
   std::string first_message_;
+  // Each Vulkan object owned from the moment it exists, and destroyed in reverse order (the
+  // pool, the device, the messenger, the instance), on a failed constructor too.
+  vk::Instance instance_;
+  vk::DebugMessenger messenger_;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  vk::Device device_;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::uint32_t queue_family_ = 0;
+  vk::CommandPool pool_;
 };
 
 }  // namespace mallet::render

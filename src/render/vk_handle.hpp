@@ -43,6 +43,54 @@ class DeviceOwned {
 };
 
 namespace detail {
+inline std::atomic<std::int64_t>& instances_and_devices_counter() {
+  static std::atomic<std::int64_t> live{0};
+  return live;
+}
+}  // namespace detail
+
+//! Instances and devices this process holds through vk::Instance and vk::Device: a
+//! constructor that failed half-way must leave it as it found it.
+inline std::int64_t live_instances_and_devices() {
+  return detail::instances_and_devices_counter().load(std::memory_order_relaxed);
+}
+
+//! The objects that are not made on a device (the instance, the device itself): owned the
+//! same way, from the moment they exist, so that a constructor that fails half-way frees
+//! what it made.
+template <typename Handle, void (*Destroy)(Handle, const VkAllocationCallbacks*)>
+class Owned {
+ public:
+  Owned() = default;
+  explicit Owned(Handle handle) : handle_(handle) {
+    if (handle_ != VK_NULL_HANDLE) detail::instances_and_devices_counter().fetch_add(1, std::memory_order_relaxed);
+  }
+  Owned(Owned&& other) noexcept : handle_(std::exchange(other.handle_, VK_NULL_HANDLE)) {}
+  Owned& operator=(Owned&& other) noexcept {
+    if (this != &other) {
+      reset();
+      handle_ = std::exchange(other.handle_, VK_NULL_HANDLE);
+    }
+    return *this;
+  }
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned() { reset(); }
+
+  void reset() {
+    if (handle_ == VK_NULL_HANDLE) return;
+    Destroy(handle_, nullptr);
+    handle_ = VK_NULL_HANDLE;
+    detail::instances_and_devices_counter().fetch_sub(1, std::memory_order_relaxed);
+  }
+  Handle get() const { return handle_; }
+  explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
+
+ private:
+  Handle handle_ = VK_NULL_HANDLE;
+};
+
+namespace detail {
 inline std::atomic<std::uint64_t>& device_memory_counter() {
   static std::atomic<std::uint64_t> bytes{0};
   return bytes;
@@ -54,6 +102,42 @@ inline std::atomic<std::uint64_t>& device_memory_counter() {
 inline std::uint64_t device_memory_bytes() { return detail::device_memory_counter().load(std::memory_order_relaxed); }
 
 namespace vk {
+using Instance = Owned<VkInstance, vkDestroyInstance>;
+using Device = Owned<VkDevice, vkDestroyDevice>;
+
+//! The validation layer's messenger, destroyed through the instance's own entry point.
+class DebugMessenger {
+ public:
+  DebugMessenger() = default;
+  DebugMessenger(VkInstance instance, VkDebugUtilsMessengerEXT messenger) : instance_(instance), handle_(messenger) {}
+  DebugMessenger(DebugMessenger&& other) noexcept
+      : instance_(other.instance_), handle_(std::exchange(other.handle_, VK_NULL_HANDLE)) {}
+  DebugMessenger& operator=(DebugMessenger&& other) noexcept {
+    if (this != &other) {
+      reset();
+      instance_ = other.instance_;
+      handle_ = std::exchange(other.handle_, VK_NULL_HANDLE);
+    }
+    return *this;
+  }
+  DebugMessenger(const DebugMessenger&) = delete;
+  DebugMessenger& operator=(const DebugMessenger&) = delete;
+  ~DebugMessenger() { reset(); }
+  void reset() {
+    if (handle_ == VK_NULL_HANDLE) return;
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, handle_, nullptr);
+    handle_ = VK_NULL_HANDLE;
+  }
+  VkDebugUtilsMessengerEXT get() const { return handle_; }
+  explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
+
+ private:
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT handle_ = VK_NULL_HANDLE;
+};
+
 using Buffer = DeviceOwned<VkBuffer, vkDestroyBuffer>;
 
 //! A vkAllocateMemory result and its size, counted in device_memory_bytes() while held.
