@@ -42,30 +42,20 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->finish();
   }
   if (auto t = top.optional_table("actuator")) {
-    c.actuator.gain = t->number_or("gain", c.actuator.gain);
-    t->require_range("gain", c.actuator.gain, 0.0, 10.0);
-    c.actuator.soft_clip_knee = t->number_or("soft_clip_knee", c.actuator.soft_clip_knee);
-    t->require_range("soft_clip_knee", c.actuator.soft_clip_knee, 0.1, 0.99);
+    t->read("gain", c.actuator.gain, 0.0, 10.0);
+    t->read("soft_clip_knee", c.actuator.soft_clip_knee, 0.1, 0.99);
     t->finish();
   }
   if (auto t = top.optional_table("audio")) {
-    c.audio.sample_rate_hz =
-        static_cast<int>(t->integer_or("sample_rate_hz", c.audio.sample_rate_hz));
-    t->require_range("sample_rate_hz", c.audio.sample_rate_hz, 8000, 384000);
+    t->read("sample_rate_hz", c.audio.sample_rate_hz, 8000, 384000);
     AudioConfig& a = c.audio;
     a.device = t->string_or("device", a.device);
-    a.frames_per_buffer = static_cast<int>(t->integer_or("frames_per_buffer", a.frames_per_buffer));
-    t->require_range("frames_per_buffer", a.frames_per_buffer, 16, 8192);
-    a.suggested_latency_ms = t->number_or("suggested_latency_ms", a.suggested_latency_ms);
-    t->require_range("suggested_latency_ms", a.suggested_latency_ms, 0, 1000);
-    a.schedule_ahead_ms = t->number_or("schedule_ahead_ms", a.schedule_ahead_ms);
-    t->require_range("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
-    a.max_voices = static_cast<int>(t->integer_or("max_voices", a.max_voices));
-    t->require_range("max_voices", a.max_voices, 1, 4096);
-    a.max_modes = static_cast<int>(t->integer_or("max_modes", a.max_modes));
-    t->require_range("max_modes", a.max_modes, 1, kMaxModalModes);
-    a.volume = t->number_or("volume", a.volume);
-    t->require_range("volume", a.volume, 0, 4);
+    t->read("frames_per_buffer", a.frames_per_buffer, 16, 8192);
+    t->read("suggested_latency_ms", a.suggested_latency_ms, 0, 1000);
+    t->read("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
+    t->read("max_voices", a.max_voices, 1, 4096);
+    t->read("max_modes", a.max_modes, 1, kMaxModalModes);
+    t->read("volume", a.volume, 0, 4);
     const std::string route = t->string_or("acoustic", "modal");
     if (route == "modal") a.acoustic = AcousticRoute::modal;
     else if (route == "midi") a.acoustic = AcousticRoute::midi;
@@ -73,37 +63,27 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     a.soundfont = t->string_or("soundfont", a.soundfont);
     if (auto r = t->optional_table("routing")) {
       AudioRouting& routing = c.audio.routing;
-      routing.channels = static_cast<int>(r->integer_or("channels", routing.channels));
-      r->require_range("channels", routing.channels, 1, 64);
-      routing.acoustic = static_cast<int>(r->integer_or("acoustic", routing.acoustic));
-      r->require_range("acoustic", routing.acoustic, 0, routing.channels - 1);
-      routing.actuator = static_cast<int>(r->integer_or("actuator", routing.actuator));
-      r->require_range("actuator", routing.actuator, 0, routing.channels - 1);
+      r->read("channels", routing.channels, 1, 64);
+      r->read("acoustic", routing.acoustic, 0, routing.channels - 1);
+      r->read("actuator", routing.actuator, 0, routing.channels - 1);
       r->finish();
     }
     t->finish();
   }
   if (auto t = top.optional_table("pointer")) {
     OneEuroConfig& p = c.pointer;
-    p.min_cutoff_hz = t->number_or("min_cutoff_hz", p.min_cutoff_hz);
-    t->require_range("min_cutoff_hz", p.min_cutoff_hz, 0.01, 100);
-    p.beta_per_m = t->number_or("beta_per_m", p.beta_per_m);
-    t->require_range("beta_per_m", p.beta_per_m, 0, 1e6);
-    p.d_cutoff_hz = t->number_or("d_cutoff_hz", p.d_cutoff_hz);
-    t->require_range("d_cutoff_hz", p.d_cutoff_hz, 0.01, 100);
+    t->read("min_cutoff_hz", p.min_cutoff_hz, 0.01, 100);
+    t->read("beta_per_m", p.beta_per_m, 0, 1e6);
+    t->read("d_cutoff_hz", p.d_cutoff_hz, 0.01, 100);
     p.derivative_from_raw = t->boolean_or("derivative_from_raw", p.derivative_from_raw);
     t->finish();
   }
   if (auto t = top.optional_table("tracking")) {
     IrTrackerConfig& k = c.tracking;
-    k.max_speed_px_per_s = t->number_or("max_speed_px_per_s", k.max_speed_px_per_s);
-    t->require_range("max_speed_px_per_s", k.max_speed_px_per_s, 1, 1e6);
-    k.jump_slack_px = t->number_or("jump_slack_px", k.jump_slack_px);
-    t->require_range("jump_slack_px", k.jump_slack_px, 0, 1024);
-    k.reacquire_after_frames = static_cast<int>(t->integer_or("reacquire_after_frames", k.reacquire_after_frames));
-    t->require_range("reacquire_after_frames", k.reacquire_after_frames, 1, 1000);
-    k.lost_after_ms = t->number_or("lost_after_ms", k.lost_after_ms);
-    t->require_range("lost_after_ms", k.lost_after_ms, 1, 60000);
+    t->read("max_speed_px_per_s", k.max_speed_px_per_s, 1, 1e6);
+    t->read("jump_slack_px", k.jump_slack_px, 0, 1024);
+    t->read("reacquire_after_frames", k.reacquire_after_frames, 1, 1000);
+    t->read("lost_after_ms", k.lost_after_ms, 1, 60000);
     t->finish();
   }
   if (auto t = top.optional_table("wiimote")) {
@@ -117,14 +97,10 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     if (!find_sensitivity(w.sensitivity))
       t->fail("sensitivity", "unknown preset \"" + w.sensitivity + "\" (known: " + sensitivity_names() + ")");
     w.rumble_on_impact = t->boolean_or("rumble_on_impact", w.rumble_on_impact);
-    w.rumble_ms = t->number_or("rumble_ms", w.rumble_ms);
-    t->require_range("rumble_ms", w.rumble_ms, 1, 1000);
-    w.silence_timeout_ms = t->number_or("silence_timeout_ms", w.silence_timeout_ms);
-    t->require_range("silence_timeout_ms", w.silence_timeout_ms, 100, 60000);
-    w.reconnect_min_ms = t->number_or("reconnect_min_ms", w.reconnect_min_ms);
-    t->require_range("reconnect_min_ms", w.reconnect_min_ms, 10, 60000);
-    w.reconnect_max_ms = t->number_or("reconnect_max_ms", w.reconnect_max_ms);
-    t->require_range("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
+    t->read("rumble_ms", w.rumble_ms, 1, 1000);
+    t->read("silence_timeout_ms", w.silence_timeout_ms, 100, 60000);
+    t->read("reconnect_min_ms", w.reconnect_min_ms, 10, 60000);
+    t->read("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
   if (auto t = top.optional_table("input")) {
@@ -149,8 +125,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     if (align == "asap") g.align = CueAlign::asap;
     else if (align == "picture") g.align = CueAlign::picture;
     else t->fail("align", "expected \"asap\" or \"picture\", got \"" + align + "\"");
-    g.display_latency_ms = t->number_or("display_latency_ms", g.display_latency_ms);
-    t->require_range("display_latency_ms", g.display_latency_ms, 0, 200);
+    t->read("display_latency_ms", g.display_latency_ms, 0, 200);
     double& audio = c.audio.output_latency_ms;
     audio = t->number_or("audio_output_latency_ms", audio);
     if (audio >= 0) t->require_range("audio_output_latency_ms", audio, 0, 500);
@@ -168,16 +143,13 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   }
   if (auto t = top.optional_table("attract")) {
     AttractConfig& a = c.attract;
-    a.idle_after_s = t->number_or("idle_after_s", a.idle_after_s);
-    t->require_range("idle_after_s", a.idle_after_s, 1, 86400);
-    a.volume = t->number_or("volume", a.volume);
-    t->require_range("volume", a.volume, 0, 1);
+    t->read("idle_after_s", a.idle_after_s, 1, 86400);
+    t->read("volume", a.volume, 0, 1);
     if (t->has("languages")) a.languages = t->strings("languages");
     for (const std::string& l : a.languages)
       if (!is_visitor_language(l))
         t->fail("languages", "\"" + l + "\" has no catalogue; expected some of " + visitor_languages_text());
-    a.language_every_s = t->number_or("language_every_s", a.language_every_s);
-    t->require_range("language_every_s", a.language_every_s, 1, 3600);
+    t->read("language_every_s", a.language_every_s, 1, 3600);
     t->finish();
   }
   if (auto t = top.optional_table("render")) {
@@ -190,10 +162,8 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
       t->fail("msaa", "expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"" + r.msaa + "\"");
     r.shadow = t->boolean_or("shadow", r.shadow);
     r.device = t->string_or("device", r.device);
-    r.monitor = static_cast<int>(t->integer_or("monitor", r.monitor));
-    t->require_range("monitor", r.monitor, 0, 15);
-    r.max_fps = t->number_or("max_fps", r.max_fps);
-    t->require_range("max_fps", r.max_fps, 0, 1000);
+    t->read("monitor", r.monitor, 0, 15);
+    t->read("max_fps", r.max_fps, 0, 1000);
     t->finish();
   }
   if (auto t = top.optional_table("scenes")) {
@@ -213,8 +183,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
       t->fail("textfile", "names a folder; expected a file such as \"" + m.textfile + "mallet.prom\"");
     if (!m.textfile.empty() && std::filesystem::path(m.textfile).is_relative())
       m.textfile = (std::filesystem::path(file).parent_path() / m.textfile).string();
-    m.interval_s = t->number_or("interval_s", m.interval_s);
-    t->require_range("interval_s", m.interval_s, 1, 3600);
+    t->read("interval_s", m.interval_s, 1, 3600);
     t->finish();
   }
   top.finish();

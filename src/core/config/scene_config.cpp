@@ -29,8 +29,8 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
   Instrument inst;
   inst.name = t.string("name");
   inst.voice = t.string_or("voice", inst.name);
-  inst.midi_program = static_cast<int>(t.integer_or("midi_program", 0));
-  t.require_range("midi_program", inst.midi_program, 0, 127);
+  inst.midi_program = 0;
+  t.read("midi_program", inst.midi_program, 0, 127);
   const std::string material_name = t.string("material");
   const Material* material = library.find(material_name);
   if (!material)
@@ -109,12 +109,9 @@ void read_texture(TableReader& top, Scene& scene) {
   }
   if (std::optional<TableReader> t = top.optional_table("speed_technique")) {
     SpeedTechniqueConfig& c = tex.speed;
-    c.slope_gain = t->number_or("slope_gain", c.slope_gain);
-    t->require_range("slope_gain", c.slope_gain, 0.0, 1000.0);
-    c.gain_min = t->number_or("gain_min", c.gain_min);
-    t->require_range("gain_min", c.gain_min, 0.01, 1.0);
-    c.gain_max = t->number_or("gain_max", c.gain_max);
-    t->require_range("gain_max", c.gain_max, 1.0, 100.0);
+    t->read("slope_gain", c.slope_gain, 0.0, 1000.0);
+    t->read("gain_min", c.gain_min, 0.01, 1.0);
+    t->read("gain_max", c.gain_max, 1.0, 100.0);
     c.relax_distance_m = t->number_or("relax_distance_m", c.relax_distance_m);
     t->require_positive("relax_distance_m", c.relax_distance_m);
     c.max_offset_m = t->number_or("max_offset_m", c.max_offset_m);
@@ -123,18 +120,14 @@ void read_texture(TableReader& top, Scene& scene) {
   }
   if (std::optional<TableReader> t = top.optional_table("stripes")) {
     StripeParams& p = tex.stripes;
-    p.amplitude = t->number_or("amplitude", p.amplitude);
-    t->require_range("amplitude", p.amplitude, 0.0, 10.0);
-    p.wavelength_m = t->number_or("wavelength_m", p.wavelength_m);
-    t->require_range("wavelength_m", p.wavelength_m, 1e-5, 1.0);
-    p.phase_rad = t->number_or("phase_rad", p.phase_rad);
-    t->require_range("phase_rad", p.phase_rad, -100.0, 100.0);
+    t->read("amplitude", p.amplitude, 0.0, 10.0);
+    t->read("wavelength_m", p.wavelength_m, 1e-5, 1.0);
+    t->read("phase_rad", p.phase_rad, -100.0, 100.0);
     p.fade_s = t->number_or("fade_ms", p.fade_s * 1e3) / 1e3;
     t->require_range("fade_ms", p.fade_s * 1e3, 0.0, 1000.0);
     p.rest_speed_m_per_s = t->number_or("rest_speed_m_per_s", p.rest_speed_m_per_s);
     t->require_non_negative("rest_speed_m_per_s", p.rest_speed_m_per_s);
-    p.max_freq_hz = t->number_or("max_freq_hz", p.max_freq_hz);
-    t->require_range("max_freq_hz", p.max_freq_hz, 1.0, 20000.0);
+    t->read("max_freq_hz", p.max_freq_hz, 1.0, 20000.0);
     p.motion_timeout_s = t->number_or("motion_timeout_ms", p.motion_timeout_s * 1e3) / 1e3;
     t->require_range("motion_timeout_ms", p.motion_timeout_s * 1e3, 1.0, 10000.0);
     t->finish();
@@ -147,8 +140,8 @@ void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
   Instrument inst;
   inst.name = "wall";
   inst.voice = t.string_or("voice", "wall");
-  inst.midi_program = static_cast<int>(t.integer_or("midi_program", 115));  // GM Woodblock
-  t.require_range("midi_program", inst.midi_program, 0, 127);
+  inst.midi_program = 115;  // GM Woodblock
+  t.read("midi_program", inst.midi_program, 0, 127);
   inst.bar_model = t.string_or("model", "wall_panel.glb");
   inst.rail_model.clear();
   scene.model_refs.push_back({inst.bar_model, t.place("model"), t.dotted("model")});
@@ -168,8 +161,8 @@ void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
   wall.id = 0;
   wall.instrument = inst.name;
   wall.material = inst.material;
-  wall.note = static_cast<int>(t.integer_or("note", 60));
-  t.require_range("note", wall.note, 0, 127);
+  wall.note = 60;
+  t.read("note", wall.note, 0, 127);
   wall.frequency_hz = note_frequency_hz(wall.note, scene.tuning_a4_hz);
   wall.x_min = t.number("x_min_m");
   wall.x_max = t.number("x_max_m");
@@ -202,8 +195,8 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
   scene.instruments_file = top.string_or("instruments_file", "../instruments.toml");
   scene.mallet_radius_m = top.number("mallet_radius_m");
   top.require_positive("mallet_radius_m", scene.mallet_radius_m);
-  scene.tuning_a4_hz = top.number_or("tuning_a4_hz", 440.0);
-  top.require_range("tuning_a4_hz", scene.tuning_a4_hz, 300.0, 600.0);
+  scene.tuning_a4_hz = 440.0;
+  top.read("tuning_a4_hz", scene.tuning_a4_hz, 300.0, 600.0);
 
   TableReader s2w = top.table("screen_to_world");
   scene.screen_to_world = {s2w.number("left_m"), s2w.number("right_m"), s2w.number("top_m"),
@@ -217,8 +210,7 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
   if (std::optional<TableReader> cam = top.optional_table("camera")) {
     scene.camera.eye_x_m = cam->number_or("eye_x_m", scene.camera.eye_x_m);
     scene.camera.eye_y_m = cam->number_or("eye_y_m", scene.camera.eye_y_m);
-    scene.camera.eye_z_m = cam->number_or("eye_z_m", scene.camera.eye_z_m);
-    cam->require_range("eye_z_m", scene.camera.eye_z_m, 0.05, 20.0);
+    cam->read("eye_z_m", scene.camera.eye_z_m, 0.05, 20.0);
     cam->finish();
   }
 

@@ -223,4 +223,15 @@ void TableReader::require_range(std::string_view key, double value, double lo, d
   }
 }
 
+void TableReader::read(std::string_view key, double& value, double lo, double hi) {
+  value = number_or(key, value);
+  require_range(key, value, lo, hi);
+}
+
+void TableReader::read(std::string_view key, int& value, int lo, int hi) {
+  const std::int64_t v = integer_or(key, value);
+  require_range(key, static_cast<double>(v), lo, hi);
+  value = static_cast<int>(v);
+}
+
 }  // namespace mallet::config

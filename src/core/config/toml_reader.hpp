@@ -55,6 +55,12 @@ class TableReader {
   void require_non_negative(std::string_view key, double value) const;
   void require_range(std::string_view key, double value, double lo, double hi) const;
 
+  //! A setting typed once: `value` takes `key`'s number when the table has it (else it
+  //! keeps its default), which must lie in [lo, hi] (the message quotes it).
+  void read(std::string_view key, double& value, double lo, double hi);
+  //! The same for a whole number (checked before it is narrowed to an int).
+  void read(std::string_view key, int& value, int lo, int hi);
+
   //! Where `key` was written (the table itself if it is absent): its own file for a value
   //! merged in from a drop-in.
   FilePlace place(std::string_view key) const;

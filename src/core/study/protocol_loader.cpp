@@ -55,8 +55,8 @@ Stimulus read_stimulus(TableReader t, const std::vector<Material>& materials) {
     for (const Material& m : materials) known += (known.empty() ? "" : ", ") + m.name;
     t.fail("material", "unknown material \"" + material + "\" (the scene has: " + known + ")");
   }
-  s.decay_scale = t.number_or("decay_scale", 1.0);
-  t.require_range("decay_scale", s.decay_scale, 0.01, 100);
+  s.decay_scale = 1.0;
+  t.read("decay_scale", s.decay_scale, 0.01, 100);
   s.material = *found;
   s.material.visual.decay_per_s *= s.decay_scale;
   s.material.actuator.decay_per_s *= s.decay_scale;
@@ -127,8 +127,7 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   p.seed = static_cast<std::uint64_t>(seed);
   p.output = top.string_or("output", "study-results.csv");
   if (p.output.empty()) top.fail("output", "must not be empty");
-  p.impact_speed_m_per_s = top.number_or("impact_speed_m_per_s", p.impact_speed_m_per_s);
-  top.require_range("impact_speed_m_per_s", p.impact_speed_m_per_s, 0.01, 10);
+  top.read("impact_speed_m_per_s", p.impact_speed_m_per_s, 0.01, 10);
   p.sound = top.boolean_or("sound", false);
   const std::int64_t bar = top.integer_or("reference_bar", 0);
   if (bar < 0 || static_cast<std::size_t>(bar) >= bar_count)
