@@ -21,6 +21,7 @@
 #include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/sample_clock.hpp"
+#include "core/visitor_language.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
 #include "render/window_target.hpp"
@@ -48,6 +49,8 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   say(setup.settings_line);
   for (const std::string& p : setup.problems) say("warning: " + p);
   say("scene: " + scene.file);
+  say("language: " + visitor_language() + " (the invitation: \"" +
+      std::string(hint_text(KioskHint::invitation, scene.kind)) + "\")");
 
   // Nobody is there: the attract loop plays from the start, on a simulated 60 Hz clock.
   HeadlessLoop loop(scene, config, 0);

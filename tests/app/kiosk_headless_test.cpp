@@ -92,5 +92,40 @@ TEST(KioskHeadless, TheSettingsChooseTheStartSceneAndTheTextureSceneRunsHeadless
   EXPECT_GT(peak, 0.05);
 }
 
+TEST(KioskHeadless, TheSettingsLanguageIsTheInvitationsAndAnUnknownOneIsRefusedWithItsLineAndEnglishStays) {
+  // [kiosk] language from a drop-in: the invitation the headless run shows, from the built
+  // catalogue (the log says which, with its words).
+  const auto dir = test::scratch_dir();
+  std::filesystem::create_directories(dir / "drop-ins");
+  { std::ofstream(dir / "drop-ins" / "language.toml") << "[kiosk]\nlanguage = \"fr\"\n"; }
+  test::CliResult r = test::run_mallet("run --headless --seconds 1 --size 320x180 --config-dir " +
+                                       (dir / "drop-ins").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream log(dir / "out" / "log.txt");
+  std::stringstream text;
+  text << log.rdbuf();
+  EXPECT_NE(text.str().find("language: fr (the invitation: \"Prends la mailloche et frappe une lame\")"),
+            std::string::npos)
+      << text.str();
+
+  // A drop-in naming a language with no catalogue is refused with its line; the kiosk goes on
+  // with the rest of its settings (English).
+  { std::ofstream(dir / "drop-ins" / "language.toml") << "[kiosk]\nlanguage = \"klingon\"\n"; }
+  r = test::run_mallet("run --headless --seconds 1 --size 320x180 --config-dir " + (dir / "drop-ins").string() +
+                       " --out " + (dir / "out2").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream log2(dir / "out2" / "log.txt");
+  std::stringstream text2;
+  text2 << log2.rdbuf();
+  EXPECT_NE(text2.str().find("warning: " + (dir / "drop-ins" / "language.toml").string() + ":2:"), std::string::npos)
+      << text2.str();
+  EXPECT_NE(text2.str().find("kiosk.language: \"klingon\" has no catalogue; expected one of en, de, fr, ja"),
+            std::string::npos)
+      << text2.str();
+  EXPECT_NE(text2.str().find("language: en (the invitation: \"Pick up the mallet and strike a bar\")"),
+            std::string::npos)
+      << text2.str();
+}
+
 }  // namespace
 }  // namespace mallet::app
