@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #define GLFW_INCLUDE_VULKAN
@@ -158,6 +159,7 @@ class WindowKiosk {
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
   LanguageChoice language_;  //!< [kiosk] language, [attract] languages, the page's L
+  std::string languages_set_;  //!< the settings language_ was made from
   input::wiimote::HidDeviceFinder finder_;
   input::SteadyClock clock_;
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
@@ -240,8 +242,13 @@ void WindowKiosk::build(KioskSetup setup) {
   seed_strike_labels(stage_->scene, strikes_retired_);
   metrics_file_.configure(stage_->config.metrics);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
-  language_ = LanguageChoice(c.language, c.attract.languages,
-                             static_cast<Nanos>(std::llround(c.attract.language_every_s * 1e9)));
+  // The languages as set: a reload that changes them starts them afresh; one that does not
+  // (the page's S, a SIGHUP for another key) keeps the operator's L.
+  std::string languages = c.language + ";" + std::to_string(c.attract.language_every_s);
+  for (const std::string& l : c.attract.languages) languages += ";" + l;
+  if (std::exchange(languages_set_, languages) != languages)
+    language_ = LanguageChoice(c.language, c.attract.languages,
+                               static_cast<Nanos>(std::llround(c.attract.language_every_s * 1e9)));
   // The operator who reloaded from the page (S, or a SIGHUP while it is open) stays on it,
   // as after M, the volume or the gain.
   const bool on_page = states_ && states_->state() == KioskState::operator_page;

@@ -3,8 +3,8 @@
 // the operator page's L). In Attract the invitation goes through [attract] languages in
 // turn, each for language_every_s from the moment Attract began (none listed: the kiosk's
 // language); a visitor who starts playing keeps the language on the screen until the next
-// Attract. The operator's choice replaces the kiosk's language until the settings are read
-// again.
+// Attract. The operator's choice replaces the kiosk's language until the kiosk restarts or a
+// reload changes the languages set (the window kiosk makes a new choice only then).
 #include <string>
 #include <vector>
 
