@@ -140,8 +140,8 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
     say(tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f});
     o.progress_ring(cx, cy, r, 8.0f,
                     static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
-    const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) + std::string(tuner_->preset()) + "   " +
-                             (dot_seen_ ? tr("light seen") : tr("no light seen"));
+    const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) +
+                             std::string(tuner_->preset()) + "   " + (dot_seen_ ? tr("light seen") : tr("no light seen"));
     o.text(w / 2, h * 0.70f, line, white, render::TextAlign::center);
     return;
   }

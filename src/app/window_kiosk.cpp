@@ -777,7 +777,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   lines.emplace_back(tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close"));
   const int wall = stage_->route->loop().wall_material();
   const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str() : "";
-  std::snprintf(buf, sizeof buf, tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().c_str());
+  std::snprintf(buf, sizeof buf, tr("scene: %s  (S next)"),
+                std::filesystem::path(stage_->scene.file).filename().c_str());
   if (wall >= 0)
     std::snprintf(buf + std::strlen(buf), sizeof buf - std::strlen(buf), tr("   wall: %s  (M next)"), wall_name);
   lines.emplace_back(buf);

@@ -108,7 +108,6 @@ std::u32string decode_utf8(std::string_view utf8) {
 
 struct FontAtlas::Face {
   std::vector<std::uint8_t> ttf;
-  int offset = 0;         // the font's offset in ttf (a collection holds several)
   stbtt_fontinfo info{};  // points into ttf: Face is never copied or moved once built
   //! What each baked code point draws as: itself, or '?' where the font has no glyph.
   std::array<char32_t, kCount> drawn{};
@@ -147,9 +146,9 @@ std::shared_ptr<FontAtlas::Face> load_face(const std::filesystem::path& ttf, con
   if (face->ttf.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw FileError(name, 0, 0, "font file too large");
   // GetFontOffsetForIndex reads a collection's header unchecked: 16 bytes at least.
-  face->offset = face->ttf.size() < 16 ? -1 : stbtt_GetFontOffsetForIndex(face->ttf.data(), 0);
-  if (face->offset < 0 || !tables_inside(face->ttf, static_cast<std::size_t>(face->offset)) ||
-      stbtt_InitFont(&face->info, face->ttf.data(), face->offset) == 0)
+  const int offset = face->ttf.size() < 16 ? -1 : stbtt_GetFontOffsetForIndex(face->ttf.data(), 0);
+  if (offset < 0 || !tables_inside(face->ttf, static_cast<std::size_t>(offset)) ||
+      stbtt_InitFont(&face->info, face->ttf.data(), offset) == 0)
     throw FileError(name, 0, 0, "not a usable TrueType font");
   return face;
 }
@@ -248,8 +247,9 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height, std::
         range.array_of_unicode_codepoints = code_points.data();
         range.num_chars = static_cast<int>(code_points.size());
         range.chardata_for_range = out.data();
-        // stb takes the font's index in a collection; a plain font file's offset 0 is index 0.
-        return stbtt_PackFontRanges(&pack, f.ttf.data(), f.offset, &range, 1) != 0;
+        // stb takes the font's index in a collection, not its byte offset: the first, as
+        // load_face parsed (a collection's first font lies past its header, at offset > 0).
+        return stbtt_PackFontRanges(&pack, f.ttf.data(), 0, &range, 1) != 0;
       };
       fits = pack_from(*face, present, packed) && (!second || pack_from(*second, from_second, packed_second));
       stbtt_PackEnd(&pack);

@@ -482,7 +482,8 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   if (screen_space_shadow()) {
     // The shadow's inputs, read by shadow.frag: the light per pixel and where it lies.
     constexpr VkImageUsageFlags cached = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    light_unshadowed_ = make_image(ctx_, extent, kLightFormat, cached, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    light_unshadowed_ =
+        make_image(ctx_, extent, kLightFormat, cached, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     light_share_ = make_image(ctx_, extent, kLightFormat, cached, VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     light_depth_ = make_image(ctx_, extent, kDepthFormat,
                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
@@ -795,7 +796,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                                instruments_box_)
                : PixelRect{};
     auto scissor = [&](const PixelRect& p) {
-      const VkRect2D r{{p.x0, p.y0}, {static_cast<std::uint32_t>(p.x1 - p.x0), static_cast<std::uint32_t>(p.y1 - p.y0)}};
+      const VkRect2D r{{p.x0, p.y0},
+                       {static_cast<std::uint32_t>(p.x1 - p.x0), static_cast<std::uint32_t>(p.y1 - p.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
     };
     std::vector<const Instance*> redrawn_lit;  // lit bars drawn again whole, with their light

@@ -69,7 +69,9 @@ std::vector<std::string> wrap_text(const FontAtlas& font, std::string_view utf8,
     end = *cut;
     // A first piece wider than the line: cut it between characters where it stops fitting.
     const std::size_t from = cps[start].at;
-    auto width_to = [&](std::size_t e) { return font.measure(utf8.substr(from, cps[e - 1].at + cps[e - 1].length - from)); };
+    auto width_to = [&](std::size_t e) {
+      return font.measure(utf8.substr(from, cps[e - 1].at + cps[e - 1].length - from));
+    };
     if (width_to(end) > max_width) {
       std::size_t fit = start + 1;
       while (fit < end && width_to(fit + 1) <= max_width) ++fit;

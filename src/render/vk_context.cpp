@@ -192,7 +192,9 @@ VkCommandBuffer Context::allocate_command_buffer() const {
   return cmd;
 }
 
-void Context::free_command_buffer(VkCommandBuffer cmd) const { vkFreeCommandBuffers(device_.get(), pool_.get(), 1, &cmd); }
+void Context::free_command_buffer(VkCommandBuffer cmd) const {
+  vkFreeCommandBuffers(device_.get(), pool_.get(), 1, &cmd);
+}
 
 vk::Fence Context::make_fence(bool signaled) const {
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
