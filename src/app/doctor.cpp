@@ -23,13 +23,16 @@
 #include "app/kiosk_setup.hpp"
 #include "app/remote_pointer.hpp"
 #include "app/settings_source.hpp"
+#include "app/visitor_catalogues.hpp"
 #include "app/render_setup.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/calibration_file.hpp"
 #include "core/config/scene_config.hpp"
+#include "core/visitor_language.hpp"
 #include "input/clock.hpp"
 #include "input/wiimote/hid_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
+#include "render/font_atlas.hpp"
 #include "render/gltf_model.hpp"
 #include "render/window_target.hpp"
 
@@ -248,6 +251,32 @@ DoctorCheck check_soundfont(const AppConfig& config) {
   return {"soundfont", CheckLevel::ok, sf.string() + " (" + std::to_string(fs::file_size(sf, ec) >> 20) + " MiB)", ""};
 }
 
+//! The visitor languages: every shipped catalogue readable (the page's L reaches them all),
+//! the ones the settings show, and the Japanese font its texts need.
+DoctorCheck check_languages(const AppConfig& config) {
+  std::vector<std::string> problems;
+  catalogue_texts(locale_dir(), problems);
+  std::string shown = config.language;
+  if (!config.attract.languages.empty()) {
+    shown += " (attract:";
+    for (const std::string& l : config.attract.languages) shown += " " + l;
+    shown += ")";
+  }
+  const std::size_t catalogues = visitor_languages().size() - 1;
+  std::string found = visitor_languages_text() + ": " + std::to_string(catalogues - problems.size()) + " of " +
+                      std::to_string(catalogues) + " catalogues in " + locale_dir().string() + "; shown: " + shown;
+  if (!problems.empty())
+    return {"languages", CheckLevel::warn, found + "; " + problems.front(),
+            "reinstall the package (its catalogues are /usr/share/locale/*/LC_MESSAGES/mallet.mo); meanwhile those "
+            "languages show in English"};
+  std::error_code ec;
+  const fs::path cjk = render::FontAtlas::default_cjk_font();
+  if (!fs::is_regular_file(cjk, ec) || ::access(cjk.c_str(), R_OK) != 0)
+    return {"languages", CheckLevel::warn, found + "; no Japanese font (" + cjk.string() + "): Japanese shows as '?'",
+            "apt install fonts-ipafont-gothic"};
+  return {"languages", CheckLevel::ok, found + "; Japanese font " + cjk.string(), ""};
+}
+
 //! The user the service runs as (mallet), else whoever runs the doctor.
 std::string kiosk_user(bool& service_user) {
   service_user = ::getpwnam("mallet") != nullptr;
@@ -402,6 +431,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
       scenes.insert(scenes.begin(), setup.scene.file);
     checks.push_back(check_models(scenes));
     checks.push_back(check_soundfont(setup.config));
+    checks.push_back(check_languages(setup.config));
   } catch (const std::exception& e) {
     checks.push_back(fail("settings", e.what(), "fix the line named; `mallet config show` shows what is in force"));
   }
