@@ -4,11 +4,14 @@
 // the offscreen target (goldens, `mallet render`, headless kiosk) and the window target.
 //
 // The camera never moves and neither do the instruments, so they are drawn once per image
-// size into a cached background (colour and depth). Each frame copies it in, redraws the
-// instruments only inside the rectangle the mallet's shadow can reach (shadow_bounds),
-// and draws the mallet over it, depth-tested against the cached depth: the same pixels as
-// drawing the whole scene (a test compares them), at a small part of the cost on a CPU
-// rasteriser (`mallet bench render`). The mallet is drawn there without writing depth (the
+// size into a cached background (colour and depth, and at one sample a pixel each pixel's
+// light and bar: gbuffer.frag). Each frame copies it in, changes the instruments only inside
+// the rectangle the mallet's shadow can reach (shadow_bounds) and on the lit bars (shaded on
+// the screen from the cached light, shadow.frag, whatever the models' triangles; or, for
+// multisampled frames and for bars of few triangles, redrawn), and draws the mallet over it,
+// depth-tested against the cached depth: the pixels of drawing the whole scene (a test
+// compares them: to 1/255 on the screen, exactly when redrawn), at a small part of the cost
+// on a CPU rasteriser (`mallet bench render`). The mallet is drawn there without writing depth (the
 // cache's), so its model must hide its own back by culling alone: convex, as the sphere is.
 //
 // Per frame the caller gives the displayed mallet centre (the contact solver's
@@ -109,8 +112,8 @@ class SceneRenderer {
   //! How many passes the last frame drew over the cached background for the sphere's
   //! shadow and the lit detailed bars. Single-sampled frames (a CPU rasteriser's): shaded on
   //! the screen from the cached light, bars and depth, one pass over each rectangle that
-  //! changes (the shadow's; each lit bar's with more than kRedrawLitBarTriangles, whose glow
-  //! would cost more to redraw), whatever the models' triangles. Multisampled frames (a
+  //! changes (the shadow's; each lit bar's with more than 1000 triangles, kRedrawLitBarTriangles,
+  //! whose glow would cost more to redraw), whatever the models' triangles. Multisampled frames (a
   //! GPU's), whose bar edges need each sample's coverage: one per instrument whose screen box
   //! meets the shadow's rectangle, redrawn. 0: nothing changed (a lit shipped bar is redrawn,
   //! whole, not counted).

@@ -94,7 +94,7 @@ inline bool overlap(const PixelRect& a, const PixelRect& b) {
 //! A screen rectangle (clamped to width × height) outside which the sphere darkens nothing
 //! inside `receivers`: every point of the box with visibility < 1 projects into it. Empty
 //! when the sphere shadows nothing there; the whole image when the region reaches behind
-//! the eye. The renderer redraws only these pixels over its cached background.
+//! the eye. The renderer changes only these pixels of its cached background for the shadow.
 PixelRect shadow_bounds(const glm::mat4& view_proj, int width, int height, const SphereShadow& s,
                         const Box& receivers);
 
