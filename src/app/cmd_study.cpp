@@ -1,6 +1,10 @@
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "app/settings_source.hpp"
 #include "app/commands.hpp"
@@ -17,23 +21,49 @@ namespace mallet::app {
 namespace {
 
 void add_summary(CLI::App& study) {
-  auto results = std::make_shared<std::string>();
+  auto results = std::make_shared<std::vector<std::string>>();
   auto participant = std::make_shared<std::string>();
-  CLI::App* cmd = study.add_subcommand("summary", "Per-condition accuracy and a psychometric fit of a results CSV");
+  CLI::App* cmd = study.add_subcommand("summary", "Per-condition accuracy and a psychometric fit of results CSVs");
   cmd->footer(
-      "Prints, per condition: trials, correct answers, accuracy and mean response time; then, for\n"
-      "2AFC rows (those with a difference_pct), the maximum-likelihood fit of\n"
+      "Reads every results file named, and every *.csv in each folder named (in name order), as\n"
+      "one set of rows. Prints, per condition: trials, correct answers, accuracy and mean response\n"
+      "time; then, for 2AFC rows (those with a difference_pct), the maximum-likelihood fit of\n"
       "  P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold)))\n"
-      "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference.\n"
-      "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.");
-  cmd->add_option("--results", *results, "Results CSV written by `mallet study`")->required();
+      "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference,\n"
+      "pooled over the participants; then, with more than one participant, each one's fit.\n"
+      "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.\n"
+      "A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: problem.");
+  cmd->add_option("--results", *results, "Results CSVs written by `mallet study`, or folders of them")
+      ->required()
+      ->expected(1, -1);
   cmd->add_option("--participant", *participant, "Only this participant's rows (default: all)");
   cmd->callback([results, participant] {
-    const study::ResultsFile file = study::read_results(*results);
-    if (!file.exists) throw FileError(*results, 0, 0, "file not found");
-    for (const std::string& w : file.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::printf("%s: ", results->c_str());
-    std::fputs(study::format_summary(study::summarize(file.rows, *participant)).c_str(), stdout);
+    std::vector<std::filesystem::path> files;
+    for (const std::string& named : *results) {
+      std::error_code ec;
+      if (!std::filesystem::is_directory(named, ec)) {
+        files.emplace_back(named);
+        continue;
+      }
+      std::vector<std::filesystem::path> found;
+      for (const auto& entry : std::filesystem::directory_iterator(named, ec))
+        if (entry.path().extension() == ".csv") found.push_back(entry.path());
+      if (found.empty()) throw FileError(named, 0, 0, "a folder with no results file (*.csv)");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    }
+    std::vector<study::ResultRow> rows;
+    for (const std::filesystem::path& f : files) {
+      const study::ResultsFile file = study::read_results(f);
+      if (!file.exists) throw FileError(f.string(), 0, 0, "file not found");
+      for (const std::string& w : file.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+      rows.insert(rows.end(), file.rows.begin(), file.rows.end());
+    }
+    std::printf("%s: ", files.size() == 1 ? files.front().c_str()
+                                          : (std::to_string(files.size()) + " results files").c_str());
+    const study::StudySummary pooled = study::summarize(rows, *participant);
+    std::fputs(study::format_summary(pooled).c_str(), stdout);
+    if (pooled.participants.size() > 1) std::fputs(study::format_participant_fits(rows).c_str(), stdout);
   });
 }
 

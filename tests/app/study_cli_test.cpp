@@ -1,5 +1,6 @@
 // `mallet study` end to end, as a researcher runs it: a whole short protocol headless; a
 // crash mid-session and its resumption; the summary; bad input exits 2 with one line.
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
@@ -168,6 +169,40 @@ TEST(StudyCli, BadInputIsOneLineAndExitStatus2) {
   const test::CliResult missing = test::run_mallet("study summary --results " + (dir / "nope.csv").string());
   EXPECT_EQ(missing.status, 2);
   EXPECT_EQ(missing.output, "mallet: " + (dir / "nope.csv").string() + ": file not found\n");
+}
+
+TEST(StudyCli, TheSummaryPoolsManyFilesAndFoldersAndFitsEachParticipant) {
+  // Two participants' sessions in two files of one folder: pooled, then each one's fit.
+  const fs::path dir = test::scratch_dir();
+  fs::create_directories(dir / "results");
+  for (const char* p : {"P01", "P02"})
+    ASSERT_EQ(test::run_mallet(study_args(dir / "results" / (std::string(p) + ".csv"), p)).status, 0);
+  const test::CliResult folder = test::run_mallet("study summary --results " + (dir / "results").string());
+  ASSERT_EQ(folder.status, 0) << folder.output;
+  EXPECT_NE(folder.output.find("2 results files: 64 trials, 2 participants"), std::string::npos) << folder.output;
+  EXPECT_NE(folder.output.find("per participant, the same fit:"), std::string::npos) << folder.output;
+  for (const char* p : {"P01", "P02"})
+    for (const char* c : {"visual_only", "tactile_only", "both", "none"}) {
+      char prefix[64];
+      std::snprintf(prefix, sizeof prefix, "\n%-12s %-14s", p, c);
+      EXPECT_NE(folder.output.find(prefix), std::string::npos) << p << " " << c << "\n" << folder.output;
+    }
+  // The same two files named one by one: the same summary.
+  const test::CliResult files = test::run_mallet("study summary --results " + (dir / "results" / "P01.csv").string() +
+                                                 " " + (dir / "results" / "P02.csv").string());
+  ASSERT_EQ(files.status, 0) << files.output;
+  EXPECT_EQ(files.output, folder.output);
+  // One participant's rows only: no per-participant section.
+  const test::CliResult one =
+      test::run_mallet("study summary --participant P02 --results " + (dir / "results").string());
+  ASSERT_EQ(one.status, 0) << one.output;
+  EXPECT_NE(one.output.find("32 trials, 1 participant"), std::string::npos) << one.output;
+  EXPECT_EQ(one.output.find("per participant"), std::string::npos) << one.output;
+  // A folder with no results file is one line and exit 2.
+  fs::create_directories(dir / "empty");
+  const test::CliResult empty = test::run_mallet("study summary --results " + (dir / "empty").string());
+  EXPECT_EQ(empty.status, 2);
+  EXPECT_EQ(empty.output, "mallet: " + (dir / "empty").string() + ": a folder with no results file (*.csv)\n");
 }
 
 }  // namespace

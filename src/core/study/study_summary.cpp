@@ -93,4 +93,32 @@ std::string format_summary(const StudySummary& s) {
   return out;
 }
 
+std::string format_participant_fits(const std::vector<ResultRow>& rows) {
+  std::vector<std::string> order;
+  for (const ResultRow& r : rows)
+    if (std::find(order.begin(), order.end(), r.participant) == order.end()) order.push_back(r.participant);
+  std::string out;
+  char line[256];
+  for (const std::string& p : order) {
+    for (const ConditionSummary& c : summarize(rows, p).conditions) {
+      if (!c.fit) continue;
+      if (out.empty()) {
+        out = "per participant, the same fit:\n";
+        std::snprintf(line, sizeof line, "%-12s %-14s %7s %14s %14s  %s\n", "participant", "condition", "levels",
+                      "threshold_pct", "slope_per_pct", "note");
+        out += line;
+      }
+      const PsychometricFit& f = *c.fit;
+      if (f.ok)
+        std::snprintf(line, sizeof line, "%-12s %-14s %7d %14.3f %14.4f  %s\n", p.c_str(), c.condition.c_str(),
+                      f.levels, f.threshold, f.slope, f.reason.c_str());
+      else
+        std::snprintf(line, sizeof line, "%-12s %-14s %7d %14s %14s  %s\n", p.c_str(), c.condition.c_str(), f.levels,
+                      "-", "-", f.reason.c_str());
+      out += line;
+    }
+  }
+  return out;
+}
+
 }  // namespace mallet::study

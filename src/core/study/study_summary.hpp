@@ -32,4 +32,8 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
 //! The summary as printed: a table of accuracies, then the fits.
 std::string format_summary(const StudySummary& summary);
 
+//! Each participant's 2AFC fit per condition, one line each (participants in first-seen
+//! order, conditions as in StudySummary); "" when no row carries a difference_pct.
+std::string format_participant_fits(const std::vector<ResultRow>& rows);
+
 }  // namespace mallet::study
