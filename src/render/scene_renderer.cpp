@@ -102,6 +102,17 @@ struct VertexInput {
   VertexInput(const VertexInput&) = delete;
 };
 
+//! A depth attachment cleared to the far plane and kept (the cache's, read by later frames).
+VkRenderingAttachmentInfo cleared_depth(VkImageView view) {
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  return depth;
+}
+
 //! Begins rendering into `colors` and `depth` over all of `extent`, the viewport and the
 //! scissor set to it.
 void begin_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
@@ -611,12 +622,7 @@ void SceneRenderer::record_background(VkCommandBuffer cmd, const Slot& slot, std
   color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   color.clearValue.color = {{settings_.clear_color[0], settings_.clear_color[1], settings_.clear_color[2], 1.0f}};
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = background_depth_.view.get();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingAttachmentInfo depth = cleared_depth(background_depth_.view.get());
   if (resolve) {  // drawn multisampled, resolved into the cache: colour averaged, depth of sample 0
     to_attachments(background_msaa_color_, background_msaa_depth_);
     color.imageView = background_msaa_color_.view.get();
@@ -671,13 +677,7 @@ void SceneRenderer::record_cached_light(VkCommandBuffer cmd, const Slot& slot) {
     lights[k].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     lights[k].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
   }
-  VkRenderingAttachmentInfo light_depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  light_depth.imageView = light_depth_.view.get();
-  light_depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  light_depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  light_depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  light_depth.clearValue.depthStencil = {1.0f, 0};
-  begin_rendering(cmd, lights, light_depth, attachment_extent_);
+  begin_rendering(cmd, lights, cleared_depth(light_depth_.view.get()), attachment_extent_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
                           nullptr);
