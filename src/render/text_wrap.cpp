@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 namespace mallet::render {
 namespace {
@@ -53,30 +54,31 @@ std::vector<std::string> wrap_text(const FontAtlas& font, std::string_view utf8,
     while (start < cps.size() && cps[start].value == U' ') ++start;  // a line never starts with a space
     if (start == cps.size()) break;
     std::optional<std::size_t> cut;  // where the line may end (exclusive), the last that fits
-    std::size_t end = start;
+    // width[k - start]: [start, k) as FontAtlas::measure sets it (each advance, then the
+    // kerning with the next, summed in that order), grown one code point at a time.
+    std::vector<float> width{0.0f};
     for (std::size_t i = start + 1; i <= cps.size(); ++i) {
+      float w = width.back();
+      if (i - 1 > start) w += font.kerning(cps[i - 2].value, cps[i - 1].value);
+      width.push_back(w + font.glyph(cps[i - 1].value).advance);
       const bool last = i == cps.size();
       const bool may_break =
           last || cps[i].value == U' ' ||
           ((ideographic(cps[i].value) || ideographic(cps[i - 1].value)) && !closing(cps[i].value) &&
            !opening(cps[i - 1].value));
       if (!may_break) continue;
-      const std::size_t from = cps[start].at, to = cps[i - 1].at + cps[i - 1].length;
-      if (font.measure(utf8.substr(from, to - from)) > max_width && cut) break;
+      if (width.back() > max_width && cut) break;
       cut = i;
-      if (font.measure(utf8.substr(from, to - from)) > max_width) break;  // the first piece alone is too wide
+      if (width.back() > max_width) break;  // the first piece alone is too wide
     }
-    end = *cut;
+    std::size_t end = *cut;
     // A first piece wider than the line: cut it between characters where it stops fitting.
-    const std::size_t from = cps[start].at;
-    auto width_to = [&](std::size_t e) {
-      return font.measure(utf8.substr(from, cps[e - 1].at + cps[e - 1].length - from));
-    };
-    if (width_to(end) > max_width) {
+    if (width[end - start] > max_width) {
       std::size_t fit = start + 1;
-      while (fit < end && width_to(fit + 1) <= max_width) ++fit;
+      while (fit < end && width[fit + 1 - start] <= max_width) ++fit;
       end = fit;
     }
+    const std::size_t from = cps[start].at;
     std::size_t last = end;
     while (last > start && cps[last - 1].value == U' ') --last;  // no trailing space
     lines.emplace_back(utf8.substr(from, cps[last - 1].at + cps[last - 1].length - from));
