@@ -298,18 +298,20 @@ FontAtlas::FontAtlas(const std::filesystem::path& ttf, float pixel_height, std::
   face_ = std::move(face);
 }
 
+const GlyphQuad* FontAtlas::beyond(char32_t code_point) const {
+  const auto it = std::lower_bound(beyond_.begin(), beyond_.end(), code_point,
+                                   [](const auto& entry, char32_t cp) { return entry.first < cp; });
+  return it != beyond_.end() && it->first == code_point ? &it->second : nullptr;
+}
+
 bool FontAtlas::has(char32_t code_point) const {
   if (code_point <= kLast) return face_->draws_as(code_point) == code_point;
-  return std::binary_search(beyond_.begin(), beyond_.end(), std::pair<char32_t, GlyphQuad>{code_point, {}},
-                            [](const auto& a, const auto& b) { return a.first < b.first; });
+  return beyond(code_point) != nullptr;
 }
 
 GlyphQuad FontAtlas::glyph(char32_t code_point) const {
-  if (code_point > kLast) {
-    const auto it = std::lower_bound(beyond_.begin(), beyond_.end(), code_point,
-                                     [](const auto& entry, char32_t cp) { return entry.first < cp; });
-    if (it != beyond_.end() && it->first == code_point) return it->second;
-  }
+  if (code_point > kLast)
+    if (const GlyphQuad* q = beyond(code_point)) return *q;
   return glyphs_[face_->draws_as(code_point) - kFirst];
 }
 

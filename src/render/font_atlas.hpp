@@ -70,6 +70,7 @@ class FontAtlas {
   std::vector<std::uint8_t> coverage_;
   std::vector<GlyphQuad> glyphs_;   //!< U+0020..U+00FF
   std::vector<std::pair<char32_t, GlyphQuad>> beyond_;  //!< baked code points past U+00FF, sorted
+  const GlyphQuad* beyond(char32_t code_point) const;  //!< its quad in beyond_, or null
   float scale_ = 0;                 //!< stb_truetype's scale for pixel_height
   std::shared_ptr<const Face> face_;  //!< the main font, kept for kerning
 };
