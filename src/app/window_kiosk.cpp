@@ -159,7 +159,6 @@ class WindowKiosk {
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
   LanguageChoice language_;  //!< [kiosk] language, [attract] languages, the page's L
-  std::string languages_set_;  //!< the settings language_ was made from
   input::wiimote::HidDeviceFinder finder_;
   input::SteadyClock clock_;
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
@@ -238,15 +237,16 @@ void WindowKiosk::build(KioskSetup setup) {
   calibration_.reset();
   if (stage_) strikes_before_ = strikes();
   if (stage_) retire_metrics(*stage_);
+  const bool languages_changed = !stage_ || stage_->config.language != c.language ||
+                                 stage_->config.attract.languages != c.attract.languages ||
+                                 stage_->config.attract.language_every_s != c.attract.language_every_s;
   stage_ = std::move(stage);
   seed_strike_labels(stage_->scene, strikes_retired_);
   metrics_file_.configure(stage_->config.metrics);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
   // The languages as set: a reload that changes them starts them afresh; one that does not
   // (the page's S, a SIGHUP for another key) keeps the operator's L.
-  std::string languages = c.language + ";" + std::to_string(c.attract.language_every_s);
-  for (const std::string& l : c.attract.languages) languages += ";" + l;
-  if (std::exchange(languages_set_, languages) != languages)
+  if (languages_changed)
     language_ = LanguageChoice(c.language, c.attract.languages,
                                static_cast<Nanos>(std::llround(c.attract.language_every_s * 1e9)));
   // The operator who reloaded from the page (S, or a SIGHUP while it is open) stays on it,
@@ -795,9 +795,15 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.emplace_back(tr("D back to the page    Esc close"));
   }
   const float pw = std::min(w - 2 * px, px * 40);
-  // Long lines (how the input is read and why, the timing figures) wrap at a comma or a
-  // semicolon onto indented continuation lines, else at a space (a translated key legend);
-  // the widths are the font's own, in every language.
+  // Long lines (how the input is read and why, the timing figures, the key legend) wrap at
+  // a semicolon, a comma, before a parenthesis or between two keys' entries onto indented
+  // continuation lines, else at a space; the widths are the font's own, in every language.
+  struct Break {
+    const char* separator;
+    std::size_t kept;    //!< its characters that end the line ("," stays, " (" goes on)
+    std::size_t resume;  //!< where the continuation starts, from the separator
+  };
+  static constexpr Break kBreaks[] = {{"; ", 1, 2}, {", ", 1, 2}, {" (", 0, 1}, {"    ", 0, 4}};
   const render::FontAtlas& font = o.atlas();
   const float room = pw - 2 * px;
   std::vector<std::string> page;
@@ -810,11 +816,13 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     std::string indent;
     while (font.measure(indent + text) > room) {
       std::size_t cut = std::string::npos;
-      for (const char* sep : {"; ", ", ", " ("})
-        for (std::size_t at = text.find(sep); at != std::string::npos; at = text.find(sep, at + 1))
-          if (at > 8 && (cut == std::string::npos || at > cut) && font.measure(indent + text.substr(0, at + 1)) <= room)
-            cut = at;
-      if (cut == std::string::npos) {  // no separator that fits: the words that do
+      const Break* at_break = nullptr;
+      for (const Break& b : kBreaks)
+        for (std::size_t at = text.find(b.separator); at != std::string::npos; at = text.find(b.separator, at + 1))
+          if (at > 8 && (cut == std::string::npos || at > cut) &&
+              font.measure(indent + text.substr(0, at + b.kept)) <= room)
+            cut = at, at_break = &b;
+      if (!at_break) {  // no separator that fits: the words that do
         const std::vector<std::string> words = render::wrap_text(font, text, room - font.measure(indent));
         if (words.size() < 2) break;
         page.push_back(indent + words.front());
@@ -823,9 +831,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
         indent = "    ";
         continue;
       }
-      const bool keep_paren = text.compare(cut, 2, " (") == 0;
-      page.push_back(indent + text.substr(0, keep_paren ? cut : cut + 1));
-      text = text.substr(cut + (keep_paren ? 1 : 2));
+      page.push_back(indent + text.substr(0, cut + at_break->kept));
+      text = text.substr(cut + at_break->resume);
       indent = "    ";
     }
     page.push_back(indent + text);
