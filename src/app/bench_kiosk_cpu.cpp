@@ -26,7 +26,9 @@ namespace {
 
 using latency::Child;
 
-constexpr double kIdleAfterS = 2.0;
+//! The pointer at rest before the still phase is measured: the last strike's bounce and
+//! glow have faded (Eq. 1's visual decay) and the frames stop changing.
+constexpr double kSettleS = 2.0;
 
 std::string settings_text(const std::filesystem::path& metrics) {
   std::string t = "# written by `mallet bench render` for the kiosk under test\n";
@@ -79,7 +81,10 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
   latency::FakePointer hand(x.name());
   const std::filesystem::path exe = latency::this_executable("bench render");
   latency::ChildOptions o;
-  o.argv = {exe.string(), "run", "--config", folders.settings.string(), "--idle-after", std::to_string(kIdleAfterS)};
+  // The attract mode after this long with nobody there: long enough for the still phase
+  // (the visitor's pointer at rest) to be measured before it comes back.
+  const double idle_after_s = kSettleS + seconds + 3.0;
+  o.argv = {exe.string(), "run", "--config", folders.settings.string(), "--idle-after", std::to_string(idle_after_s)};
   if (!capped) o.argv.emplace_back("--no-frame-cap");
   if (!device.empty()) o.argv.insert(o.argv.end(), {"--device", device});
   o.env = folders.kiosk_env(x.name(), jack.name());
@@ -107,12 +112,13 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
     throw std::runtime_error("bench render: the kiosk's metrics file stopped moving; its last lines:\n" +
                              kiosk.tail(10));
   };
-  auto measure = [&](const char* phase, const std::function<void()>& during) {
-    const std::uint64_t f0 = fresh_frames(during);
+  // A still phase draws no frames: its count is read as it is (at most a second old).
+  auto measure = [&](const char* phase, const std::function<void()>& during, bool frames_move = true) {
+    const std::uint64_t f0 = frames_move ? fresh_frames(during) : frames_of(metrics);
     const std::int64_t k0 = cpu_ns(kiosk.pid(), "kiosk"), x0 = cpu_ns(x.server().pid(), "X server");
     const Nanos t0 = monotonic_now();
     while (monotonic_now() - t0 < span && !latency::stop_signal()) during();
-    const std::uint64_t f1 = fresh_frames(during);
+    const std::uint64_t f1 = frames_move ? fresh_frames(during) : frames_of(metrics);
     const std::int64_t k1 = cpu_ns(kiosk.pid(), "kiosk"), x1 = cpu_ns(x.server().pid(), "X server");
     const double wall = to_seconds(monotonic_now() - t0);
     KioskCpuRow r;
@@ -123,8 +129,8 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
     r.fps = static_cast<double>(f1 - f0) / wall;
     rows.push_back(r);
   };
-  // Nobody there: the attract mode starts after kIdleAfterS (and the present model has settled).
-  latency::sleep_ms(1000 * (kIdleAfterS + 2.0));
+  // Nobody there: the attract mode starts after idle_after_s (and the present model has settled).
+  latency::sleep_ms(1000 * (idle_after_s + 2.0));
   measure("attract", [] { latency::sleep_ms(50); });
   // A visitor: the pointer sweeps across the screen, dipping into the bars every 0.6 s.
   const double top = scene.screen_to_world.unmap({0.0, 0.08}).y, bottom = scene.screen_to_world.unmap({0.0, -0.02}).y;
@@ -136,6 +142,10 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
     hand.move_to(static_cast<int>(sx * width), static_cast<int>(sy * height));
     latency::sleep_ms(4);
   });
+  // The visitor holds the mallet still above the bars: nothing on the screen changes.
+  hand.move_to(width / 2, static_cast<int>((top - 0.05) * height));
+  latency::sleep_ms(1000 * kSettleS);
+  measure("still", [] { latency::sleep_ms(50); }, false);
   kiosk.stop();
   std::printf("  %s: %s\n", capped ? "capped" : "uncapped", pace->get().c_str());
 }
@@ -165,8 +175,9 @@ TextTable kiosk_cpu_table(const std::vector<KioskCpuRow>& rows, int width, int h
                       buf[2]});
   }
   t.note = "The real kiosk, fullscreen on its own Xvfb (lavapipe), its sound on its own JACK server: the attract "
-           "mode with nobody there, then play (an XTest pointer sweeping over the bars). The X server's share is "
-           "the virtual display's copy of each frame, which a real display does not cost.";
+           "mode with nobody there, then play (an XTest pointer sweeping over the bars), then still (the pointer "
+           "at rest above the bars: a frame that changes nothing is not drawn). The X server's share is the "
+           "virtual display's copy of each frame, which a real display does not cost.";
   return t;
 }
 

@@ -69,6 +69,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   wo.height = static_cast<int>(ho.size.height);
   parse_present_pacing(o.present_mode, wo.present_mode);  // CLI11 refused any other name
   wo.title = "Mallet — " + o.input.filename().string();
+  wo.skip_unchanged = false;  // --frames counts frames drawn, a trajectory at rest too
   render::WindowTarget window(ctx, wo);
   render::RenderSettings rs = ho.settings;
   if (ho.auto_samples) render::use_recommended_antialiasing(ctx, rs);

@@ -118,8 +118,17 @@ void ProductWindow::set_max_fps(double max_fps) {
 
 void ProductWindow::pace() {
   held_ns_ = 0;
+  // A still scene: the last frame was not drawn, so no acquire held this loop back. It waits
+  // for the grid's next frame start instead, in step with the display (or the budget's own
+  // grid, below), so that nothing moving costs nothing but the wake-ups.
+  auto wait_for_next_start = [this] {
+    const Nanos now = monotonic_now();
+    sleep_until_monotonic(clock.next_start(now + 1));
+    held_ns_ = monotonic_now() - now;
+  };
   if (max_fps_ < 0) {  // mallet run --no-frame-cap
     if (!std::exchange(pace_said_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
+    if (window->still()) wait_for_next_start();
     return;
   }
   // Decided before every frame from the present model, which judges the display by the
@@ -140,7 +149,10 @@ void ProductWindow::pace() {
     else
       std::fprintf(stderr, "<6>render: frames paced by the display at its %.0f Hz refresh\n", refresh);
   }
-  if (!pace) return;
+  if (!pace) {
+    if (window->still()) wait_for_next_start();
+    return;
+  }
   const Nanos now = monotonic_now();
   const Nanos wake = pacer_.begin(now);
   if (wake <= now) return;

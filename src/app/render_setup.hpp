@@ -56,6 +56,7 @@ class HeadlessRenderer {
 
   render::Context& context() { return *ctx_; }
   render::SceneRenderer& renderer() { return *renderer_; }
+  render::OffscreenTarget& target() { return *target_; }
   const render::PipelineCache& pipeline_cache() const { return *cache_; }
 
  private:

@@ -162,7 +162,7 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     win_.pace();  // the frame budget: [render] max_fps
     glfwPollEvents();
     const Nanos now = monotonic_now();
-    win_.window->present_clock().frame_started(now, win_.held_ns());  // before this frame's stimuli
+    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still());  // before this frame's stimuli
     for (const Press& p : pressed_)
       if (p.key == GLFW_KEY_ESCAPE || p.key == GLFW_KEY_Q) quit_ = true;
     if (win_.window->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;

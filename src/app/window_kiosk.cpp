@@ -178,6 +178,7 @@ class WindowKiosk {
   Nanos next_watchdog_ = 0, next_log_ = 0;
   bool starving_ = false;  //!< the watchdog was not fed at the last beat
   std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
+  std::uint64_t still_frames_ = 0;  //!< frames not drawn: nothing on the screen would have changed
   std::uint64_t callbacks_at_beat_ = 0;
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
   // [metrics]: what the kiosk counts, and the file it writes them to.
@@ -385,6 +386,8 @@ void WindowKiosk::feed_metrics(Nanos now) {
   if (frames_ > metrics_.frames()) {  // this iteration drew a frame (at most one)
     metrics_.count_frame(now - metrics_frame_at_);
     metrics_frame_at_ = now;
+  } else if (win_.window->still()) {
+    metrics_frame_at_ = now;  // a still scene's gap between drawn frames is not a slow frame
   }
   metrics_.observe_state(states_->state(), states_->since(), states_->last_movement());
   // Lost only where it matters: a visitor plays, the remote runs, its camera sees no LED.
@@ -704,7 +707,8 @@ void WindowKiosk::heartbeat(Nanos now) {
   // device (that is survived, silently), or when the kiosk runs without a device at all.
   const bool audio_alive =
       !stage_->output || a.callbacks > callbacks_at_beat_ || !stage_->output->device_ok();
-  const bool render_alive = frames_ > frames_at_beat_;
+  // A still scene draws no frames; its loop still decides each one.
+  const bool render_alive = frames_ + still_frames_ > frames_at_beat_;
   // A remote that is gone is survived (attract, hint, reconnect): the main loop's polls
   // stand for input; the reading thread never blocks for long by design.
   const bool input_alive = polls_ > polls_at_beat_;
@@ -727,7 +731,7 @@ void WindowKiosk::heartbeat(Nanos now) {
                                                                ? ", audio device lost (retrying)" : "");
     next_log_ = now + 60 * kNanosPerSecond;
   }
-  frames_at_beat_ = frames_;
+  frames_at_beat_ = frames_ + still_frames_;
   polls_at_beat_ = polls_;
   callbacks_at_beat_ = a.callbacks;
 }
@@ -857,7 +861,7 @@ int WindowKiosk::run() {
     const Nanos now = monotonic_now();
     // This frame begins now: strikes this frame decides (the window system's mouse, the ghost)
     // are shown by it, so the present model's grid is anchored here before they are fed.
-    win_.window->present_clock().frame_started(now, win_.held_ns());
+    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still());
     frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
     last_frame = now;
     ++polls_;
@@ -947,6 +951,8 @@ int WindowKiosk::run() {
             *stage_->renderer, state, [&] { stage_->renderer.reset(); },
             [&] { stage_->renderer = make_renderer(*stage_); }))
       ++frames_;
+    else if (win_.window->still())
+      ++still_frames_;  // nothing changed: the screen shows this frame already
     work_ms_ = 0.9 * work_ms_ + 0.1 * to_seconds(monotonic_now() - now) * 1e3;
     if (frames_ == 1) notifier_.ready();
     heartbeat(now);

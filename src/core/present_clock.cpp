@@ -46,9 +46,9 @@ bool PresentClock::unpaced() const {
          unheld_ns_.load(std::memory_order_relaxed) * 20 < refresh_ns_.load(std::memory_order_relaxed) * 17;
 }
 
-void PresentClock::frame_started(Nanos t, Nanos held_ns) {
+void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn) {
   const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
-  if (last < 0 || t <= last) return;
+  if (!learn || last < 0 || t <= last) return;
   // The period follows the measured frame interval slowly (a display that does not pace
   // FIFO, such as a virtual X server, shows frames as fast as they come), and so does the
   // frames' own pace, the interval less the frame budget's wait. A frame that took several

@@ -42,7 +42,9 @@ class PresentClock {
   //! the interval since the previous start spent waiting for the frame budget's slot.
   //! Refines the grid's phase and, from that interval, its period; and from the interval
   //! less the wait, whether the display paces the frames.
-  void frame_started(Nanos t, Nanos held_ns = 0);
+  //! `learn` false: the previous start drew nothing (a still scene: no acquire, no present
+  //! held it back), so the interval says nothing of the display; the grid is only anchored.
+  void frame_started(Nanos t, Nanos held_ns = 0, bool learn = true);
   void set_pacing(PresentPacing pacing) { pacing_.store(static_cast<int>(pacing), std::memory_order_relaxed); }
   void set_refresh_hz(double hz);
 
@@ -53,6 +55,9 @@ class PresentClock {
   Nanos first_shown(Nanos t, Nanos not_before) const;
 
   Nanos period_ns() const { return period_ns_.load(std::memory_order_relaxed); }
+  //! The first frame start on the grid at or after `t`: where a loop that drew nothing
+  //! waits for its next frame, in step with the display.
+  Nanos next_start(Nanos t) const;
   //! FIFO frames that would come at under 85 % of the refresh period, were the frame
   //! budget not holding them back (a display that paces FIFO never shows them faster than
   //! its refresh): nothing paces them.
@@ -62,7 +67,6 @@ class PresentClock {
   std::string describe() const;
 
  private:
-  Nanos next_start(Nanos t) const;  //!< the first frame start at or after t
 
   std::atomic<int> pacing_;
   std::atomic<Nanos> period_ns_;

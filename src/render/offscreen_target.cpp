@@ -36,8 +36,10 @@ void OffscreenTarget::draw(SceneRenderer& renderer, const FrameState& state) {
   check(vkBeginCommandBuffer(cmd_, &bi), "beginning a command buffer");
   renderer.record(cmd_,
                   {color_.image.get(), color_.view.get(), extent_, true, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, keep_ && drawn_,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
                   state, 0);
+  drawn_ = true;
   VkBufferImageCopy region{};
   region.bufferRowLength = static_cast<std::uint32_t>(row_pitch_ / 4);
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};

@@ -27,6 +27,9 @@ class OffscreenTarget {
   Image read_back() const;
 
   VkExtent2D extent() const { return extent_; }
+  //! Each frame drawn over the one before, as a window's swapchain images are: only what
+  //! changed since is drawn (FrameTarget::kept). Off by default: every frame whole.
+  void keep_frames(bool keep) { keep_ = keep; }
 
  private:
   const Context& ctx_;
@@ -36,6 +39,7 @@ class OffscreenTarget {
   VkDeviceSize row_pitch_ = 0;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   vk::Fence fence_;
+  bool keep_ = false, drawn_ = false;
 };
 
 }  // namespace mallet::render

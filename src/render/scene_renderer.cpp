@@ -113,21 +113,30 @@ VkRenderingAttachmentInfo cleared_depth(VkImageView view) {
   return depth;
 }
 
-//! Begins rendering into `colors` and `depth` over all of `extent`, the viewport and the
-//! scissor set to it.
+//! Begins rendering into `colors` and `depth` (images of `extent`) over `area`, the
+//! viewport the whole image and the scissor the area.
 void begin_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
-                     const VkRenderingAttachmentInfo& depth, VkExtent2D extent) {
+                     const VkRenderingAttachmentInfo& depth, VkExtent2D extent, VkRect2D area) {
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, extent};
+  ri.renderArea = area;
   ri.layerCount = 1;
   ri.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
   ri.pColorAttachments = colors.data();
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   const VkViewport viewport{0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1};
-  const VkRect2D scissor{{0, 0}, extent};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdSetScissor(cmd, 0, 1, &area);
+}
+
+void begin_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentInfo> colors,
+                     const VkRenderingAttachmentInfo& depth, VkExtent2D extent) {
+  begin_rendering(cmd, colors, depth, extent, {{0, 0}, extent});
+}
+
+PixelRect intersection(const PixelRect& a, const PixelRect& b) {
+  const PixelRect r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? PixelRect{} : r;
 }
 
 }  // namespace
@@ -535,6 +544,52 @@ std::uint32_t SceneRenderer::triangles_of(const Instance& instance) const {
   return n;
 }
 
+PixelRect SceneRenderer::shadow_rect(const FrameState& state) const {
+  if (!settings_.shadow || !state.draw_mallet) return {};
+  return shadow_bounds(view_proj_, static_cast<int>(attachment_extent_.width),
+                       static_cast<int>(attachment_extent_.height),
+                       {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
+                        glm::dvec3(kToLight), kLightTanRadius},
+                       instruments_box_);
+}
+
+FrameLook SceneRenderer::look_of(const FrameState& state, VkExtent2D extent) const {
+  FrameLook look;
+  look.width = static_cast<int>(extent.width);
+  look.height = static_cast<int>(extent.height);
+  look.instruments = state.draw_instruments;
+  // Another size changes everything; the rectangles are those of the attachments' size.
+  if (extent.width != attachment_extent_.width || extent.height != attachment_extent_.height) return look;
+  look.mallet = state.draw_mallet;
+  if (state.draw_mallet) {
+    const glm::dvec3 c{state.mallet_centre.x, state.mallet_centre.y, 0.0};
+    look.mallet_px = project_to_screen(view_proj_, c) * glm::dvec2(look.width, look.height);
+    // The head as it is drawn: its model's box, placed and seen as record() draws it.
+    const Instance head = mallet_instance(scene_, state.mallet_centre);
+    const Box& model = models_.at(head.model).bounds;
+    Box placed;
+    for (int i = 0; i < 8; ++i) placed.add(glm::dvec3(glm::dmat4(head.transform) * glm::dvec4(model.corner(i), 1.0)));
+    const glm::mat4 seen = sphere_view_projection(scene_, static_cast<double>(extent.width) / extent.height,
+                                                  state.mallet_centre);
+    look.mallet_rect = bounding(screen_rect(seen, look.width, look.height, placed), shadow_rect(state));
+  }
+  look.lights = state.bar_lights;
+  for (std::size_t l = 0; l < look.lights.size(); ++l)
+    for (std::size_t k = 0; k < instruments_.size(); ++k)
+      if (look.lights[l].target >= 0 && instruments_[k].target == look.lights[l].target)
+        look.light_rects[l] = bounding(look.light_rects[l], instrument_rects_[k]);
+  if (state.overlay) {
+    look.overlay_vertices = state.overlay->vertices();
+    look.overlay_indices = state.overlay->indices();
+    look.overlay_atlas = &state.overlay->atlas();
+  }
+  return look;
+}
+
+bool SceneRenderer::changes(const FrameState& state, VkExtent2D extent) const {
+  return !background_ready_ || damage_.changes(look_of(state, extent));
+}
+
 std::size_t SceneRenderer::triangle_count() const {
   std::size_t n = 0;
   auto count = [&](const std::string& name) {
@@ -725,18 +780,39 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     record_background(cmd, slot, slot_index);
     background_ready_ = true;
     ++background_builds_;
+    damage_.forget();  // every image was drawn over another background
   }
+
+  // What to draw: on a kept image (single-sampled, over the background) only what changed
+  // since the frame it holds; else all of it.
+  const std::uint64_t frame = frames_recorded_++;
+  int age = 0;
+  if (const auto held = drawn_into_.find(target.image);
+      target.kept && over_background && !msaa && held != drawn_into_.end() && frame - held->second <= FrameDamage::kHistory)
+    age = static_cast<int>(frame - held->second);
+  if (drawn_into_.size() > 16) drawn_into_.clear();  // images of swapchains long gone
+  drawn_into_[target.image] = frame;
+  PixelRect area = damage_.commit(look_of(state, extent), age);
+  // Nothing changed (a window asked to show its picture again): one pixel drawn as before,
+  // so that the frame's commands keep their shape.
+  if (area.empty()) area = {0, 0, 1, 1};
+  drawn_area_ = area;
+  const bool partial = age > 0;
+  const VkRect2D area_rect{{area.x0, area.y0},
+                           {static_cast<std::uint32_t>(area.x1 - area.x0), static_cast<std::uint32_t>(area.y1 - area.y0)}};
 
   const VkPipelineStageFlags2 color_stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags2 color_write = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
   const VkImage attachment = msaa ? msaa_color_.image.get() : target.image;
   if (over_background) {
-    transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+    // A kept image keeps its pixels outside the area: from its layout, not from UNDEFINED.
+    transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, partial ? target.kept_layout : VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kTargetFirstUse, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageCopy region{};
     region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.extent = {extent.width, extent.height, 1};
+    region.srcOffset = region.dstOffset = {area.x0, area.y0, 0};
+    region.extent = {area_rect.extent.width, area_rect.extent.height, 1};
     vkCmdCopyImage(cmd, background_color_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, attachment,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     transition(cmd, attachment, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -780,8 +856,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     depth.clearValue.depthStencil = {1.0f, 0};
   }
-  begin_rendering(cmd, {&color, 1}, depth, extent);
-  const VkRect2D whole{{0, 0}, extent};
+  begin_rendering(cmd, {&color, 1}, depth, extent, area_rect);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     over_background ? over_background_pipeline_.get() : scene_pipeline_.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1, &slot.frame_set, 0,
@@ -789,16 +864,15 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
   shadow_passes_ = 0;
   if (over_background) {
     // The instruments change only where the sphere's shadow can fall and on the lit bars.
-    const PixelRect shadow =
-        caster ? shadow_bounds(view_proj_, static_cast<int>(extent.width), static_cast<int>(extent.height),
-                               {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
-                                glm::dvec3(kToLight), kLightTanRadius},
-                               instruments_box_)
-               : PixelRect{};
+    const PixelRect shadow = shadow_rect(state);
+    // Inside the frame's area only: false, and the scissor left as it was, when a rectangle
+    // lies outside it (a pass there would draw nothing).
     auto scissor = [&](const PixelRect& p) {
-      const VkRect2D r{{p.x0, p.y0},
-                       {static_cast<std::uint32_t>(p.x1 - p.x0), static_cast<std::uint32_t>(p.y1 - p.y0)}};
+      const PixelRect c = intersection(p, area);
+      if (c.empty()) return false;
+      const VkRect2D r{{c.x0, c.y0}, {static_cast<std::uint32_t>(c.x1 - c.x0), static_cast<std::uint32_t>(c.y1 - c.y0)}};
       vkCmdSetScissor(cmd, 0, 1, &r);
+      return true;
     };
     std::vector<const Instance*> redrawn_lit;  // lit bars drawn again whole, with their light
     if (screen_space_shadow()) {
@@ -835,11 +909,11 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                                 sets.data(), 0, nullptr);
         vkCmdPushConstants(cmd, shadow_pipeline_layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(sc), &sc);
         for (const PixelRect& p : changed) {  // where two overlap, both write the same value
-          scissor(p);
+          if (!scissor(p)) continue;
           vkCmdDraw(cmd, 3, 1, 0, 0);
           ++shadow_passes_;
         }
-        vkCmdSetScissor(cmd, 0, 1, &whole);
+        vkCmdSetScissor(cmd, 0, 1, &area_rect);
         // Back to the scene's pipeline (and its layout's frame set) for the bars and the mallet.
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 0, 1,
@@ -849,14 +923,13 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
       // Multisampled frames, which need each sample's coverage at the bars' edges: the
       // instruments whose screen box meets the shadow's, redrawn where it darkens them (each
       // instance's box is projected once per image size).
-      if (!shadow.empty()) {
-        scissor(shadow);
+      if (scissor(shadow)) {
         for (std::size_t k = 0; k < instruments_.size(); ++k)
           if (overlap(instrument_rects_[k], shadow)) {
             draw_instance(cmd, instruments_[k], Shadow::only_shadowed_pixels);
             ++shadow_passes_;
           }
-        vkCmdSetScissor(cmd, 0, 1, &whole);
+        vkCmdSetScissor(cmd, 0, 1, &area_rect);
       }
       for (const Instance& i : instruments_)
         if (glow_of(state, i.target) > 0) redrawn_lit.push_back(&i);

@@ -33,6 +33,7 @@
 #include "core/geometry.hpp"
 #include "core/scene.hpp"
 #include "render/gpu_resources.hpp"
+#include "render/frame_damage.hpp"
 #include "render/overlay.hpp"
 #include "render/scene_view.hpp"
 
@@ -59,6 +60,11 @@ struct FrameTarget {
   VkImageLayout final_layout = VK_IMAGE_LAYOUT_UNDEFINED;
   VkPipelineStageFlags2 final_stage = VK_PIPELINE_STAGE_2_NONE;
   VkAccessFlags2 final_access = VK_ACCESS_2_NONE;
+  //! The image still holds what this renderer last drew into it (a window's swapchain image
+  //! it showed before), in `kept_layout`: a frame over the cached background then draws only
+  //! what changed since (render/frame_damage.hpp). False: drawn whole.
+  bool kept = false;
+  VkImageLayout kept_layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
 //! The stages at which a frame first touches its target (the background's copy, or the
@@ -102,6 +108,12 @@ class SceneRenderer {
   //! leaves it in its final layout. `slot` < kSlots selects the per-frame buffers; the
   //! caller makes sure the GPU is done with that slot's previous frame.
   void record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& state, std::uint32_t slot);
+  //! Whether a frame of `state` at `extent` would differ from the last one recorded: when
+  //! not, the picture a window shows is already right and need not be drawn.
+  bool changes(const FrameState& state, VkExtent2D extent) const;
+  //! The pixels the last frame recorded drew: the image's whole, or on a kept image the part
+  //! that changed since it was last drawn into.
+  PixelRect last_drawn_area() const { return drawn_area_; }
 
   const RenderSettings& settings() const { return settings_; }
   //! For the image size last recorded (the scene's own proportions before the first frame).
@@ -157,6 +169,11 @@ class SceneRenderer {
   //! The cached instruments' light per pixel and depth (screen_space_shadow()).
   void record_cached_light(VkCommandBuffer cmd, const Slot& slot);
   std::uint32_t triangles_of(const Instance& instance) const;
+  //! What a frame of `state` shows over the cached instruments (FrameDamage's terms); its
+  //! rectangles only when `extent` is the attachments' size.
+  FrameLook look_of(const FrameState& state, VkExtent2D extent) const;
+  //! Where the sphere's shadow can change the instruments (shadow_bounds), at the attachments' size.
+  PixelRect shadow_rect(const FrameState& state) const;
   //! The shader's params.z: whether a draw receives the sphere's shadow, and whether it is
   //! the redraw over the cached background, which keeps only the pixels the shadow darkens.
   //! the_sphere: the mallet itself, which receives none and is projected as seen from
@@ -204,6 +221,10 @@ class SceneRenderer {
   bool background_ready_ = false;
   std::uint64_t background_builds_ = 0;
   std::size_t shadow_passes_ = 0;
+  FrameDamage damage_;
+  std::map<VkImage, std::uint64_t> drawn_into_;  //!< each kept image: the frame (damage_'s count) it holds
+  std::uint64_t frames_recorded_ = 0;
+  PixelRect drawn_area_;
   const FontAtlas* atlas_source_ = nullptr;
   GpuImage atlas_;
   VkDescriptorSet atlas_set_ = VK_NULL_HANDLE;

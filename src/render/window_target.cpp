@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -10,6 +11,16 @@
 #include "render/vk_error.hpp"
 
 namespace mallet::render {
+
+namespace {
+//! The target drawing into each window, for the window system's "draw it again" (an expose:
+//! the window was covered and is shown again, and nothing on screen holds its pixels).
+//! GLFW calls back on the thread that polls its events, the one that draws.
+std::map<GLFWwindow*, WindowTarget*>& targets_of_windows() {
+  static std::map<GLFWwindow*, WindowTarget*> targets;
+  return targets;
+}
+}  // namespace
 
 WindowSystem::WindowSystem() {
   if (!glfwInit()) {
@@ -68,6 +79,10 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options, Pre
     throw RenderError(std::string("cannot create the window (GLFW: ") + (why ? why : "unknown") + ")");
   }
   if (options.hide_cursor) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+  targets_of_windows()[window_] = this;
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) {
+    if (const auto t = targets_of_windows().find(w); t != targets_of_windows().end()) t->second->show_again();
+  });
   check(glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface_), "creating the window surface");
   VkBool32 supported = VK_FALSE;
   vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
@@ -90,10 +105,16 @@ WindowTarget::~WindowTarget() {
   rendered_.clear();
   swapchain_.reset();
   if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
-  if (window_) glfwDestroyWindow(window_);
+  if (window_) {
+    targets_of_windows().erase(window_);
+    glfwDestroyWindow(window_);
+  }
 }
 
-GLFWwindow* WindowTarget::release_window() { return std::exchange(window_, nullptr); }
+GLFWwindow* WindowTarget::release_window() {
+  targets_of_windows().erase(window_);
+  return std::exchange(window_, nullptr);
+}
 
 bool WindowTarget::close_requested() const { return glfwWindowShouldClose(window_); }
 
@@ -184,6 +205,7 @@ void WindowTarget::create_swapchain() {
   views_.clear();
   rendered_.clear();
   swapchain_ = vk::Swapchain(ctx_.device(), raw);  // destroys the old one (the device is idle)
+  show_again();  // new images, never shown
 
   vkGetSwapchainImagesKHR(ctx_.device(), raw, &n, nullptr);
   images_.resize(n);
@@ -199,9 +221,11 @@ void WindowTarget::create_swapchain() {
     views_.emplace_back(ctx_.device(), view);
     rendered_.push_back(ctx_.make_semaphore());
   }
+  kept_.assign(images_.size(), false);  // nothing drawn into them yet
 }
 
 bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image* capture) {
+  still_ = false;
   const std::pair<int, int> size = framebuffer_size();  // asked of the window system once a frame
   if (!framebuffer_visible(size)) {
     // Minimised: nothing to draw into. Waiting up to a refresh for the window's events keeps
@@ -215,6 +239,9 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   // Not every driver says OUT_OF_DATE when the window changes size (lavapipe on X11 goes
   // on presenting the old size, measured): the window's own size is checked too.
   if (size != built_for_) recreate_swapchain();
+  // A frame that would change nothing is not drawn: the screen shows it already.
+  still_ = options_.skip_unchanged && !capture && !show_again_ && !renderer.changes(state, extent_);
+  if (still_) return false;
   FrameSync& f = frames_[frame_];
   VkFence fence = f.done.get();
   check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
@@ -243,7 +270,8 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
       capture_buffer_ = make_host_buffer(ctx_, capture_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     renderer.record(f.cmd,
                     {images_[index], views_[index].get(), extent_, copy_destination_,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                     kept_[index], VK_IMAGE_LAYOUT_PRESENT_SRC_KHR},
                     state, frame_);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -256,7 +284,7 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   } else {
     renderer.record(f.cmd,
                     {images_[index], views_[index].get(), extent_, copy_destination_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE},
+                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, kept_[index], VK_IMAGE_LAYOUT_PRESENT_SRC_KHR},
                     state, frame_);
   }
   check(vkEndCommandBuffer(f.cmd), "ending a command buffer");
@@ -287,6 +315,10 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   pi.pSwapchains = &sc;
   pi.pImageIndices = &index;
   const VkResult pr = vkQueuePresentKHR(ctx_.queue(), &pi);
+  // The image keeps this frame for the next time it comes round (the presentation engine
+  // only reads it); the window shows a whole picture again.
+  kept_[index] = true;
+  show_again_ = false;
   if (capture) {
     check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
     *capture = Image(static_cast<int>(extent_.width), static_cast<int>(extent_.height));

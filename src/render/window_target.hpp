@@ -32,6 +32,10 @@ struct WindowOptions {
   PresentMode present_mode = PresentMode::fifo;  //!< falls back to FIFO when not offered
   std::string title = "Mallet";
   bool hide_cursor = false;
+  //! A frame that would change nothing on the screen (SceneRenderer::changes) is not drawn:
+  //! draw() returns false and still() says why. Off for a fixed count of frames (`mallet
+  //! render --window --frames`).
+  bool skip_unchanged = true;
 };
 
 //! GLFW itself: initialised once per process, before the Vulkan instance (which needs its
@@ -86,7 +90,15 @@ class WindowTarget {
   //! Draws and presents one frame; false when nothing was drawn (minimised: it then waits
   //! up to one refresh for window events, so a loop around it does not spin). With
   //! `capture`, the presented pixels are also copied out (RGBA) for a screenshot.
+  //! Each frame draws only what changed since the swapchain image last showed (the images
+  //! keep their pixels: FrameTarget::kept), and a frame that changes nothing is not drawn
+  //! (WindowOptions::skip_unchanged) unless the window must be shown again (an expose, a
+  //! new swapchain) or `capture` is asked.
   bool draw(SceneRenderer& renderer, const FrameState& state, Image* capture = nullptr);
+  //! The last draw() drew nothing because nothing had changed (not because the window was minimised).
+  bool still() const { return still_; }
+  //! The next frame is drawn and shown even if it changes nothing (the window was exposed).
+  void show_again() { show_again_ = true; }
 
  private:
   struct FrameSync {
@@ -112,6 +124,8 @@ class WindowTarget {
   std::vector<VkImage> images_;
   std::vector<vk::ImageView> views_;
   std::vector<vk::Semaphore> rendered_;  //!< one per swapchain image
+  std::vector<bool> kept_;  //!< per swapchain image: it holds a frame the renderer drew (was presented)
+  bool still_ = false, show_again_ = true;
   std::vector<FrameSync> frames_;
   std::uint32_t frame_ = 0;
   std::uint64_t recreations_ = 0;

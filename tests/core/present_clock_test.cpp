@@ -75,6 +75,32 @@ TEST(PresentClock, AnUnpacedDisplayStaysSoWhenTheFrameBudgetSlowsItsFramesToTheR
   EXPECT_EQ(paced.present_of_frame_started(t), t + 2 * paced.period_ns());
 }
 
+TEST(PresentClock, StillFramesAnchorTheGridButTeachItNothing) {
+  // A still scene draws nothing: its loop wakes at the grid's next start and reports it
+  // with learn = false. Neither the period nor whether the display paces may move, however
+  // short the wait after a frame not drawn (nothing held it back but its own sleep).
+  PresentClock c(60.0, PresentPacing::fifo);
+  Nanos t = 0;
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 16'666'667);  // a display that paces FIFO
+  const Nanos period = c.period_ns();
+  ASSERT_FALSE(c.unpaced());
+  for (int i = 0; i < 400; ++i) {
+    const Nanos next = c.next_start(t + 1);
+    EXPECT_EQ(next, t + period);  // one period after the latest start, exactly
+    c.frame_started(t = next + 1000, 0, false);  // woke 1 µs late, held back by nothing
+  }
+  EXPECT_EQ(c.period_ns(), period);
+  EXPECT_FALSE(c.unpaced());
+  // The grid is anchored at the latest start, still or not.
+  EXPECT_EQ(c.present_of_frame_started(c.next_start(t + 1)), t + 3 * period);
+  // Had those starts taught it, 1 µs intervals held back by nothing would have made the
+  // display look unpaced:
+  PresentClock taught(60.0, PresentPacing::fifo);
+  for (int i = 0; i < 400; ++i) taught.frame_started(t += 16'666'667);
+  for (int i = 0; i < 400; ++i) taught.frame_started(t += 1000, 0, true);
+  EXPECT_TRUE(taught.unpaced());
+}
+
 TEST(PresentClock, ParsesTheThreePresentModes) {
   PresentPacing p = PresentPacing::fifo;
   EXPECT_TRUE(parse_present_pacing("mailbox", p));

@@ -13,7 +13,9 @@
 
 #include "app/bench_detailed_model.hpp"
 #include "app/render_setup.hpp"
+#include "render/font_atlas.hpp"
 #include "render/image.hpp"
+#include "render/overlay.hpp"
 #include "render/offscreen_target.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/scene_renderer.hpp"
@@ -215,6 +217,48 @@ TEST(BackgroundCache, IsRedrawnWhenTheImageSizeChanges) {
   }
   EXPECT_EQ(cached.background_builds(), 3u);
   EXPECT_EQ(ctx.validation_messages(), 0u) << ctx.first_validation_message();
+}
+
+TEST(BackgroundCache, KeptFramesDrawOnlyWhatChangedAndAreTheWholeFramesPixels) {
+  // A window's swapchain image keeps its last frame: each frame over it draws only what
+  // changed since (the head where it was and is, the bars whose light changed, the text
+  // where it changed), and must show exactly the frame drawn whole.
+  const Scene& scene = test::percussion();
+  auto kept = renderer(scene, true);
+  kept->target().keep_frames(true);
+  auto whole = renderer(scene, true);
+  const FontAtlas font(FontAtlas::default_font(), 16.0f);
+  Overlay overlay(font);
+  const std::vector<Vec2> at = places(scene);
+  const int pixels = 480 * 270;
+  int frames = 0, small = 0;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    FrameState s;
+    s.mallet_centre = at[i];
+    s.draw_mallet = i % 7 != 3;  // now and then no head: its last place restored
+    if (i % 3 == 0)
+      s.bar_lights = {BarLight{scene.targets.at(i % scene.targets.size()).id, 0.2f},
+                      BarLight{scene.targets.front().id, 0.05f * static_cast<float>(i % 5)}};
+    overlay.clear();
+    if (i % 4 < 2) overlay.text(20, 40, i % 8 < 4 ? "Strike a bar" : "Frappez une lame", {1, 1, 1, 1});
+    s.overlay = &overlay;
+    for (int again = 0; again < (i % 5 == 0 ? 2 : 1); ++again) {  // and a frame that changes nothing
+      const ImageDiff d = compare_images(kept->render(s), whole->render(s), 0);
+      ASSERT_TRUE(d.same_size);
+      EXPECT_EQ(d.max_channel_delta, 0) << "frame " << frames << " (head at " << s.mallet_centre.x << ", "
+                                        << s.mallet_centre.y << "): " << d.differing_pixels << " pixels differ";
+      const PixelRect a = kept->renderer().last_drawn_area();
+      if (frames > 0 && (a.x1 - a.x0) * (a.y1 - a.y0) * 4 < pixels) ++small;
+      if (again == 1) {
+        EXPECT_EQ((a.x1 - a.x0) * (a.y1 - a.y0), 1) << "nothing changed: one pixel drawn again";
+      }
+      ++frames;
+    }
+  }
+  EXPECT_EQ(whole->renderer().last_drawn_area().x1, 480);  // not kept: always whole
+  EXPECT_GT(small, frames / 3) << "most frames draw under a quarter of the image";
+  EXPECT_EQ(kept->renderer().background_builds(), 1u);
+  EXPECT_EQ(kept->context().validation_messages(), 0u) << kept->context().first_validation_message();
 }
 
 }  // namespace

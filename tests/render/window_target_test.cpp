@@ -1,7 +1,8 @@
 // The window target in this process, under a virtual X server of its own (CTest runs this
 // binary through xvfb-run): a window resized while frames are drawn gets a new swapchain
 // and the frames of its new size, drawn over the renderer's cached background (redrawn for
-// the new size); a hidden (minimised) window draws nothing and comes back when shown.
+// the new size); a hidden (minimised) window draws nothing and comes back when shown; a
+// frame that changes nothing is not drawn, and one that does draws only what changed.
 #include <GLFW/glfw3.h>
 
 #include <gtest/gtest.h>
@@ -58,7 +59,7 @@ FrameState mallet_over_a_bar() {
 }
 
 //! The same state rendered offscreen at `size`, the way the goldens are.
-Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples) {
+Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples, const FrameState& state = mallet_over_a_bar()) {
   app::HeadlessOptions o;
   o.size = size;
   o.settings.samples = samples;
@@ -67,7 +68,7 @@ Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples) {
   o.validation = Validation::required;
   o.cache_dir = "";
   app::HeadlessRenderer r(test::percussion(), o);
-  return r.render(mallet_over_a_bar());
+  return r.render(state);
 }
 
 //! Lets the X server's configure reach GLFW: events are polled until the framebuffer has
@@ -165,6 +166,36 @@ TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
   w.target->draw(*w.renderer, s);
   vkDeviceWaitIdle(w.ctx->device());
   expect_matches(what_the_window_shows(w.target->window()), expected);
+  EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
+}
+
+TEST(WindowTarget, AStillFrameIsNotDrawnAndAMovingOneDrawsOnlyWhatChanged) {
+  OpenWindow w(VK_SAMPLE_COUNT_1_BIT);
+  FrameState s = mallet_over_a_bar();
+  ASSERT_TRUE(w.target->draw(*w.renderer, s));
+  EXPECT_FALSE(w.target->still());
+  EXPECT_FALSE(w.target->draw(*w.renderer, s)) << "the screen shows this frame already";
+  EXPECT_TRUE(w.target->still());
+  // The head moves: each swapchain image, holding a frame two or three behind, is brought up
+  // to date by drawing only where the head was since and is.
+  const int whole = 320 * 180;
+  for (int i = 0; i < 7; ++i) {
+    s.mallet_centre.x += 0.004;
+    s.mallet_centre.y -= 0.002;
+    ASSERT_TRUE(w.target->draw(*w.renderer, s));
+    const PixelRect a = w.renderer->last_drawn_area();
+    if (i >= 3) {
+      EXPECT_LT((a.x1 - a.x0) * (a.y1 - a.y0) * 4, whole) << "frame " << i << " drew more than a quarter";
+    }
+  }
+  // What the X window shows is the whole frame of the last state.
+  EXPECT_FALSE(w.target->draw(*w.renderer, s));
+  vkDeviceWaitIdle(w.ctx->device());
+  expect_matches(what_the_window_shows(w.target->window()), offscreen({320, 180}, VK_SAMPLE_COUNT_1_BIT, s));
+  // The window system asks for the picture again (an expose): drawn, though nothing changed.
+  w.target->show_again();
+  EXPECT_TRUE(w.target->draw(*w.renderer, s));
+  EXPECT_FALSE(w.target->draw(*w.renderer, s));
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
 }
 
