@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "app/bench_report.hpp"
+#include "app/gnuplot.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::app {
@@ -33,8 +34,6 @@ std::string num(double v) {
     std::snprintf(b, sizeof b, "%.3g", v);
   return b;
 }
-
-bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 void write_plot(const TradeTable& t, const std::filesystem::path& dir) {
   {
@@ -134,8 +133,7 @@ std::vector<std::string> write_report(const ReportSections& in, const ReportOpti
   }
   if (plots)
     for (const TradeTable& t : s.trades) {
-      const std::string cmd = "cd '" + o.out.string() + "' && gnuplot '" + t.id + ".gp' 2>&1";
-      if (std::system(cmd.c_str()) != 0) lines.push_back("bench report: gnuplot failed on " + t.id + ".gp");
+      if (!run_gnuplot(o.out, t.id + ".gp")) lines.push_back("bench report: gnuplot failed on " + t.id + ".gp");
     }
   lines.push_back("bench report: wrote " + (o.out / "report.md").string() + (plots ? " and the plots" : ""));
   return lines;

@@ -9,6 +9,7 @@
 #include "app/settings_source.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
+#include "app/study_report.hpp"
 #include "app/study_session.hpp"
 #include "app/study_window.hpp"
 #include "core/file_error.hpp"
@@ -20,9 +21,16 @@ namespace mallet::app {
 
 namespace {
 
+struct SummaryFlags {
+  std::vector<std::string> results;
+  std::string participant;
+  int resamples = study::kDefaultResamples;
+  std::uint64_t seed = 1;
+  std::filesystem::path plots, report;
+};
+
 void add_summary(CLI::App& study) {
-  auto results = std::make_shared<std::vector<std::string>>();
-  auto participant = std::make_shared<std::string>();
+  auto o = std::make_shared<SummaryFlags>();
   CLI::App* cmd = study.add_subcommand("summary", "Per-condition accuracy and a psychometric fit of results CSVs");
   cmd->footer(
       "Reads every results file named, and every *.csv in each folder named (in name order), as\n"
@@ -32,14 +40,33 @@ void add_summary(CLI::App& study) {
       "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference,\n"
       "pooled over the participants; then, with more than one participant, each one's fit.\n"
       "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.\n"
+      "Each fit has 95% confidence intervals for its threshold and slope (threshold_95ci,\n"
+      "slope_95ci): the parametric bootstrap, --bootstrap resamples drawn from the fitted curve and\n"
+      "fitted again, bias-corrected percentiles; seeded by --seed, the participant and the\n"
+      "condition, so the same data gives the same intervals.\n"
+      "--plots DIR: psychometric.png (pooled curves, points sized by trials), thresholds.png (each\n"
+      "participant's threshold and interval), response_times.png; each with its .dat and .gp\n"
+      "(gnuplot-nox draws them; without it the data is still written).\n"
+      "--report FILE.md: a short markdown report of all of it, embedding the plots.\n"
       "A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: problem.");
-  cmd->add_option("--results", *results, "Results CSVs written by `mallet study`, or folders of them")
+  cmd->add_option("--results", o->results, "Results CSVs written by `mallet study`, or folders of them")
       ->required()
       ->expected(1, -1);
-  cmd->add_option("--participant", *participant, "Only this participant's rows (default: all)");
-  cmd->callback([results, participant] {
+  cmd->add_option("--participant", o->participant, "Only this participant's rows (default: all)");
+  cmd->add_option("--bootstrap", o->resamples, "Bootstrap resamples per fit for its 95% intervals (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            const long n = std::strtol(v.c_str(), nullptr, 10);
+            return n == 0 || (n >= 20 && n <= 100000) ? std::string() : "0, or 20 to 100000 resamples";
+          },
+          "0 or 20..100000"));
+  cmd->add_option("--seed", o->seed, "Seed of the bootstrap's draws")->capture_default_str();
+  cmd->add_option("--plots", o->plots, "Write PNG plots (and their .dat, .gp) into this folder");
+  cmd->add_option("--report", o->report, "Write a markdown report to this file");
+  cmd->callback([o] {
     std::vector<std::filesystem::path> files;
-    for (const std::string& named : *results) {
+    for (const std::string& named : o->results) {
       std::error_code ec;
       if (!std::filesystem::is_directory(named, ec)) {
         files.emplace_back(named);
@@ -59,11 +86,29 @@ void add_summary(CLI::App& study) {
       for (const std::string& w : file.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
       rows.insert(rows.end(), file.rows.begin(), file.rows.end());
     }
+    const study::SummaryOptions options{o->resamples, o->seed};
+    StudyReport report;
+    report.files = files;
+    report.resamples = o->resamples;
+    report.seed = o->seed;
+    report.pooled = study::summarize(rows, o->participant, options);
+    report.pooled_text = study::format_summary(report.pooled);
+    if (report.pooled.participants.size() > 1) {
+      report.participants = study::summarize_participants(rows, options);
+      report.participants_text = study::format_participant_fits(report.participants);
+    } else if (report.pooled.participants.size() == 1) {
+      report.participants = {{report.pooled.participants.front(), report.pooled}};
+    }
     std::printf("%s: ", files.size() == 1 ? files.front().c_str()
                                           : (std::to_string(files.size()) + " results files").c_str());
-    const study::StudySummary pooled = study::summarize(rows, *participant);
-    std::fputs(study::format_summary(pooled).c_str(), stdout);
-    if (pooled.participants.size() > 1) std::fputs(study::format_participant_fits(rows).c_str(), stdout);
+    std::fputs(report.pooled_text.c_str(), stdout);
+    std::fputs(report.participants_text.c_str(), stdout);
+    if (!o->plots.empty())
+      for (const std::string& line : write_study_plots(report, o->plots)) std::printf("%s\n", line.c_str());
+    if (!o->report.empty()) {
+      write_study_report(report, o->report, o->plots);
+      std::printf("wrote %s\n", o->report.c_str());
+    }
   });
 }
 

@@ -2,6 +2,7 @@
 // crash mid-session and its resumption; the summary; bad input exits 2 with one line.
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -203,6 +204,48 @@ TEST(StudyCli, TheSummaryPoolsManyFilesAndFoldersAndFitsEachParticipant) {
   const test::CliResult empty = test::run_mallet("study summary --results " + (dir / "empty").string());
   EXPECT_EQ(empty.status, 2);
   EXPECT_EQ(empty.output, "mallet: " + (dir / "empty").string() + ": a folder with no results file (*.csv)\n");
+}
+
+TEST(StudyCli, TheSummaryGivesIntervalsPlotsAndAReport) {
+  // Three simulated participants: each fit with its 95 % interval, the plots as PNGs with
+  // their data, and a report embedding them; the same seed gives the same intervals.
+  const fs::path dir = test::scratch_dir();
+  fs::create_directories(dir / "results");
+  for (const char* p : {"P01", "P02", "P03"})
+    ASSERT_EQ(test::run_mallet(study_args(dir / "results" / (std::string(p) + ".csv"), p)).status, 0);
+  const std::string base = "study summary --bootstrap 200 --results " + (dir / "results").string();
+  const test::CliResult s =
+      test::run_mallet(base + " --plots " + (dir / "plots").string() + " --report " + (dir / "report.md").string());
+  ASSERT_EQ(s.status, 0) << s.output;
+  EXPECT_NE(s.output.find("threshold_95ci"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("95 % intervals: parametric bootstrap, 200 resamples"), std::string::npos) << s.output;
+  for (const char* plot : {"psychometric", "thresholds", "response_times"}) {
+    for (const char* ext : {".dat", ".gp"})
+      EXPECT_GT(fs::file_size(dir / "plots" / (std::string(plot) + ext)), 20u) << plot << ext;
+    const fs::path png = dir / "plots" / (std::string(plot) + ".png");
+    ASSERT_TRUE(fs::exists(png)) << s.output;  // gnuplot-nox is a build dependency
+    std::ifstream f(png, std::ios::binary);
+    char magic[8]{};
+    f.read(magic, 8);
+    EXPECT_EQ(std::string(magic + 1, 3), "PNG") << png;
+    EXPECT_NE(s.output.find("wrote " + png.string()), std::string::npos) << s.output;
+  }
+  std::ifstream in(dir / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("3 results files, 96 trials, 3 participants"), std::string::npos) << md;
+  EXPECT_NE(md.find("](plots/psychometric.png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("](plots/thresholds.png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("per participant, the same fit:"), std::string::npos) << md;
+  // The intervals are the data's and the seed's: again the same, another seed not.
+  const test::CliResult again = test::run_mallet(base);
+  const test::CliResult other = test::run_mallet(base + " --seed 2");
+  ASSERT_EQ(again.status, 0);
+  EXPECT_EQ(s.output.substr(0, s.output.find("wrote")), again.output);
+  EXPECT_NE(other.output, again.output);
+  // Too few resamples for a 2.5th percentile: refused by the flag's own check.
+  const test::CliResult few = test::run_mallet(base + " --bootstrap 5");
+  EXPECT_EQ(few.status, 2) << few.output;
+  EXPECT_NE(few.output.find("--bootstrap"), std::string::npos) << few.output;
 }
 
 }  // namespace

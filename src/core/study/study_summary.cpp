@@ -15,9 +15,43 @@ int condition_rank(const std::string& name) {
     if (condition_name(kAllConditions[i]) == name) return i;
   return 4;
 }
+
+//! The bootstrap's seed for one participant's (or the pool's, "") condition: FNV-1a over
+//! both names, mixed with the user's seed.
+std::uint64_t interval_seed(std::uint64_t seed, const std::string& participant, const std::string& condition) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const std::string* part : {&participant, &condition}) {
+    for (unsigned char c : *part) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0x1f) * 1099511628211ull;
+  }
+  return h ^ (seed * 0x9e3779b97f4a7c15ull);
+}
+
+//! "[lo, hi]" with the given decimals, or "-" without an interval.
+std::string interval_text(const std::optional<PsychometricIntervals>& ci, bool threshold) {
+  if (!ci || !ci->ok) return "-";
+  const Interval& i = threshold ? ci->threshold : ci->slope;
+  char b[64];
+  std::snprintf(b, sizeof b, threshold ? "[%.2f, %.2f]" : "[%.3f, %.3f]", i.lo, i.hi);
+  return b;
+}
+//! One condition's fit as a row: condition, levels, threshold, slope, their intervals, note.
+std::string fit_columns(const ConditionSummary& c) {
+  const PsychometricFit& f = *c.fit;
+  char line[256];
+  if (f.ok)
+    std::snprintf(line, sizeof line, "%-14s %7d %14.3f %14.4f %18s %18s  %s\n", c.condition.c_str(), f.levels,
+                  f.threshold, f.slope, interval_text(c.intervals, true).c_str(),
+                  interval_text(c.intervals, false).c_str(), f.reason.c_str());
+  else
+    std::snprintf(line, sizeof line, "%-14s %7d %14s %14s %18s %18s  %s\n", c.condition.c_str(), f.levels, "-", "-",
+                  "-", "-", f.reason.c_str());
+  return line;
+}
 }  // namespace
 
-StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& participant) {
+StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& participant,
+                       const SummaryOptions& options) {
   StudySummary s;
   std::map<std::string, ConditionSummary> by_condition;
   std::map<std::string, std::map<double, PsychometricLevel>> levels;
@@ -32,6 +66,7 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
     c.condition = r.condition;
     ++c.trials;
     c.correct += r.correct ? 1 : 0;
+    c.response_ms.push_back(r.response_time_ms);
     rt_sum[r.condition] += r.response_time_ms;
     if (std::isfinite(r.difference_pct)) {
       PsychometricLevel& l = levels[r.condition][r.difference_pct];
@@ -43,9 +78,11 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
   for (auto& [name, c] : by_condition) {
     c.mean_response_ms = rt_sum[name] / c.trials;
     if (auto it = levels.find(name); it != levels.end()) {
-      std::vector<PsychometricLevel> v;
-      for (const auto& [x, l] : it->second) v.push_back(l);
-      c.fit = fit_psychometric_2afc(v);
+      for (const auto& [x, l] : it->second) c.levels.push_back(l);
+      c.fit = fit_psychometric_2afc(c.levels);
+      if (options.resamples > 0 && c.fit->ok)
+        c.intervals = bootstrap_2afc(c.levels, *c.fit, options.resamples,
+                                     interval_seed(options.seed, participant, name));
     }
     s.conditions.push_back(c);
   }
@@ -76,46 +113,48 @@ std::string format_summary(const StudySummary& s) {
     if (!header) {
       out += "psychometric fit, 2AFC: P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold))), "
              "x = difference in B (%), maximum likelihood\n";
-      std::snprintf(line, sizeof line, "%-14s %7s %14s %14s  %s\n", "condition", "levels", "threshold_pct",
-                    "slope_per_pct", "note");
+      std::snprintf(line, sizeof line, "%-14s %7s %14s %14s %18s %18s  %s\n", "condition", "levels",
+                    "threshold_pct", "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
       out += line;
       header = true;
     }
-    const PsychometricFit& f = *c.fit;
-    if (f.ok)
-      std::snprintf(line, sizeof line, "%-14s %7d %14.3f %14.4f  %s\n", c.condition.c_str(), f.levels, f.threshold,
-                    f.slope, f.reason.c_str());
-    else
-      std::snprintf(line, sizeof line, "%-14s %7d %14s %14s  %s\n", c.condition.c_str(), f.levels, "-", "-",
-                    f.reason.c_str());
-    out += line;
+    out += fit_columns(c);
   }
+  if (header)
+    for (const ConditionSummary& c : s.conditions)
+      if (c.intervals) {
+        std::snprintf(line, sizeof line, "95 %% intervals: parametric bootstrap, %d resamples, bias-corrected percentiles\n",
+                      c.intervals->resamples);
+        out += line;
+        break;
+      }
   return out;
 }
 
-std::string format_participant_fits(const std::vector<ResultRow>& rows) {
+std::vector<std::pair<std::string, StudySummary>> summarize_participants(const std::vector<ResultRow>& rows,
+                                                                          const SummaryOptions& options) {
   std::vector<std::string> order;
   for (const ResultRow& r : rows)
     if (std::find(order.begin(), order.end(), r.participant) == order.end()) order.push_back(r.participant);
+  std::vector<std::pair<std::string, StudySummary>> out;
+  for (const std::string& p : order) out.emplace_back(p, summarize(rows, p, options));
+  return out;
+}
+
+std::string format_participant_fits(const std::vector<std::pair<std::string, StudySummary>>& participants) {
   std::string out;
   char line[256];
-  for (const std::string& p : order) {
-    for (const ConditionSummary& c : summarize(rows, p).conditions) {
+  for (const auto& [p, summary] : participants) {
+    for (const ConditionSummary& c : summary.conditions) {
       if (!c.fit) continue;
       if (out.empty()) {
         out = "per participant, the same fit:\n";
-        std::snprintf(line, sizeof line, "%-12s %-14s %7s %14s %14s  %s\n", "participant", "condition", "levels",
-                      "threshold_pct", "slope_per_pct", "note");
+        std::snprintf(line, sizeof line, "%-12s %-14s %7s %14s %14s %18s %18s  %s\n", "participant", "condition",
+                      "levels", "threshold_pct", "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
         out += line;
       }
-      const PsychometricFit& f = *c.fit;
-      if (f.ok)
-        std::snprintf(line, sizeof line, "%-12s %-14s %7d %14.3f %14.4f  %s\n", p.c_str(), c.condition.c_str(),
-                      f.levels, f.threshold, f.slope, f.reason.c_str());
-      else
-        std::snprintf(line, sizeof line, "%-12s %-14s %7d %14s %14s  %s\n", p.c_str(), c.condition.c_str(), f.levels,
-                      "-", "-", f.reason.c_str());
-      out += line;
+      std::snprintf(line, sizeof line, "%-12s ", p.c_str());
+      out += line + fit_columns(c);
     }
   }
   return out;

@@ -1,10 +1,12 @@
 #pragma once
 // `mallet study summary`: per-condition accuracy of a results file and, for 2AFC rows,
 // the psychometric fit of each condition (see psychometric_fit.hpp).
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/study/psychometric_bootstrap.hpp"
 #include "core/study/psychometric_fit.hpp"
 #include "core/study/results_csv.hpp"
 
@@ -17,6 +19,17 @@ struct ConditionSummary {
   double mean_response_ms = 0;
   double accuracy() const { return trials ? static_cast<double>(correct) / trials : 0.0; }
   std::optional<PsychometricFit> fit;  //!< only when the rows carry a difference_pct (2AFC)
+  std::optional<PsychometricIntervals> intervals;  //!< the fit's, when asked for and the fit is ok
+  std::vector<PsychometricLevel> levels;           //!< the fit's data, ascending difference
+  std::vector<double> response_ms;                 //!< every trial's, in row order
+};
+
+//! How the fits' confidence intervals are made: `resamples` parametric bootstrap refits (0:
+//! none), the draws seeded from `seed`, the participant and the condition, so that each
+//! interval is the same whichever files it was read with.
+struct SummaryOptions {
+  int resamples = 0;
+  std::uint64_t seed = 1;
 };
 
 struct StudySummary {
@@ -26,14 +39,19 @@ struct StudySummary {
   std::vector<ConditionSummary> conditions;  //!< visual_only, tactile_only, both, none, then others
 };
 
-//! `participant`: only that participant's rows (empty: everyone's).
-StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& participant = {});
+//! `participant`: only that participant's rows (empty: everyone's, pooled).
+StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& participant = {},
+                       const SummaryOptions& options = {});
 
-//! The summary as printed: a table of accuracies, then the fits.
+//! The summary as printed: a table of accuracies, then the fits (with their 95 % intervals
+//! when they were made).
 std::string format_summary(const StudySummary& summary);
 
-//! Each participant's 2AFC fit per condition, one line each (participants in first-seen
-//! order, conditions as in StudySummary); "" when no row carries a difference_pct.
-std::string format_participant_fits(const std::vector<ResultRow>& rows);
+//! Each participant's summary, in first-seen order.
+std::vector<std::pair<std::string, StudySummary>> summarize_participants(const std::vector<ResultRow>& rows,
+                                                                          const SummaryOptions& options = {});
+//! Each participant's 2AFC fit per condition, one line each (conditions as in StudySummary);
+//! "" when no row carries a difference_pct.
+std::string format_participant_fits(const std::vector<std::pair<std::string, StudySummary>>& participants);
 
 }  // namespace mallet::study

@@ -1,0 +1,194 @@
+// The study summary's plots and report: see study_report.hpp.
+#include "app/study_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "app/gnuplot.hpp"
+#include "core/file_error.hpp"
+
+namespace mallet::app {
+
+namespace {
+
+constexpr double kRtBinMs = 50;
+
+void write_file(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream f(file);
+  f << text;
+  if (!f) throw FileError(file.string(), 0, 0, "cannot write");
+}
+
+//! The conditions with a fit, as the pool has them.
+std::vector<const study::ConditionSummary*> fitted(const study::StudySummary& s) {
+  std::vector<const study::ConditionSummary*> out;
+  for (const study::ConditionSummary& c : s.conditions)
+    if (c.fit && !c.levels.empty()) out.push_back(&c);
+  return out;
+}
+
+const char* kHeader =
+    "set terminal pngcairo size 720,450 font 'DejaVu Sans,10' noenhanced\n"
+    "set grid\nset key outside right top noenhanced\n";
+
+void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
+  std::ostringstream dat, gp;
+  dat << "# per condition (blocks): difference_pct proportion_correct trials\n";
+  int max_trials = 1;
+  double x_max = 0;
+  for (const study::ConditionSummary* c : fitted(r.pooled))
+    for (const study::PsychometricLevel& l : c->levels) max_trials = std::max(max_trials, l.trials), x_max = std::max(x_max, l.x);
+  gp << kHeader << "set output 'psychometric.png'\n"
+     << "set title 'Pooled psychometric functions (2AFC); points sized by trials, bars: 95 % intervals'\n"
+     << "set xlabel 'difference in B (%)'\nset ylabel 'proportion correct'\nset yrange [0.3:1.05]\n"
+     << "set xrange [" << 0 << ":" << x_max * 1.05 + 1 << "]\n"
+     << "set arrow from graph 0, first 0.75 to graph 1, first 0.75 nohead dt 2 lc rgb '#888888'\n";
+  std::string plot = "plot ";
+  int block = 0;
+  for (const study::ConditionSummary* c : fitted(r.pooled)) {
+    for (const study::PsychometricLevel& l : c->levels)
+      dat << l.x << ' ' << static_cast<double>(l.correct) / l.trials << ' ' << l.trials << '\n';
+    dat << "\n\n";
+    const int colour = block + 1;
+    char size[64];
+    std::snprintf(size, sizeof size, "(0.6 + 2.4 * sqrt($3 / %d.0))", max_trials);
+    plot += (block ? ", \\\n     " : "") + std::string("'psychometric.dat' index ") + std::to_string(block) +
+            " using 1:2:" + size + " with points pt 7 ps variable lc " + std::to_string(colour) + " title '" +
+            c->condition + "'";
+    const study::PsychometricFit& f = *c->fit;
+    if (f.ok) {
+      char curve[160];
+      std::snprintf(curve, sizeof curve, "0.5 + 0.5 / (1 + exp(-%.9g * (x - %.9g)))", f.slope, f.threshold);
+      plot += ", \\\n     " + std::string(curve) + " with lines lc " + std::to_string(colour) + " notitle";
+      if (c->intervals && c->intervals->ok) {
+        char bar[200];
+        std::snprintf(bar, sizeof bar, "'+' using (%.9g):(0.75):(%.9g):(%.9g) every ::0::0 with xerrorbars lc %d pt 1 notitle",
+                      f.threshold, c->intervals->threshold.lo, c->intervals->threshold.hi, colour);
+        plot += ", \\\n     " + std::string(bar);
+      }
+    }
+    ++block;
+  }
+  write_file(dir / "psychometric.dat", dat.str());
+  write_file(dir / "psychometric.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+}
+
+void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
+  std::ostringstream dat, gp;
+  dat << "# per condition (blocks): participant_index threshold_pct ci_lo ci_hi participant\n";
+  std::vector<std::string> conditions;
+  for (const study::ConditionSummary* c : fitted(r.pooled)) conditions.push_back(c->condition);
+  gp << kHeader << "set output 'thresholds.png'\n"
+     << "set title \"Each participant's threshold with its 95 % interval\"\n"
+     << "set ylabel 'threshold: difference in B (%) at 75 % correct'\nset xrange [0.5:"
+     << static_cast<double>(r.participants.size()) + 0.5 << "]\nset xtics (";
+  for (std::size_t i = 0; i < r.participants.size(); ++i)
+    gp << (i ? ", " : "") << "'" << r.participants[i].first << "' " << i + 1;
+  gp << ") rotate by -45\n";
+  std::string plot = "plot ";
+  int block = 0;
+  const double spread = 0.6 / static_cast<double>(std::max<std::size_t>(1, conditions.size()));
+  for (std::size_t k = 0; k < conditions.size(); ++k) {
+    for (std::size_t i = 0; i < r.participants.size(); ++i)
+      for (const study::ConditionSummary& c : r.participants[i].second.conditions) {
+        if (c.condition != conditions[k] || !c.fit || !c.fit->ok) continue;
+        const bool ci = c.intervals && c.intervals->ok;
+        const double x = static_cast<double>(i + 1) - 0.3 + spread * (static_cast<double>(k) + 0.5);
+        dat << x << ' ' << c.fit->threshold << ' ' << (ci ? c.intervals->threshold.lo : c.fit->threshold) << ' '
+            << (ci ? c.intervals->threshold.hi : c.fit->threshold) << ' ' << r.participants[i].first << '\n';
+      }
+    dat << "\n\n";
+    plot += (block ? ", \\\n     " : "") + std::string("'thresholds.dat' index ") + std::to_string(block) +
+            " using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(block + 1) + " title '" + conditions[k] + "'";
+    ++block;
+  }
+  write_file(dir / "thresholds.dat", dat.str());
+  write_file(dir / "thresholds.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+}
+
+void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) {
+  std::ostringstream dat, gp;
+  dat << "# per condition (blocks): bin_centre_ms trials (" << kRtBinMs << " ms bins)\n";
+  gp << kHeader << "set output 'response_times.png'\n"
+     << "set title 'Response times per condition (" << kRtBinMs << " ms bins)'\n"
+     << "set xlabel 'response time (ms)'\nset ylabel 'trials'\n";
+  std::string plot = "plot ";
+  int block = 0;
+  for (const study::ConditionSummary& c : r.pooled.conditions) {
+    std::map<long, int> bins;
+    for (double ms : c.response_ms)
+      if (std::isfinite(ms)) ++bins[static_cast<long>(std::floor(ms / kRtBinMs))];
+    if (bins.empty()) continue;
+    for (long b = bins.begin()->first - 1; b <= bins.rbegin()->first + 1; ++b)
+      dat << (static_cast<double>(b) + 0.5) * kRtBinMs << ' ' << (bins.count(b) ? bins[b] : 0) << '\n';
+    dat << "\n\n";
+    plot += (block ? ", \\\n     " : "") + std::string("'response_times.dat' index ") + std::to_string(block) +
+            " using 1:2 with histeps lw 2 lc " + std::to_string(block + 1) + " title '" + c.condition + "'";
+    ++block;
+  }
+  write_file(dir / "response_times.dat", dat.str());
+  write_file(dir / "response_times.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+}
+
+constexpr const char* kPlots[] = {"psychometric", "thresholds", "response_times"};
+
+}  // namespace
+
+std::vector<std::string> write_study_plots(const StudyReport& report, const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw FileError(dir.string(), 0, 0, "cannot make the folder: " + ec.message());
+  psychometric_plot(report, dir);
+  thresholds_plot(report, dir);
+  response_time_plot(report, dir);
+  std::vector<std::string> lines;
+  if (!have_gnuplot()) {
+    lines.push_back("study summary: gnuplot not found: plots skipped (apt-get install gnuplot-nox); their .dat and "
+                    ".gp written to " + dir.string());
+    return lines;
+  }
+  for (const char* p : kPlots) {
+    const std::string script = std::string(p) + ".gp";
+    lines.push_back(run_gnuplot(dir, script) ? "wrote " + (dir / (std::string(p) + ".png")).string()
+                                             : "study summary: gnuplot failed on " + (dir / script).string());
+  }
+  return lines;
+}
+
+void write_study_report(const StudyReport& r, const std::filesystem::path& file,
+                        const std::filesystem::path& plots_dir) {
+  std::ostringstream md;
+  md << "# Study summary\n\n"
+     << r.files.size() << " results file" << (r.files.size() == 1 ? "" : "s") << ", " << r.pooled.rows << " trials, "
+     << r.pooled.participants.size() << " participant" << (r.pooled.participants.size() == 1 ? "" : "s") << ".";
+  if (r.pooled.simulated_rows)
+    md << " " << r.pooled.simulated_rows << " of the trials were answered by the simulated observer.";
+  md << "\n\nMade by `mallet study summary`. The fits are maximum likelihood of\n"
+        "P(correct) = 0.5 + 0.5 / (1 + exp(−slope·(x − threshold))), x the pair's difference in Eq. 1's B (%);\n"
+        "the threshold is the difference answered correctly 75 % of the time.";
+  if (r.resamples > 0)
+    md << " The 95 % intervals are from the parametric bootstrap (" << r.resamples
+       << " resamples, bias-corrected percentiles, seed " << r.seed << ").";
+  md << "\n\n## Pooled over the participants\n\n```\n" << r.pooled_text << "```\n\n";
+  if (!plots_dir.empty()) {
+    const std::filesystem::path rel = std::filesystem::relative(plots_dir, file.parent_path().empty()
+                                                                               ? std::filesystem::path(".")
+                                                                               : file.parent_path());
+    md << "![Pooled psychometric functions](" << (rel / "psychometric.png").generic_string() << ")\n\n";
+    md << "![Response times](" << (rel / "response_times.png").generic_string() << ")\n\n";
+    if (!r.participants_text.empty())
+      md << "## Each participant\n\n![Thresholds](" << (rel / "thresholds.png").generic_string() << ")\n\n";
+  }
+  if (!r.participants_text.empty()) {
+    if (plots_dir.empty()) md << "## Each participant\n\n";
+    md << "```\n" << r.participants_text << "```\n";
+  }
+  md << "\nFiles read:\n\n";
+  for (const std::filesystem::path& f : r.files) md << "- `" << f.string() << "`\n";
+  write_file(file, md.str());
+}
+
+}  // namespace mallet::app

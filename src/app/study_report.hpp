@@ -1,0 +1,39 @@
+#pragma once
+// `mallet study summary --plots DIR --report FILE.md`: the group summary as pictures and as
+// a short markdown report. The plots are gnuplot PNGs (app/gnuplot.hpp), each with its .dat
+// and .gp beside it:
+//   psychometric.png   per condition, the pooled proportion correct at each difference (a
+//                      point sized by its trials), the fitted curve, and the threshold's 95 %
+//                      interval at 75 % correct;
+//   thresholds.png     each participant's threshold per condition with its 95 % interval;
+//   response_times.png per condition, the distribution of response times (50 ms bins).
+// Staircase tracks join them when the protocols have staircases.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/study/study_summary.hpp"
+
+namespace mallet::app {
+
+struct StudyReport {
+  std::vector<std::filesystem::path> files;  //!< the results files read
+  std::string pooled_text;                   //!< format_summary of the pool
+  std::string participants_text;             //!< format_participant_fits, "" for one participant
+  study::StudySummary pooled;
+  std::vector<std::pair<std::string, study::StudySummary>> participants;
+  int resamples = 0;
+  std::uint64_t seed = 1;
+};
+
+//! Writes the plots into `dir` (made if missing). Returns what it says on stdout: the PNGs
+//! written, or that gnuplot is missing (the .dat and .gp are written all the same).
+std::vector<std::string> write_study_plots(const StudyReport& report, const std::filesystem::path& dir);
+
+//! Writes the markdown report to `file`, embedding the plots of `plots_dir` (empty: none) by a
+//! path relative to the report. FileError when it cannot be written.
+void write_study_report(const StudyReport& report, const std::filesystem::path& file,
+                        const std::filesystem::path& plots_dir);
+
+}  // namespace mallet::app
