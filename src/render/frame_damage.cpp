@@ -48,9 +48,8 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-bool mallet_moved(const FrameLook& a, const FrameLook& b) {
-  if (a.mallet != b.mallet) return true;
-  return a.mallet && glm::length(a.mallet_px - b.mallet_px) >= kStillMalletPx;
+bool same_mallet(const FrameLook& a, const FrameLook& b) {
+  return a.mallet == b.mallet && (!a.mallet || a.mallet_px == b.mallet_px);
 }
 
 }  // namespace
@@ -60,7 +59,7 @@ PixelRect changed_between(const FrameLook& before, const FrameLook& after) {
   if (before.width != after.width || before.height != after.height || before.instruments != after.instruments)
     return whole;
   PixelRect changed;
-  if (mallet_moved(before, after)) changed = bounding(before.mallet_rect, after.mallet_rect);
+  if (!same_mallet(before, after)) changed = bounding(before.mallet_rect, after.mallet_rect);
   for (const FrameLook* look : {&before, &after})
     for (const BarLight& l : look->lights)
       if (l.target >= 0 && glow_of(before, l.target) != glow_of(after, l.target))
@@ -73,17 +72,30 @@ PixelRect changed_between(const FrameLook& before, const FrameLook& after) {
   return changed;
 }
 
-bool FrameDamage::changes(const FrameLook& next) const { return !last_ || !changed_between(*last_, next).empty(); }
+FrameLook settled(const FrameLook& drawn, FrameLook next) {
+  if (drawn.width != next.width || drawn.height != next.height) return next;
+  // A head within kStillMalletPx of where it is drawn stays there: its drift is measured
+  // from there, so it is never further behind.
+  if (drawn.mallet && next.mallet && glm::length(drawn.mallet_px - next.mallet_px) < kStillMalletPx) {
+    next.mallet_centre = drawn.mallet_centre;
+    next.mallet_px = drawn.mallet_px;
+    next.mallet_rect = drawn.mallet_rect;
+  }
+  for (BarLight& l : next.lights) {
+    const float was = glow_of(drawn, l.target);
+    if (l.target >= 0 && l.glow > 0 && was > 0 && std::abs(l.glow - was) < kStillGlow) l.glow = was;
+  }
+  return next;
+}
+
+bool FrameDamage::changes(const FrameLook& next) const {
+  return !last_ || !changed_between(*last_, settled(*last_, next)).empty();
+}
 
 PixelRect FrameDamage::commit(FrameLook next, int age) {
   const PixelRect whole{0, 0, next.width, next.height};
-  PixelRect changed = last_ ? changed_between(*last_, next) : whole;
-  // A head that stayed within kStillMalletPx is where the frames show it: its drift is
-  // measured from there.
-  if (last_ && !mallet_moved(*last_, next)) {
-    next.mallet_px = last_->mallet_px;
-    next.mallet_rect = last_->mallet_rect;
-  }
+  if (last_ && age > 0) next = settled(*last_, next);  // a whole frame is drawn exactly
+  const PixelRect changed = last_ ? changed_between(*last_, next) : whole;
   const std::uint64_t n = frames_++;
   changed_[n % kHistory] = changed;
   last_ = std::move(next);

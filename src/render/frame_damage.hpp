@@ -26,12 +26,19 @@ namespace mallet::render {
 //! 1/256 px). Its slow drift adds up against the position drawn, so it is never left
 //! further behind than that.
 inline constexpr double kStillMalletPx = 1.0 / 256;
+//! A lit bar whose glow changed less than this since it was drawn stays drawn as it was (a
+//! fading bar's tail). The glow adds at most 0.55 of full light (the renderer's glow
+//! colour), so this moves a lit bar's pixels by under one 8-bit level where they are
+//! brighter than 5 % of full light, and by under two on its darkest faces. Its appearing
+//! and its going out (below 1/255, core/bar_lights.hpp) are always drawn.
+inline constexpr float kStillGlow = 1.0f / 512;
 
 //! What one frame shows over the cached instruments, as far as it decides pixels.
 struct FrameLook {
   int width = 0, height = 0;
   bool instruments = true;  //!< over the cached instruments (else a clear alone)
   bool mallet = false;
+  Vec2 mallet_centre;         //!< the head's centre, world metres (as FrameState has it)
   glm::dvec2 mallet_px{0.0};  //!< the head's centre on the image, pixels
   PixelRect mallet_rect;      //!< the head and the shadow it casts
   std::array<BarLight, 2> lights{};
@@ -51,19 +58,26 @@ PixelRect overlay_rect(const std::vector<OverlayVertex>& vertices, int width, in
 //! size or what it is drawn over changed.
 PixelRect changed_between(const FrameLook& before, const FrameLook& after);
 
+//! `next` with what moved less than a step since `drawn` (kStillMalletPx, kStillGlow) put
+//! back as it was drawn: what a kept image goes on showing.
+FrameLook settled(const FrameLook& drawn, FrameLook next);
+
 class FrameDamage {
  public:
   //! How many frames back an image's content can be brought up to date from; an image
   //! older than that (or of unknown content) is drawn whole. Swapchains hold 2 to 4.
   static constexpr int kHistory = 8;
 
-  //! Whether the frame `next` would differ from the last one committed (true before the
-  //! first, and after forget()).
+  //! Whether the frame `next` would differ from the last one committed, once settled (true
+  //! before the first, and after forget()).
   bool changes(const FrameLook& next) const;
   //! `next` is about to be drawn into an image that holds the frame committed `age` frames
   //! before it (1: the last one; 0: unknown content). Returns the pixels to draw: every
-  //! change since that frame, or the whole image.
+  //! change since that frame, or the whole image. A kept image (age > 0) is drawn with
+  //! `next` settled against the last frame (drawn()); a whole one exactly as `next`.
   PixelRect commit(FrameLook next, int age);
+  //! The frame last committed, as it is drawn.
+  const FrameLook& drawn() const { return *last_; }
   //! Nothing known of the images any more (new attachments, a new background): the next
   //! frame changes everything.
   void forget();

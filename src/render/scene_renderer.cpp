@@ -562,6 +562,7 @@ FrameLook SceneRenderer::look_of(const FrameState& state, VkExtent2D extent) con
   if (extent.width != attachment_extent_.width || extent.height != attachment_extent_.height) return look;
   look.mallet = state.draw_mallet;
   if (state.draw_mallet) {
+    look.mallet_centre = state.mallet_centre;
     const glm::dvec3 c{state.mallet_centre.x, state.mallet_centre.y, 0.0};
     look.mallet_px = project_to_screen(view_proj_, c) * glm::dvec2(look.width, look.height);
     // The head as it is drawn: its model's box, placed and seen as record() draws it.
@@ -748,11 +749,11 @@ void SceneRenderer::record_cached_light(VkCommandBuffer cmd, const Slot& slot) {
              fragment, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& state,
+void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const FrameState& requested,
                            std::uint32_t slot_index) {
   const VkExtent2D extent = target.extent;
   ensure_attachments(extent);
-  if (state.overlay && !state.overlay->indices().empty()) ensure_atlas(state.overlay->atlas());
+  if (requested.overlay && !requested.overlay->indices().empty()) ensure_atlas(requested.overlay->atlas());
   Slot& slot = slots_.at(slot_index);
   if (background_scratch_slot_ == slot_index) {  // the frame that drew the background is done
     background_msaa_color_ = {};
@@ -760,22 +761,10 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     background_scratch_slot_.reset();
   }
 
-  FrameUniform u;
-  u.view_proj = view_proj_;
-  u.sphere_view_proj =
-      sphere_view_projection(scene_, static_cast<double>(extent.width) / extent.height, state.mallet_centre);
-  u.eye = glm::vec4(eye_position(scene_), 1.0f);
-  u.light_dir = glm::vec4(kToLight, kLightTanRadius);
-  const bool caster = settings_.shadow && state.draw_mallet;
-  u.sphere = glm::vec4(static_cast<float>(state.mallet_centre.x), static_cast<float>(state.mallet_centre.y), 0.0f,
-                       caster ? static_cast<float>(scene_.mallet_radius_m) : 0.0f);
-  u.light_color = glm::vec4(glm::vec3(kLightIntensity), kAmbient);
-  std::memcpy(slot.frame_uniform.mapped, &u, sizeof(u));
-
   const bool msaa = settings_.samples != VK_SAMPLE_COUNT_1_BIT;
   // Over the cached background when there is one and the frame can receive its copy.
   const bool over_background =
-      settings_.background_cache && state.draw_instruments && (msaa || target.copy_destination);
+      settings_.background_cache && requested.draw_instruments && (msaa || target.copy_destination);
   if (over_background && !background_ready_) {
     record_background(cmd, slot, slot_index);
     background_ready_ = true;
@@ -792,10 +781,30 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     age = static_cast<int>(frame - held->second);
   if (drawn_into_.size() > 16) drawn_into_.clear();  // images of swapchains long gone
   drawn_into_[target.image] = frame;
-  PixelRect area = damage_.commit(look_of(state, extent), age);
+  PixelRect area = damage_.commit(look_of(requested, extent), age);
   // Nothing changed (a window asked to show its picture again): one pixel drawn as before,
   // so that the frame's commands keep their shape.
   if (area.empty()) area = {0, 0, 1, 1};
+  // What the frame shows: on a kept image the head and the glows that changed less than a
+  // step stay as the image has them (FrameDamage::commit), so that no pixel of them differs
+  // from the rest of their drawing.
+  FrameState state = requested;
+  const FrameLook& drawn = damage_.drawn();
+  if (drawn.mallet) state.mallet_centre = drawn.mallet_centre;
+  state.bar_lights = drawn.lights;
+
+  FrameUniform u;
+  u.view_proj = view_proj_;
+  u.sphere_view_proj =
+      sphere_view_projection(scene_, static_cast<double>(extent.width) / extent.height, state.mallet_centre);
+  u.eye = glm::vec4(eye_position(scene_), 1.0f);
+  u.light_dir = glm::vec4(kToLight, kLightTanRadius);
+  const bool caster = settings_.shadow && state.draw_mallet;
+  u.sphere = glm::vec4(static_cast<float>(state.mallet_centre.x), static_cast<float>(state.mallet_centre.y), 0.0f,
+                       caster ? static_cast<float>(scene_.mallet_radius_m) : 0.0f);
+  u.light_color = glm::vec4(glm::vec3(kLightIntensity), kAmbient);
+  std::memcpy(slot.frame_uniform.mapped, &u, sizeof(u));
+
   drawn_area_ = area;
   const bool partial = age > 0;
   const VkRect2D area_rect{{area.x0, area.y0},

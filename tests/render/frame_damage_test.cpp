@@ -65,9 +65,41 @@ TEST(FrameDamage, AHeadDriftingUnderARasterStepStaysUntilItsDriftAddsUpToOne) {
   EXPECT_FALSE(d.changes(look(100 + step)));
   EXPECT_TRUE(d.commit(look(100 + step), 1).empty());
   EXPECT_TRUE(d.commit(look(100 + 2 * step), 1).empty());
+  EXPECT_EQ(d.drawn().mallet_px.x, 100);  // drawn where it was
   // Measured from where it was drawn, not from the frame before: the third small step moves it.
   EXPECT_TRUE(d.changes(look(100 + 3 * step)));
   EXPECT_FALSE(d.commit(look(100 + 3 * step), 1).empty());
+}
+
+TEST(FrameDamage, AFadingGlowIsRedrawnOnlyWhenItHasChangedByAStep) {
+  FrameDamage d;
+  FrameLook a = look(100);
+  a.lights = {BarLight{5, 0.5f}, BarLight{}};
+  a.light_rects = {PixelRect{500, 210, 530, 290}, PixelRect{}};
+  d.commit(a, 0);
+  FrameLook b = a;
+  b.lights[0].glow = 0.5f - 0.4f * kStillGlow;  // under a step: the image keeps its glow
+  EXPECT_FALSE(d.changes(b));
+  EXPECT_TRUE(d.commit(b, 1).empty());
+  EXPECT_EQ(d.drawn().lights[0].glow, 0.5f);  // what the renderer draws the bar with
+  FrameLook c = a;
+  c.lights[0].glow = 0.5f - 1.2f * kStillGlow;  // a step from the glow drawn: the bar again
+  EXPECT_TRUE(same(d.commit(c, 1), {500, 210, 530, 290}));
+  EXPECT_EQ(d.drawn().lights[0].glow, c.lights[0].glow);
+  // Going out is always drawn, however small the last glow was.
+  FrameLook dim = c;
+  dim.lights[0].glow = 0.004f;
+  d.commit(dim, 1);
+  FrameLook out = dim;
+  out.lights[0] = BarLight{};
+  out.light_rects[0] = PixelRect{};
+  EXPECT_TRUE(same(d.commit(out, 1), {500, 210, 530, 290}));
+  // A whole frame is drawn exactly, even a change under a step.
+  FrameLook e = dim;
+  d.commit(e, 0);
+  e.lights[0].glow = 0.004f - 0.1f * kStillGlow;
+  d.commit(e, 0);
+  EXPECT_EQ(d.drawn().lights[0].glow, e.lights[0].glow);
 }
 
 TEST(FrameDamage, ALightThatChangesChangesItsBarAlone) {
