@@ -62,9 +62,9 @@ void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
   now_ = std::max(now_, t);
 }
 
-void HeadlessLoop::present(const Impact& impact) {
+Strike HeadlessLoop::present(const Impact& impact) {
   advance(impact.t_ns);  // the audio before the stimulus's block is settled; its own block is not
-  route_.present(impact, impact.t_ns);
+  return route_.present(impact, impact.t_ns);
 }
 
 void HeadlessLoop::advance(Nanos t) {

@@ -41,7 +41,8 @@ class HeadlessLoop {
   //! A strike made by the program, not the hand (a study stimulus) at impact.t_ns >= now():
   //! the audio up to it is rendered first, then both channels and the bounce start as for a
   //! visitor's strike.
-  void present(const Impact& impact);
+  //! A program-made strike (a study's stimulus) through the route: when it is heard and shown.
+  Strike present(const Impact& impact);
   //! Moves the clock to t: the ghost plays if idle, and the audio is rendered up to t.
   void advance(Nanos t);
   //! Renders audio up to t with no input at all (the tail after the last stroke).

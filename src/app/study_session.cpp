@@ -92,7 +92,8 @@ StudyPlan plan_study(const StudyOptions& o) {
   p.schedule = balanced_schedule(p.protocol, o.participant);
   p.csv = o.out ? *o.out : fs::path(p.protocol.output);
   p.existing = read_results(p.csv);
-  if (p.existing.has_header && p.existing.header != kResultsHeader)
+  if (p.existing.has_header && p.existing.header != kResultsHeader &&
+      p.existing.header != kResultsHeaderWithoutTiming)
     throw FileError(p.csv.string(), 1, 0,
                     "its columns are not the ones this version writes; use a new --out (expected " +
                         std::string(kResultsHeader) + ")");
@@ -110,9 +111,15 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   if (!stage.wait_until(timeline.onset(0))) return std::nullopt;
   stage.take_actuator_peak();
   double visual_peak = 0;
+  // The cues' onsets from the strike route, relative to each tap's contact: the latest of
+  // the trial's taps (a trial is as late as its latest cue).
+  Nanos actuator_onset = 0, picture_onset = 0;
   const std::vector<int> shown = shown_stimuli(protocol, trial);
   for (int k = 0; k < stimuli; ++k) {
-    stage.present(stimulus_impact(scene, protocol, shown[static_cast<std::size_t>(k)], trial.condition, timeline.onset(k)));
+    const Strike strike = stage.present(
+        stimulus_impact(scene, protocol, shown[static_cast<std::size_t>(k)], trial.condition, timeline.onset(k)));
+    actuator_onset = std::max(actuator_onset, strike.heard_ns - strike.impact.t_ns);
+    picture_onset = std::max(picture_onset, strike.shown_ns - strike.impact.t_ns);
     const Nanos end = timeline.onset(k) + protocol.timing.stimulus;
     for (Nanos probe = timeline.onset(k); probe < end; probe += kVisualProbe)
       visual_peak = std::max(visual_peak, std::fabs(stage.visual_offset_m(probe)));
@@ -143,6 +150,8 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   row.session = session;
   row.visual_peak_m = visual_peak;
   row.actuator_peak = actuator_peak;
+  row.actuator_onset_ms = static_cast<double>(actuator_onset) / 1e6;
+  row.picture_onset_ms = static_cast<double>(picture_onset) / 1e6;
   next_start = *timeline.next_start();
   return row;
 }
@@ -228,7 +237,7 @@ class HeadlessStage final : public StudyStage {
     loop_.advance(std::max(t, loop_.now()));
     return true;
   }
-  void present(const Impact& impact) override { loop_.present(impact); }
+  Strike present(const Impact& impact) override { return loop_.present(impact); }
   double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
   double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
   void finish() {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "app/strike_route.hpp"
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
 #include "core/study/balanced_schedule.hpp"
@@ -76,8 +77,9 @@ class StudyStage {
   //! Lets time run up to t (headless: renders up to it; windowed: draws frames until
   //! then). False: the participant asked to stop.
   virtual bool wait_until(Nanos t) = 0;
-  //! A stimulus tap (impact.t_ns = now()): the actuator, the sound and the bounce.
-  virtual void present(const Impact& impact) = 0;
+  //! A stimulus tap (impact.t_ns = now()): the actuator, the sound and the bounce, through
+  //! the strike route, which says when they are heard and shown.
+  virtual Strike present(const Impact& impact) = 0;
   //! Eq. 1's visual displacement of the latest tap at t (metres).
   virtual double visual_offset_m(Nanos t) const = 0;
   //! The largest |actuator sample| of the stimuli since the last call.

@@ -93,18 +93,19 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     }
     return false;
   }
-  void present(const Impact& impact) override {
+  Strike present(const Impact& impact) override {
     ++tap_;
     char tap[64];
     std::snprintf(tap, sizeof tap, tr("Tap %d"), tap_);
     banner_ = plan_.stimuli_per_trial() > 1 ? tap : tr("Tap");
-    route_->present(impact, monotonic_now());
+    const Strike strike = route_->present(impact, monotonic_now());
     // The actuator's signal, rendered offline by the same engine on its own clock: the
     // device's output is not read back.
     Impact m = impact;
     m.t_ns = meter_.now();
     meter_.present(m);
     meter_.advance(m.t_ns + plan_.protocol.timing.stimulus);
+    return strike;
   }
   double visual_offset_m(Nanos t) const override { return route_->view().vibration.offset_m(t); }
   double take_actuator_peak() override { return std::exchange(peak_, 0.0); }

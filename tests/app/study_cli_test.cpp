@@ -52,6 +52,12 @@ TEST(StudyCli, RunsTheExampleProtocolHeadlessWithTheSimulatedObserver) {
     EXPECT_EQ(row.visual_peak_m == 0.0, !visual);
     EXPECT_EQ(row.actuator_peak > 1e-3, tactile) << row.trial << " " << row.condition << " " << row.actuator_peak;
     EXPECT_EQ(row.actuator_peak == 0.0, !tactile);
+    // The strike route's cue times, after the contact: heard on it ([timing] align = asap),
+    // shown by the simulated 60 Hz display's first frame that has the bounce (2–3 periods).
+    EXPECT_GE(row.actuator_onset_ms, 0.0) << row.trial;
+    EXPECT_LT(row.actuator_onset_ms, 1.0) << row.trial;
+    EXPECT_GE(row.picture_onset_ms, 33.0) << row.trial;
+    EXPECT_LE(row.picture_onset_ms, 50.1) << row.trial;
   }
   EXPECT_EQ(per_condition, (std::map<std::string, int>{{"both", 8}, {"none", 8}, {"tactile_only", 8}, {"visual_only", 8}}));
 

@@ -46,9 +46,17 @@ class FakeStage final : public StudyStage {
     t = std::max(t, until);
     return true;
   }
-  void present(const Impact& impact) override {
+  //! Each tap heard 2 ms and shown 20 ms after its contact, the second 5 ms later still.
+  Strike present(const Impact& impact) override {
     EXPECT_EQ(impact.t_ns, t) << "a tap is presented when it is due";
     taps.push_back(impact);
+    const Nanos later = taps.size() % 2 == 0 ? 5 * kMs : 0;
+    Strike s;
+    s.impact = impact;
+    s.heard_ns = impact.t_ns + 2 * kMs + later;
+    s.shown_ns = impact.t_ns + 20 * kMs + later;
+    s.stimulus = true;
+    return s;
   }
   double visual_offset_m(Nanos) const override { return taps.empty() ? 0.0 : 0.002; }
   double take_actuator_peak() override { return std::exchange(peak, 0.0) + (taps.empty() ? 0.0 : 0.25); }
@@ -95,6 +103,9 @@ TEST(StudySession, OneTrialPresentsBothTapsThenTakesTheAnswerAsARow) {
   EXPECT_DOUBLE_EQ(row->response_time_ms, 640.0);  // from the end of the second tap
   EXPECT_DOUBLE_EQ(row->visual_peak_m, 0.002);
   EXPECT_DOUBLE_EQ(row->actuator_peak, 0.25);
+  // The cues' onsets the strike route gave, after each tap's contact: the trial's latest.
+  EXPECT_DOUBLE_EQ(row->actuator_onset_ms, 7.0);
+  EXPECT_DOUBLE_EQ(row->picture_onset_ms, 25.0);
   EXPECT_EQ(next, start + 600 * kMs + 640 * kMs + 100 * kMs);
 }
 

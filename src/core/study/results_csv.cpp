@@ -39,7 +39,7 @@ struct Columns {
   int participant = kMissing, trial = kMissing, condition = kMissing, stimuli = kMissing, answer = kMissing,
       correct = kMissing, response_time_ms = kMissing, protocol = kMissing, task = kMissing,
       difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
-      actuator_peak = kMissing;
+      actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing;
 };
 
 Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
@@ -49,7 +49,8 @@ Columns find_columns(const std::vector<std::string>& header, const std::string& 
       {"stimuli", &c.stimuli},         {"answer", &c.answer},     {"correct", &c.correct},
       {"response_time_ms", &c.response_time_ms}, {"protocol", &c.protocol}, {"task", &c.task},
       {"difference_pct", &c.difference_pct}, {"source", &c.source}, {"session", &c.session},
-      {"visual_peak_m", &c.visual_peak_m}, {"actuator_peak", &c.actuator_peak}};
+      {"visual_peak_m", &c.visual_peak_m}, {"actuator_peak", &c.actuator_peak},
+      {"actuator_onset_ms", &c.actuator_onset_ms}, {"picture_onset_ms", &c.picture_onset_ms}};
   for (const auto& [name, index] : names)
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) *index = static_cast<int>(i);
@@ -93,6 +94,8 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
   r.session = field(c.session);
   r.visual_peak_m = number(field(c.visual_peak_m), file, line, "visual_peak_m", true);
   r.actuator_peak = number(field(c.actuator_peak), file, line, "actuator_peak", true);
+  r.actuator_onset_ms = number(field(c.actuator_onset_ms), file, line, "actuator_onset_ms", true);
+  r.picture_onset_ms = number(field(c.picture_onset_ms), file, line, "picture_onset_ms", true);
   return r;
 }
 
@@ -102,11 +105,12 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
 
 }  // namespace
 
-std::string format_row(const ResultRow& r) {
+std::string format_row(const ResultRow& r, bool timing) {
   std::string out = r.participant + ',' + std::to_string(r.trial) + ',' + r.condition + ',' + r.stimuli + ',' +
                     r.answer + ',' + (r.correct ? "1" : "0") + ',' + g(r.response_time_ms, "%.3f") + ',' +
                     r.protocol + ',' + r.task + ',' + g(r.difference_pct, "%.6g") + ',' + r.source + ',' +
                     r.session + ',' + g(r.visual_peak_m, "%.6g") + ',' + g(r.actuator_peak, "%.6g");
+  if (timing) out += ',' + g(r.actuator_onset_ms, "%.3f") + ',' + g(r.picture_onset_ms, "%.3f");
   out += '\n';
   return out;
 }
@@ -161,6 +165,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsFil
   const auto keep = existing.has_header ? static_cast<off_t>(existing.complete_bytes) : 0;
   if (::ftruncate(fd_, keep) != 0) fail_io(path, "cannot cut off the incomplete last line", errno);
   if (::lseek(fd_, 0, SEEK_END) < 0) fail_io(path, "cannot seek", errno);
+  timing_ = !existing.has_header || existing.header != kResultsHeaderWithoutTiming;
   if (!existing.has_header) {
     write_durably(std::string(kResultsHeader) + "\n");
     // A new file: its folder entry must reach the disk too.
@@ -188,6 +193,6 @@ void ResultsWriter::write_durably(const std::string& bytes) {
   if (::fsync(fd_) != 0) fail_io(path_, "fsync failed", errno);
 }
 
-void ResultsWriter::append(const ResultRow& row) { write_durably(format_row(row)); }
+void ResultsWriter::append(const ResultRow& row) { write_durably(format_row(row, timing_)); }
 
 }  // namespace mallet::study

@@ -4,20 +4,30 @@
 // or a power cut loses at most the trial in progress. Columns:
 //   participant,trial,condition,stimuli,answer,correct,response_time_ms   (the required ones)
 //   ,protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak  (extras)
+//   ,actuator_onset_ms,picture_onset_ms                                      (timing)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
-// output): the largest visual displacement in metres and the largest actuator sample.
+// output): the largest visual displacement in metres and the largest actuator sample; the
+// two onsets when the strike route had the cues reach the participant, in ms after the
+// tap's contact (the latest of the trial's taps): the actuator and the note (heard), the
+// first frame that shows the bounce (shown). A file begun before the timing columns keeps
+// its header: its rows are appended without them.
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace mallet::study {
 
-inline constexpr const char* kResultsHeader =
+inline constexpr const char* kResultsHeaderWithoutTiming =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak";
+inline constexpr const char* kResultsHeader =
+    "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
+    "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
+    "actuator_onset_ms,picture_onset_ms";
 
 struct ResultRow {
   std::string participant;
@@ -34,10 +44,12 @@ struct ResultRow {
   std::string session;
   double visual_peak_m = 0;
   double actuator_peak = 0;
+  double actuator_onset_ms = std::numeric_limits<double>::quiet_NaN();  //!< NaN: not recorded (an older file)
+  double picture_onset_ms = std::numeric_limits<double>::quiet_NaN();
 };
 
-//! The row as written, ending in '\n'.
-std::string format_row(const ResultRow& row);
+//! The row as written, ending in '\n'; `timing`: with the two onset columns (kResultsHeader).
+std::string format_row(const ResultRow& row, bool timing = true);
 
 struct ResultsFile {
   bool exists = false;
@@ -72,6 +84,7 @@ class ResultsWriter {
   void write_durably(const std::string& bytes);
   std::filesystem::path path_;
   int fd_ = -1;
+  bool timing_ = true;  //!< the file's header has the onset columns
 };
 
 }  // namespace mallet::study

@@ -46,6 +46,8 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,\n");
+  EXPECT_EQ(format_row(row(3, true), false),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
   naming.difference_pct = std::nan("");
@@ -131,9 +133,40 @@ TEST(ResultsCsv, AHalfWrittenHeaderStartsTheFileAgain) {
   EXPECT_EQ(slurp(csv), std::string(kResultsHeader) + "\n");
 }
 
+TEST(ResultsCsv, TheCuesOnsetsRoundTripAndAFileFromBeforeThemResumesWithoutThem) {
+  const fs::path dir = test::scratch_dir();
+  ResultRow timed = row(1, true);
+  timed.actuator_onset_ms = 1.5;
+  timed.picture_onset_ms = 34.25;
+  {
+    ResultsWriter w(dir / "new.csv", read_results(dir / "new.csv"));
+    w.append(timed);
+  }
+  const ResultsFile now = read_results(dir / "new.csv");
+  EXPECT_EQ(now.header, kResultsHeader);
+  ASSERT_EQ(now.rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(now.rows[0].actuator_onset_ms, 1.5);
+  EXPECT_DOUBLE_EQ(now.rows[0].picture_onset_ms, 34.25);
+  // A file begun by an older version: its header stays, and a resumed session appends its
+  // rows in the same columns (the onsets read back as not recorded).
+  {
+    std::ofstream old(dir / "old.csv");
+    old << kResultsHeaderWithoutTiming << "\n" << format_row(row(1, true), false);
+  }
+  {
+    ResultsWriter w(dir / "old.csv", read_results(dir / "old.csv"));
+    w.append(timed);
+  }
+  const ResultsFile resumed = read_results(dir / "old.csv");
+  EXPECT_EQ(resumed.header, kResultsHeaderWithoutTiming);
+  ASSERT_EQ(resumed.rows.size(), 2u);
+  EXPECT_TRUE(std::isnan(resumed.rows[1].actuator_onset_ms));
+  EXPECT_EQ(std::string(kResultsHeader).rfind(kResultsHeaderWithoutTiming, 0), 0u) << "the new columns come last";
+}
+
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
