@@ -180,7 +180,11 @@ void register_study(CLI::App& app) {
     bool validation_failed = false;
     const StudyRunResult r = windowed ? run_study_window(*o, *window, validation_failed) : run_study(*o);
     for (const std::string& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::printf("participant %s: %d trials in the schedule\n", o->participant.c_str(), r.total);
+    if (r.procedure == "constant")
+      std::printf("participant %s: %d trials in the schedule\n", o->participant.c_str(), r.total);
+    else
+      std::printf("participant %s: up to %d trials (procedure = %s: each condition's track stops by its own rule)\n",
+                  o->participant.c_str(), r.total, r.procedure.c_str());
     if (r.already_recorded)
       std::printf("resumed: %d trial(s) already in %s\n", r.already_recorded, r.csv.c_str());
     if (r.answered && r.simulated)

@@ -133,7 +133,34 @@ void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) 
   write_file(dir / "response_times.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
 }
 
-constexpr const char* kPlots[] = {"psychometric", "thresholds", "response_times"};
+//! The adaptive tracks: each track's tested difference against its trial, per condition.
+bool tracks_plot(const StudyReport& r, const std::filesystem::path& dir) {
+  std::ostringstream dat, gp;
+  dat << "# per condition (blocks), per track (separated by a blank line): track_trial difference_pct\n";
+  gp << kHeader << "set output 'tracks.png'\n"
+     << "set title 'Adaptive tracks: the difference each trial tested'\n"
+     << "set xlabel \"trial in the condition's track\"\nset ylabel 'difference in B (%)'\n";
+  std::string plot = "plot ";
+  int block = 0;
+  for (const study::ConditionSummary& c : r.pooled.conditions) {
+    if (c.tracks.empty()) continue;
+    for (const std::vector<double>& track : c.tracks) {
+      for (std::size_t i = 0; i < track.size(); ++i) dat << i + 1 << ' ' << track[i] << '\n';
+      dat << '\n';
+    }
+    dat << '\n';
+    plot += (block ? ", \\\n     " : "") + std::string("'tracks.dat' index ") + std::to_string(block) +
+            " using 1:2 with steps lw 1.5 lc " + std::to_string(block + 1) + " title '" + c.condition + " (" +
+            c.procedure + ")'";
+    ++block;
+  }
+  if (block == 0) return false;
+  write_file(dir / "tracks.dat", dat.str());
+  write_file(dir / "tracks.gp", gp.str() + plot + "\n");
+  return true;
+}
+
+constexpr const char* kPlots[] = {"psychometric", "thresholds", "response_times", "tracks"};
 
 }  // namespace
 
@@ -144,6 +171,7 @@ std::vector<std::string> write_study_plots(const StudyReport& report, const std:
   psychometric_plot(report, dir);
   thresholds_plot(report, dir);
   response_time_plot(report, dir);
+  const bool tracks = tracks_plot(report, dir);
   std::vector<std::string> lines;
   if (!have_gnuplot()) {
     lines.push_back("study summary: gnuplot not found: plots skipped (apt-get install gnuplot-nox); their .dat and "
@@ -151,6 +179,7 @@ std::vector<std::string> write_study_plots(const StudyReport& report, const std:
     return lines;
   }
   for (const char* p : kPlots) {
+    if (std::string_view(p) == "tracks" && !tracks) continue;  // no adaptive rows
     const std::string script = std::string(p) + ".gp";
     lines.push_back(run_gnuplot(dir, script) ? "wrote " + (dir / (std::string(p) + ".png")).string()
                                              : "study summary: gnuplot failed on " + (dir / script).string());
@@ -179,6 +208,9 @@ void write_study_report(const StudyReport& r, const std::filesystem::path& file,
                                                                                : file.parent_path());
     md << "![Pooled psychometric functions](" << (rel / "psychometric.png").generic_string() << ")\n\n";
     md << "![Response times](" << (rel / "response_times.png").generic_string() << ")\n\n";
+    bool adaptive = false;
+    for (const study::ConditionSummary& c : r.pooled.conditions) adaptive = adaptive || !c.tracks.empty();
+    if (adaptive) md << "![Adaptive tracks](" << (rel / "tracks.png").generic_string() << ")\n\n";
     if (!r.participants_text.empty())
       md << "## Each participant\n\n![Thresholds](" << (rel / "thresholds.png").generic_string() << ")\n\n";
   }

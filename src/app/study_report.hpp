@@ -6,8 +6,8 @@
 //                      point sized by its trials), the fitted curve, and the threshold's 95 %
 //                      interval at 75 % correct;
 //   thresholds.png     each participant's threshold per condition with its 95 % interval;
-//   response_times.png per condition, the distribution of response times (50 ms bins).
-// Staircase tracks join them when the protocols have staircases.
+//   response_times.png per condition, the distribution of response times (50 ms bins);
+//   tracks.png         with adaptive rows: each track's tested difference, trial by trial.
 #include <filesystem>
 #include <string>
 #include <utility>

@@ -71,7 +71,46 @@ std::set<int> recorded_trials(const ResultsFile& file, const fs::path& csv, cons
   return done;
 }
 
+//! An adaptive protocol's rows of this participant, replayed into its tracks: each must be
+//! the trial the tracks give next, in trial order from 1.
+AdaptiveSchedule replay_rows(const ResultsFile& file, const fs::path& csv, const StudyProtocol& protocol,
+                             const std::string& participant) {
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < file.rows.size(); ++i)
+    if (file.rows[i].participant == participant) mine.push_back(i);
+  std::stable_sort(mine.begin(), mine.end(),
+                   [&](std::size_t a, std::size_t b) { return file.rows[a].trial < file.rows[b].trial; });
+  AdaptiveSchedule schedule(protocol, participant);
+  for (std::size_t i : mine) {
+    const ResultRow& r = file.rows[i];
+    const std::uint32_t line = file.lines[i];
+    const std::string trial_text = "trial " + std::to_string(r.trial) + " of " + participant;
+    if (r.trial != schedule.trials() + 1)
+      throw FileError(csv.string(), line, 0,
+                      trial_text + (r.trial <= schedule.trials() ? " is recorded twice"
+                                                                 : " comes after a missing trial " +
+                                                                       std::to_string(schedule.trials() + 1)));
+    const std::optional<ScheduledTrial> expected = schedule.next();
+    if (!expected)
+      throw FileError(csv.string(), line, 0,
+                      trial_text + ", but " + protocol.file + "'s tracks were done before it (another protocol? "
+                                   "use a new --out)");
+    const std::string condition(condition_name(expected->condition));
+    const std::string stimuli = stimuli_text(protocol, *expected);
+    if (r.condition != condition || r.stimuli != stimuli || (!r.protocol.empty() && r.protocol != protocol.name))
+      throw FileError(csv.string(), line, 0,
+                      trial_text + " is " + r.condition + " " + r.stimuli + " here, but " + protocol.file +
+                          "'s tracks give " + condition + " " + stimuli + " (protocol changed? use a new --out)");
+    schedule.record(*expected, r.correct);
+  }
+  return schedule;
+}
+
 }  // namespace
+
+AdaptiveSchedule replay_adaptive(const StudyPlan& plan) {
+  return replay_rows(plan.existing, plan.csv, plan.protocol, plan.participant);
+}
 
 int StudyPlan::stimuli_per_trial() const { return protocol.task == StudyTask::two_afc_harder ? 2 : 1; }
 
@@ -97,7 +136,16 @@ StudyPlan plan_study(const StudyOptions& o) {
     throw FileError(p.csv.string(), 1, 0,
                     "its columns are not the ones this version writes; use a new --out (expected " +
                         std::string(kResultsHeader) + ")");
-  p.done = recorded_trials(p.existing, p.csv, p.protocol, o.participant, p.schedule);
+  if (p.protocol.procedure == StudyProcedure::constant) {
+    p.done = recorded_trials(p.existing, p.csv, p.protocol, o.participant, p.schedule);
+    p.total_trials = static_cast<int>(p.schedule.size());
+    p.finished = p.done.size() == p.schedule.size();
+  } else {
+    const AdaptiveSchedule replayed = replay_rows(p.existing, p.csv, p.protocol, o.participant);
+    for (int n = 1; n <= replayed.trials(); ++n) p.done.insert(n);
+    p.total_trials = replayed.max_trials();
+    p.finished = !replayed.next();
+  }
   return p;
 }
 
@@ -160,24 +208,46 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
                            const std::function<void(int)>& after_row) {
   StudyRunResult result;
   result.csv = plan.csv;
-  result.total = static_cast<int>(plan.schedule.size());
+  result.total = plan.total_trials;
+  result.procedure = std::string(procedure_name(plan.protocol.procedure));
   result.warnings = plan.existing.warnings;
   result.already_recorded = static_cast<int>(plan.done.size());
-  if (result.already_recorded == result.total) return result;
+  if (plan.finished) return result;
+  // The trials still to run: the schedule's not yet recorded, or what the adaptive tracks
+  // give, one at a time, after replaying the recorded rows.
+  std::optional<AdaptiveSchedule> adaptive;
+  if (plan.protocol.procedure != StudyProcedure::constant) adaptive.emplace(replay_adaptive(plan));
+  std::size_t next_index = 0;
+  auto next_trial = [&]() -> std::optional<ScheduledTrial> {
+    if (adaptive) return adaptive->next();
+    while (next_index < plan.schedule.size() && plan.done.contains(plan.schedule[next_index].number)) ++next_index;
+    if (next_index == plan.schedule.size()) return std::nullopt;
+    return plan.schedule[next_index++];
+  };
   ResultsWriter writer(plan.csv, plan.existing);
   const std::string session = utc_now();
   Nanos t = stage.now();
-  for (const ScheduledTrial& trial : plan.schedule) {
-    if (plan.done.contains(trial.number)) continue;
+  const std::string procedure(procedure_name(plan.protocol.procedure));
+  while (const std::optional<ScheduledTrial> next_one = next_trial()) {
+    const ScheduledTrial& trial = *next_one;
     if (!answers.has_more()) {
       result.stopped = true;
       break;
     }
     Nanos next = t;
-    const std::optional<ResultRow> row = run_trial(plan, scene, trial, stage, answers, t, session, next);
+    std::optional<ResultRow> row = run_trial(plan, scene, trial, stage, answers, t, session, next);
     if (!row) {
       result.stopped = true;
       break;
+    }
+    row->procedure = procedure;
+    if (adaptive) {  // the track's state after this answer
+      adaptive->record(trial, row->correct);
+      const TrackState s = adaptive->state(trial.condition);
+      row->track_trial = s.trials;
+      row->reversals = s.reversals;
+      if (s.estimate_pct) row->estimate_pct = *s.estimate_pct;
+      if (s.estimate_sd_pct) row->estimate_sd_pct = *s.estimate_sd_pct;
     }
     writer.append(*row);
     ++result.answered;

@@ -21,6 +21,7 @@
 #include "app/strike_route.hpp"
 #include "core/app_config.hpp"
 #include "core/scene.hpp"
+#include "core/study/adaptive_schedule.hpp"
 #include "core/study/balanced_schedule.hpp"
 #include "core/study/results_csv.hpp"
 #include "core/study/study_protocol.hpp"
@@ -41,7 +42,8 @@ struct StudyOptions {
 
 struct StudyRunResult {
   std::filesystem::path csv;
-  int total = 0;             //!< trials in the participant's schedule
+  int total = 0;             //!< trials in the participant's schedule (adaptive: at most)
+  std::string procedure = "constant";  //!< the protocol's: constant, staircase or quest
   int already_recorded = 0;  //!< found in the CSV at start
   int answered = 0;          //!< in this run
   int correct = 0;           //!< in this run
@@ -63,8 +65,16 @@ struct StudyPlan {
   study::ResultsFile existing;
   std::set<int> done;  //!< trial numbers already recorded for this participant
   std::string participant;
+  //! The schedule's trials (constant), or the most an adaptive protocol's tracks may take.
+  int total_trials = 0;
+  //! Nothing left to run: every trial recorded, or every adaptive track done.
+  bool finished = false;
   int stimuli_per_trial() const;
 };
+
+//! An adaptive protocol's tracks after this participant's recorded rows, replayed in trial
+//! order (checked by plan_study: each row is the trial the tracks gave).
+study::AdaptiveSchedule replay_adaptive(const StudyPlan& plan);
 
 //! Bad protocol, scene, config or CSV → FileError (exit 2).
 StudyPlan plan_study(const StudyOptions& options);

@@ -114,14 +114,15 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     tap_ = 0;
     banner_.clear();
     char status[96];
-    std::snprintf(status, sizeof status, tr("Trial %d of %zu"), trial.number, plan_.schedule.size());
+    std::snprintf(status, sizeof status, tr("Trial %d of %zu"), trial.number,
+                  static_cast<std::size_t>(plan_.total_trials));
     status_ = status;
   }
 
   // --- AnswerSource
   std::optional<TrialAnswer> answer(const ScheduledTrial& trial, Nanos opens) override {
     banner_ = prompt_;
-    std::fprintf(stderr, "<6>trial %d of %zu: %s\n", trial.number, plan_.schedule.size(), prompt_.c_str());
+    std::fprintf(stderr, "<6>trial %d of %d: %s\n", trial.number, plan_.total_trials, prompt_.c_str());
     // A key pressed before the answer window opened is not an answer.
     std::erase_if(pressed_, [opens](const Press& p) { return p.t < opens; });
     for (;;) {
@@ -218,10 +219,12 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
                                 bool& validation_failed) {
   validation_failed = false;
   const StudyPlan plan = plan_study(options);
-  if (plan.done.size() == plan.schedule.size()) {  // nothing left: no window
+  if (plan.finished) {  // nothing left: no window
     StudyRunResult r;
     r.csv = plan.csv;
-    r.total = r.already_recorded = static_cast<int>(plan.schedule.size());
+    r.total = plan.total_trials;
+    r.procedure = std::string(study::procedure_name(plan.protocol.procedure));
+    r.already_recorded = static_cast<int>(plan.done.size());
     r.warnings = plan.existing.warnings;
     return r;
   }

@@ -1,5 +1,6 @@
 // `mallet study` end to end, as a researcher runs it: a whole short protocol headless; a
 // crash mid-session and its resumption; the summary; bad input exits 2 with one line.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -252,6 +253,57 @@ TEST(StudyCli, TheSummaryGivesIntervalsPlotsAndAReport) {
   const test::CliResult few = test::run_mallet(base + " --bootstrap 5");
   EXPECT_EQ(few.status, 2) << few.output;
   EXPECT_NE(few.output.find("--bootstrap"), std::string::npos) << few.output;
+}
+
+TEST(StudyCli, AStaircaseRunsHeadlessResumesAfterACrashAndIsSummarised) {
+  // The shipped staircase protocol with the simulated observer: interleaved tracks, rows
+  // recording each track's state; killed after 20 rows and run again, it ends with the rows
+  // an uninterrupted run writes (the same trials, answers and states).
+  const fs::path dir = test::scratch_dir();
+  const std::string protocol = (test::config_dir() / "study" / "staircase.toml").string();
+  const std::string base = "study --headless --protocol " + protocol + " --participant P01 --out ";
+  const test::CliResult whole = test::run_mallet(base + (dir / "whole.csv").string());
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  EXPECT_NE(whole.output.find("participant P01: up to 240 trials (procedure = staircase"), std::string::npos)
+      << whole.output;
+  EXPECT_EQ(test::run_mallet(base + (dir / "crash.csv").string() + " --stop-after 20").status, 3);
+  EXPECT_EQ(rows_of(dir / "crash.csv").size(), 20u);
+  const test::CliResult resumed = test::run_mallet(base + (dir / "crash.csv").string());
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resumed: 20 trial(s) already in"), std::string::npos) << resumed.output;
+  const std::vector<ResultRow> a = rows_of(dir / "whole.csv"), b = rows_of(dir / "crash.csv");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 60u);
+  std::map<std::string, double> last_estimate;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].condition, b[i].condition) << i;
+    EXPECT_EQ(a[i].stimuli, b[i].stimuli) << i;
+    EXPECT_EQ(a[i].answer, b[i].answer) << i;
+    EXPECT_EQ(a[i].procedure, "staircase");
+    EXPECT_EQ(a[i].track_trial, b[i].track_trial) << i;
+    EXPECT_EQ(a[i].reversals, b[i].reversals) << i;
+    EXPECT_EQ(std::isnan(a[i].estimate_pct), std::isnan(b[i].estimate_pct)) << i;
+    if (!std::isnan(a[i].estimate_pct)) {
+      EXPECT_EQ(a[i].estimate_pct, b[i].estimate_pct) << i;
+      last_estimate[a[i].condition] = a[i].estimate_pct;
+    }
+  }
+  // The tracks settle in the observer's order of thresholds (both 8 %, visual_only 20 %).
+  ASSERT_EQ(last_estimate.size(), 3u);
+  EXPECT_LT(last_estimate["both"], last_estimate["visual_only"]);
+  // The same protocol again: nothing left to run.
+  const test::CliResult again = test::run_mallet(base + (dir / "whole.csv").string());
+  EXPECT_NE(again.output.find("answered 0 trial(s) in this run"), std::string::npos) << again.output;
+  // The summary reports each track's final estimate and plots the tracks.
+  const test::CliResult summary = test::run_mallet("study summary --bootstrap 0 --results " +
+                                                   (dir / "whole.csv").string() + " --plots " + (dir / "plots").string());
+  ASSERT_EQ(summary.status, 0) << summary.output;
+  EXPECT_NE(summary.output.find("adaptive tracks: the estimate at each participant's last trial"), std::string::npos)
+      << summary.output;
+  char both[64];
+  std::snprintf(both, sizeof both, "%-14s %-10s %6d %13.2f", "both", "staircase", 1, last_estimate["both"]);
+  EXPECT_NE(summary.output.find(both), std::string::npos) << both << "\n" << summary.output;
+  EXPECT_TRUE(fs::exists(dir / "plots" / "tracks.png")) << summary.output;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "core/study/protocol_loader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "core/config/toml_reader.hpp"
@@ -94,6 +96,81 @@ StimulusPair read_pair(TableReader t, const std::vector<Stimulus>& stimuli) {
   return p;
 }
 
+//! A difference (%) an adaptive track may test: on the grid of generated stimuli.
+double grid_pct(TableReader& t, std::string_view key, double fallback, double lo, double hi) {
+  double v = fallback;
+  t.read(key, v, lo, hi);
+  const double steps = v / kAdaptiveGridPct;
+  if (std::abs(steps - std::round(steps)) > 1e-9)
+    t.fail(key, "must be a multiple of 0.5 % (the grid of stimuli an adaptive track tests)");
+  return v;
+}
+
+void read_staircase(TableReader t, AdaptiveProtocol& a) {
+  StaircaseRule& r = a.staircase;
+  t.read("down", r.down, 1, 4);
+  a.min_pct = grid_pct(t, "min_pct", a.min_pct, kAdaptiveGridPct, 100);
+  a.max_pct = grid_pct(t, "max_pct", a.max_pct, a.min_pct, 100);
+  r.start = grid_pct(t, "start_pct", std::clamp(r.start, a.min_pct, a.max_pct), a.min_pct, a.max_pct);
+  if (t.has("steps_pct")) {
+    r.steps = t.numbers("steps_pct");
+    if (r.steps.empty()) t.fail("steps_pct", "lists no step");
+    for (double step : r.steps) {
+      const double k = step / kAdaptiveGridPct;
+      if (!(step > 0) || std::abs(k - std::round(k)) > 1e-9)
+        t.fail("steps_pct", "each step must be a positive multiple of 0.5 % (the grid of stimuli)");
+    }
+  }
+  t.read("stop_reversals", r.stop_reversals, 1, 100);
+  t.read("threshold_reversals", r.threshold_reversals, 1, r.stop_reversals);
+  t.read("max_trials", r.max_trials, 1, 1000);
+  r.min = a.min_pct;
+  r.max = a.max_pct;
+  t.finish();
+}
+
+void read_quest(TableReader t, AdaptiveProtocol& a) {
+  const std::string shape = t.string_or("shape", "weibull");
+  if (shape == "weibull") a.quest_model.shape = QuestShape::weibull;
+  else if (shape == "logistic") a.quest_model.shape = QuestShape::logistic;
+  else t.fail("shape", "expected \"weibull\" or \"logistic\", got \"" + shape + "\"");
+  t.read("beta", a.quest_model.beta, 0.01, 20);
+  t.read("delta", a.quest_model.delta, 0, 0.2);
+  a.min_pct = grid_pct(t, "min_pct", a.min_pct, kAdaptiveGridPct, 100);
+  a.max_pct = grid_pct(t, "max_pct", a.max_pct, a.min_pct, 100);
+  a.quest_prior.mean = 20;
+  t.read("prior_mean_pct", a.quest_prior.mean, a.min_pct, a.max_pct);
+  t.read("prior_sd_pct", a.quest_prior.sd, 0.1, 100);
+  a.quest_prior.lo = a.min_pct;
+  a.quest_prior.hi = a.max_pct;
+  t.read("trials", a.quest_trials, 1, 1000);
+  t.finish();
+}
+
+//! The adaptive tracks' stimuli and pairs: the reference, and for each difference on the
+//! grid from min_pct to max_pct the reference with both triples' B larger by it.
+void make_adaptive_pairs(StudyProtocol& p) {
+  const Stimulus reference = p.stimuli.at(static_cast<std::size_t>(p.adaptive.reference));
+  const int steps = static_cast<int>(std::llround((p.adaptive.max_pct - p.adaptive.min_pct) / kAdaptiveGridPct));
+  for (int k = 0; k <= steps; ++k) {
+    const double level = p.adaptive.min_pct + k * kAdaptiveGridPct;
+    Stimulus s = reference;
+    char name[32];
+    std::snprintf(name, sizeof name, "+%g", level);
+    s.name = reference.name + name;
+    s.decay_scale = reference.decay_scale * (1 + level / 100);
+    s.material.visual.decay_per_s *= 1 + level / 100;
+    s.material.actuator.decay_per_s *= 1 + level / 100;
+    p.stimuli.push_back(s);
+    StimulusPair pair;
+    pair.a = p.adaptive.reference;
+    pair.b = static_cast<int>(p.stimuli.size() - 1);
+    pair.harder = pair.b;
+    pair.difference_pct = level;
+    p.pairs.push_back(pair);
+  }
+}
+
 StudyProtocol read(const toml::table& root, const std::string& file, const std::vector<Material>& materials,
                    std::size_t bar_count) {
   TableReader top(root, file);
@@ -116,11 +193,23 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   }
   if (p.conditions.empty()) top.fail("conditions", "lists no condition");
 
-  const std::int64_t reps = top.integer("repetitions");
-  top.require_range("repetitions", static_cast<double>(reps), 1, 1000);
-  if (p.task == StudyTask::two_afc_harder && reps % 2 != 0)
-    top.fail("repetitions", "must be even for 2afc_harder, so each pair is shown in both orders equally often");
-  p.repetitions = static_cast<int>(reps);
+  const std::string procedure = top.string_or("procedure", "constant");
+  if (procedure == "staircase") p.procedure = StudyProcedure::staircase;
+  else if (procedure == "quest") p.procedure = StudyProcedure::quest;
+  else if (procedure != "constant")
+    top.fail("procedure", "expected \"constant\", \"staircase\" or \"quest\", got \"" + procedure + "\"");
+  const bool adaptive = p.procedure != StudyProcedure::constant;
+  if (adaptive && p.task != StudyTask::two_afc_harder)
+    top.fail("procedure", "an adaptive procedure needs task = \"2afc_harder\" (it adapts a difference)");
+  if (!adaptive) {
+    const std::int64_t reps = top.integer("repetitions");
+    top.require_range("repetitions", static_cast<double>(reps), 1, 1000);
+    if (p.task == StudyTask::two_afc_harder && reps % 2 != 0)
+      top.fail("repetitions", "must be even for 2afc_harder, so each pair is shown in both orders equally often");
+    p.repetitions = static_cast<int>(reps);
+  } else if (top.has("repetitions")) {
+    top.fail("repetitions", "an adaptive protocol's trials end by its own stop rule ([" + procedure + "]); remove it");
+  }
 
   const std::int64_t seed = top.integer("seed");
   if (seed < 0) top.fail("seed", "must be >= 0");
@@ -143,7 +232,15 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
       t.fail("name", "a second [[stimulus]] named \"" + p.stimuli.back().name + "\"");
   }
 
-  if (p.task == StudyTask::two_afc_harder) {
+  if (adaptive) {
+    if (top.has("pair")) top.fail("pair", "an adaptive protocol makes its pairs from `reference`; remove [[pair]]");
+    p.adaptive.reference = stimulus_index(top, "reference", p.stimuli);
+    if (p.procedure == StudyProcedure::staircase) read_staircase(top.table("staircase"), p.adaptive);
+    else read_quest(top.table("quest"), p.adaptive);
+    make_adaptive_pairs(p);
+  } else if (p.task == StudyTask::two_afc_harder) {
+    for (const char* key : {"reference", "staircase", "quest"})
+      if (top.has(key)) top.fail(key, "only an adaptive procedure (procedure = \"staircase\" or \"quest\") uses it");
     for (TableReader& t : top.tables("pair")) p.pairs.push_back(read_pair(t, p.stimuli));
   } else {
     if (top.has("pair")) top.fail("pair", "only a 2afc_harder protocol has pairs");

@@ -39,7 +39,8 @@ struct Columns {
   int participant = kMissing, trial = kMissing, condition = kMissing, stimuli = kMissing, answer = kMissing,
       correct = kMissing, response_time_ms = kMissing, protocol = kMissing, task = kMissing,
       difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
-      actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing;
+      actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing, procedure = kMissing,
+      track_trial = kMissing, reversals = kMissing, estimate_pct = kMissing, estimate_sd_pct = kMissing;
 };
 
 Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
@@ -50,7 +51,9 @@ Columns find_columns(const std::vector<std::string>& header, const std::string& 
       {"response_time_ms", &c.response_time_ms}, {"protocol", &c.protocol}, {"task", &c.task},
       {"difference_pct", &c.difference_pct}, {"source", &c.source}, {"session", &c.session},
       {"visual_peak_m", &c.visual_peak_m}, {"actuator_peak", &c.actuator_peak},
-      {"actuator_onset_ms", &c.actuator_onset_ms}, {"picture_onset_ms", &c.picture_onset_ms}};
+      {"actuator_onset_ms", &c.actuator_onset_ms}, {"picture_onset_ms", &c.picture_onset_ms},
+      {"procedure", &c.procedure}, {"track_trial", &c.track_trial}, {"reversals", &c.reversals},
+      {"estimate_pct", &c.estimate_pct}, {"estimate_sd_pct", &c.estimate_sd_pct}};
   for (const auto& [name, index] : names)
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) *index = static_cast<int>(i);
@@ -96,6 +99,18 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
   r.actuator_peak = number(field(c.actuator_peak), file, line, "actuator_peak", true);
   r.actuator_onset_ms = number(field(c.actuator_onset_ms), file, line, "actuator_onset_ms", true);
   r.picture_onset_ms = number(field(c.picture_onset_ms), file, line, "picture_onset_ms", true);
+  r.procedure = field(c.procedure);
+  if (!r.procedure.empty() && r.procedure != "constant" && r.procedure != "staircase" && r.procedure != "quest")
+    throw FileError(file, line, 0, "procedure: \"" + r.procedure + "\" is not constant, staircase or quest");
+  const double track_trial = number(field(c.track_trial), file, line, "track_trial", true);
+  const double reversals = number(field(c.reversals), file, line, "reversals", true);
+  for (const auto& [v, name] : {std::pair{track_trial, "track_trial"}, std::pair{reversals, "reversals"}})
+    if (!std::isnan(v) && (v < 0 || v > 1e6 || v != std::floor(v)))
+      throw FileError(file, line, 0, std::string(name) + ": not a count");
+  r.track_trial = std::isnan(track_trial) ? 0 : static_cast<int>(track_trial);
+  r.reversals = std::isnan(reversals) ? -1 : static_cast<int>(reversals);
+  r.estimate_pct = number(field(c.estimate_pct), file, line, "estimate_pct", true);
+  r.estimate_sd_pct = number(field(c.estimate_sd_pct), file, line, "estimate_sd_pct", true);
   return r;
 }
 
@@ -110,7 +125,11 @@ std::string format_row(const ResultRow& r, bool timing) {
                     r.answer + ',' + (r.correct ? "1" : "0") + ',' + g(r.response_time_ms, "%.3f") + ',' +
                     r.protocol + ',' + r.task + ',' + g(r.difference_pct, "%.6g") + ',' + r.source + ',' +
                     r.session + ',' + g(r.visual_peak_m, "%.6g") + ',' + g(r.actuator_peak, "%.6g");
-  if (timing) out += ',' + g(r.actuator_onset_ms, "%.3f") + ',' + g(r.picture_onset_ms, "%.3f");
+  if (timing)
+    out += ',' + g(r.actuator_onset_ms, "%.3f") + ',' + g(r.picture_onset_ms, "%.3f") + ',' + r.procedure + ',' +
+           (r.track_trial > 0 ? std::to_string(r.track_trial) : "") + ',' +
+           (r.reversals >= 0 ? std::to_string(r.reversals) : "") + ',' + g(r.estimate_pct, "%.4g") + ',' +
+           g(r.estimate_sd_pct, "%.4g");
   out += '\n';
   return out;
 }

@@ -5,14 +5,19 @@
 //   participant,trial,condition,stimuli,answer,correct,response_time_ms   (the required ones)
 //   ,protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak  (extras)
 //   ,actuator_onset_ms,picture_onset_ms                                      (timing)
+//   ,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct            (adaptive)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
 // output): the largest visual displacement in metres and the largest actuator sample; the
 // two onsets when the strike route had the cues reach the participant, in ms after the
 // tap's contact (the latest of the trial's taps): the actuator and the note (heard), the
-// first frame that shows the bounce (shown). A file begun before the timing columns keeps
-// its header: its rows are appended without them.
+// first frame that shows the bounce (shown). `procedure` is constant, staircase or quest;
+// for an adaptive one, after the trial's answer: the trial's number in its condition's
+// track, the staircase's reversals, the estimate (the staircase's mean level at its last
+// reversals once it has them; QUEST's posterior mean) and QUEST's posterior SD (empty where
+// they do not apply). A file begun before these columns keeps its header: its rows are
+// appended without them.
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -27,7 +32,7 @@ inline constexpr const char* kResultsHeaderWithoutTiming =
 inline constexpr const char* kResultsHeader =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
-    "actuator_onset_ms,picture_onset_ms";
+    "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct";
 
 struct ResultRow {
   std::string participant;
@@ -46,9 +51,15 @@ struct ResultRow {
   double actuator_peak = 0;
   double actuator_onset_ms = std::numeric_limits<double>::quiet_NaN();  //!< NaN: not recorded (an older file)
   double picture_onset_ms = std::numeric_limits<double>::quiet_NaN();
+  std::string procedure;  //!< "constant", "staircase", "quest"; empty in an older file
+  int track_trial = 0;    //!< adaptive: the trial's number in its condition's track; 0: none
+  int reversals = -1;     //!< staircase: its reversals after this answer; −1: none
+  double estimate_pct = std::numeric_limits<double>::quiet_NaN();
+  double estimate_sd_pct = std::numeric_limits<double>::quiet_NaN();
 };
 
-//! The row as written, ending in '\n'; `timing`: with the two onset columns (kResultsHeader).
+//! The row as written, ending in '\n'; `timing`: with the columns after actuator_peak
+//! (kResultsHeader), else as kResultsHeaderWithoutTiming has them.
 std::string format_row(const ResultRow& row, bool timing = true);
 
 struct ResultsFile {

@@ -34,4 +34,13 @@ std::vector<std::string> StudyProtocol::answer_choices() const {
   return out;
 }
 
+std::string_view procedure_name(StudyProcedure procedure) {
+  switch (procedure) {
+    case StudyProcedure::constant: return "constant";
+    case StudyProcedure::staircase: return "staircase";
+    case StudyProcedure::quest: return "quest";
+  }
+  return "constant";
+}
+
 }  // namespace mallet::study

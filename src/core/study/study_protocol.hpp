@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "core/material.hpp"
+#include "core/study/quest.hpp"
+#include "core/study/staircase.hpp"
 #include "core/time.hpp"
 
 namespace mallet::study {
@@ -59,6 +61,24 @@ struct StudyTiming {
   Nanos inter_trial = 500'000'000;       //!< answer → next trial start
 };
 
+//! How the pairs' differences are chosen: a fixed set shown `repetitions` times each (the
+//! method of constant stimuli), or per condition an adaptive track (adaptive_schedule.hpp).
+enum class StudyProcedure { constant, staircase, quest };
+std::string_view procedure_name(StudyProcedure procedure);
+
+//! The grid an adaptive track's differences are rounded to: each is one generated stimulus,
+//! the reference with B larger by that much.
+inline constexpr double kAdaptiveGridPct = 0.5;
+
+struct AdaptiveProtocol {
+  int reference = 0;          //!< the stimulus every trial compares against (index)
+  double min_pct = 0.5, max_pct = 60;  //!< the differences a track may test
+  StaircaseRule staircase;    //!< procedure = staircase
+  QuestModel quest_model;     //!< procedure = quest
+  QuestPrior quest_prior;
+  int quest_trials = 40;      //!< per condition
+};
+
 struct StudyProtocol {
   std::string file;               //!< where it was loaded from (messages)
   std::string name;               //!< CSV column `protocol`
@@ -68,6 +88,10 @@ struct StudyProtocol {
   std::vector<StimulusPair> pairs;  //!< 2AFC only
   std::vector<int> named;           //!< name_material: the stimuli shown (indices)
   int repetitions = 2;              //!< per condition × item; even for 2AFC (both orders)
+  StudyProcedure procedure = StudyProcedure::constant;
+  //! Adaptive procedures: their rules; `pairs` then holds one pair per step of the grid,
+  //! (reference, reference with B larger by min_pct + k·kAdaptiveGridPct).
+  AdaptiveProtocol adaptive;
   std::uint64_t seed = 1;
   std::string output;               //!< default results CSV (--out overrides)
   double impact_speed_m_per_s = 0.5;

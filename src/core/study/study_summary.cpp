@@ -75,6 +75,31 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
       l.correct += r.correct ? 1 : 0;
     }
   }
+  // Adaptive tracks: each participant's rows of a condition in trial order.
+  std::map<std::string, std::map<std::string, std::map<int, const ResultRow*>>> tracks;  // condition → track → trial
+  std::map<std::string, std::vector<std::string>> track_order;
+  for (const ResultRow& r : rows) {
+    if (!participant.empty() && r.participant != participant) continue;
+    if (r.procedure != "staircase" && r.procedure != "quest") continue;
+    std::string& procedure = by_condition[r.condition].procedure;
+    procedure = procedure.empty() || procedure == r.procedure ? r.procedure : "mixed";
+    // A track: one participant's rows of one protocol in this condition.
+    const std::string track = r.participant + '\x1f' + r.protocol;
+    auto& who = tracks[r.condition];
+    if (!who.contains(track)) track_order[r.condition].push_back(track);
+    who[track][r.trial] = &r;
+  }
+  for (auto& [name, c] : by_condition) {
+    for (const std::string& who : track_order[name]) {
+      const auto& mine = tracks[name][who];
+      std::vector<double> tested;
+      for (const auto& [trial, row] : mine) tested.push_back(row->difference_pct);
+      c.tracks.push_back(std::move(tested));
+      const ResultRow& last = *mine.rbegin()->second;
+      if (std::isfinite(last.estimate_pct)) c.final_estimates.push_back(last.estimate_pct);
+      if (track_order[name].size() == 1 && std::isfinite(last.estimate_sd_pct)) c.final_sd = last.estimate_sd_pct;
+    }
+  }
   for (auto& [name, c] : by_condition) {
     c.mean_response_ms = rt_sum[name] / c.trials;
     if (auto it = levels.find(name); it != levels.end()) {
@@ -119,6 +144,32 @@ std::string format_summary(const StudySummary& s) {
       header = true;
     }
     out += fit_columns(c);
+  }
+  bool adaptive = false;
+  for (const ConditionSummary& c : s.conditions) {
+    if (c.procedure.empty()) continue;
+    if (!adaptive) {
+      out += "adaptive tracks: the estimate at each participant's last trial (staircase: the mean level at its last "
+             "reversals; quest: the posterior mean)\n";
+      std::snprintf(line, sizeof line, "%-14s %-10s %6s %13s %13s\n", "condition", "procedure", "tracks",
+                    "estimate_pct", "spread_pct");
+      out += line;
+      adaptive = true;
+    }
+    double mean = 0, spread = 0;
+    for (double e : c.final_estimates) mean += e;
+    if (!c.final_estimates.empty()) mean /= static_cast<double>(c.final_estimates.size());
+    for (double e : c.final_estimates) spread += (e - mean) * (e - mean);
+    // Between participants' estimates (their SD); one participant's QUEST: its posterior SD.
+    const bool between = c.final_estimates.size() > 1;
+    if (between) spread = std::sqrt(spread / static_cast<double>(c.final_estimates.size() - 1));
+    char est[32] = "-", spr[32] = "-";
+    if (!c.final_estimates.empty()) std::snprintf(est, sizeof est, "%.2f", mean);
+    if (between) std::snprintf(spr, sizeof spr, "%.2f", spread);
+    else if (c.final_sd) std::snprintf(spr, sizeof spr, "%.2f (SD)", *c.final_sd);
+    std::snprintf(line, sizeof line, "%-14s %-10s %6zu %13s %13s\n", c.condition.c_str(), c.procedure.c_str(),
+                  c.tracks.size(), est, spr);
+    out += line;
   }
   if (header)
     for (const ConditionSummary& c : s.conditions)

@@ -69,5 +69,42 @@ TEST(StudyProtocol, MistakesNameFileLineColumnAndKey) {
   EXPECT_EQ(error_of("name = \"t\"\ntask = \n"), "bad.toml:2:8: Error while parsing key-value pair: expected value, saw '\\n'");
 }
 
+TEST(StudyProtocol, ShippedAdaptiveProtocolsLoadWithTheirGridOfPairs) {
+  const StudyProtocol s = load_shipped("staircase.toml");
+  EXPECT_EQ(s.procedure, StudyProcedure::staircase);
+  EXPECT_EQ(s.adaptive.staircase.down, 2);
+  EXPECT_EQ(s.adaptive.staircase.steps, (std::vector<double>{8, 4, 2}));
+  EXPECT_EQ(s.adaptive.staircase.min, 0.5);
+  // One pair per 0.5 % from 0.5 to 60: the reference against itself made harder.
+  ASSERT_EQ(s.pairs.size(), 120u);
+  EXPECT_EQ(s.pairs[0].difference_pct, 0.5);
+  EXPECT_EQ(s.pairs[119].difference_pct, 60.0);
+  const Stimulus& hardest = s.stimuli.at(static_cast<std::size_t>(s.pairs[119].b));
+  EXPECT_EQ(hardest.name, "wood+60");
+  EXPECT_DOUBLE_EQ(hardest.material.actuator.decay_per_s, 80.0 * 1.6);
+  EXPECT_EQ(s.pairs[119].harder, s.pairs[119].b);
+  const StudyProtocol q = load_shipped("quest.toml");
+  EXPECT_EQ(q.procedure, StudyProcedure::quest);
+  EXPECT_EQ(q.adaptive.quest_model.shape, QuestShape::weibull);
+  EXPECT_EQ(q.adaptive.quest_trials, 40);
+  EXPECT_EQ(q.adaptive.quest_prior.mean, 20);
+}
+
+TEST(StudyProtocol, AnAdaptiveProtocolsMistakesAreOneLineEach) {
+  const std::string ok =
+      "name = \"s\"\ntask = \"2afc_harder\"\nprocedure = \"staircase\"\nconditions = [\"both\"]\nseed = 1\n"
+      "reference = \"wood\"\n[staircase]\nsteps_pct = [8, 4]\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n";
+  EXPECT_NO_THROW(test::parse_protocol(ok, "a.toml"));
+  EXPECT_EQ(error_of(replaced(ok, "steps_pct = [8, 4]", "steps_pct = [8, 3.3]")),
+            "bad.toml:8:13: staircase.steps_pct: each step must be a positive multiple of 0.5 % (the grid of stimuli)");
+  EXPECT_EQ(error_of(replaced(ok, "seed = 1", "seed = 1\nrepetitions = 2")),
+            "bad.toml:6:15: repetitions: an adaptive protocol's trials end by its own stop rule ([staircase]); "
+            "remove it");
+  EXPECT_EQ(error_of(replaced(ok, "\"staircase\"\nconditions", "\"bisection\"\nconditions")),
+            "bad.toml:3:13: procedure: expected \"constant\", \"staircase\" or \"quest\", got \"bisection\"");
+  EXPECT_EQ(error_of(replaced(ok, "reference = \"wood\"", "reference = \"oak\"")),
+            "bad.toml:6:13: reference: no [[stimulus]] named \"oak\" (known: wood)");
+}
+
 }  // namespace
 }  // namespace mallet::study

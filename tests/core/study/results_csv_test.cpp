@@ -46,7 +46,7 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
-            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,\n");
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,\n");
   EXPECT_EQ(format_row(row(3, true), false),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
@@ -164,9 +164,34 @@ TEST(ResultsCsv, TheCuesOnsetsRoundTripAndAFileFromBeforeThemResumesWithoutThem)
   EXPECT_EQ(std::string(kResultsHeader).rfind(kResultsHeaderWithoutTiming, 0), 0u) << "the new columns come last";
 }
 
+TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
+  const fs::path dir = test::scratch_dir();
+  ResultRow r = row(7, true);
+  r.procedure = "staircase";
+  r.track_trial = 3;
+  r.reversals = 2;
+  r.estimate_pct = 12.25;
+  {
+    ResultsWriter w(dir / "r.csv", read_results(dir / "r.csv"));
+    w.append(r);
+  }
+  const ResultsFile back = read_results(dir / "r.csv");
+  ASSERT_EQ(back.rows.size(), 1u);
+  EXPECT_EQ(back.rows[0].procedure, "staircase");
+  EXPECT_EQ(back.rows[0].track_trial, 3);
+  EXPECT_EQ(back.rows[0].reversals, 2);
+  EXPECT_EQ(back.rows[0].estimate_pct, 12.25);
+  EXPECT_TRUE(std::isnan(back.rows[0].estimate_sd_pct));
+  std::string text = slurp(dir / "r.csv");
+  text.replace(text.find(",staircase,"), 11, ",bisection,");
+  { std::ofstream(dir / "bad.csv") << text; }
+  EXPECT_EQ(std::string(test::file_error_of([&] { read_results(dir / "bad.csv"); }).what()),
+            (dir / "bad.csv").string() + ":2: procedure: \"bisection\" is not constant, staircase or quest");
+}
+
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
