@@ -114,8 +114,11 @@ class StudyWindow final : public StudyStage, public AnswerSource {
     tap_ = 0;
     banner_.clear();
     char status[96];
-    std::snprintf(status, sizeof status, tr("Trial %d of %zu"), trial.number,
-                  static_cast<std::size_t>(plan_.total_trials));
+    // An adaptive protocol's tracks stop by their own rules: its count is only a bound.
+    std::snprintf(status, sizeof status,
+                  plan_.protocol.procedure == study::StudyProcedure::constant ? tr("Trial %d of %zu")
+                                                                               : tr("Trial %d (at most %zu)"),
+                  trial.number, static_cast<std::size_t>(plan_.total_trials));
     status_ = status;
   }
 
