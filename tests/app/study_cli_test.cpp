@@ -298,7 +298,7 @@ TEST(StudyCli, AStaircaseRunsHeadlessResumesAfterACrashAndIsSummarised) {
   const test::CliResult summary = test::run_mallet("study summary --bootstrap 0 --results " +
                                                    (dir / "whole.csv").string() + " --plots " + (dir / "plots").string());
   ASSERT_EQ(summary.status, 0) << summary.output;
-  EXPECT_NE(summary.output.find("adaptive tracks: the estimate at each participant's last trial"), std::string::npos)
+  EXPECT_NE(summary.output.find("adaptive tracks: the estimate at each track's last trial"), std::string::npos)
       << summary.output;
   char both[64];
   std::snprintf(both, sizeof both, "%-14s %-10s %6d %13.2f", "both", "staircase", 1, last_estimate["both"]);

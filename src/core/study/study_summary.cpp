@@ -53,6 +53,7 @@ std::string fit_columns(const ConditionSummary& c) {
 StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& participant,
                        const SummaryOptions& options) {
   StudySummary s;
+  s.resamples = options.resamples;
   std::map<std::string, ConditionSummary> by_condition;
   std::map<std::string, std::map<double, PsychometricLevel>> levels;
   std::map<std::string, double> rt_sum;
@@ -145,11 +146,19 @@ std::string format_summary(const StudySummary& s) {
     }
     out += fit_columns(c);
   }
+  if (header)
+    for (const ConditionSummary& c : s.conditions)
+      if (c.intervals) {
+        std::snprintf(line, sizeof line, "95 %% intervals: parametric bootstrap, %d resamples, bias-corrected percentiles\n",
+                      s.resamples);
+        out += line;
+        break;
+      }
   bool adaptive = false;
   for (const ConditionSummary& c : s.conditions) {
     if (c.procedure.empty()) continue;
     if (!adaptive) {
-      out += "adaptive tracks: the estimate at each participant's last trial (staircase: the mean level at its last "
+      out += "adaptive tracks: the estimate at each track's last trial (staircase: the mean level at its last "
              "reversals; quest: the posterior mean)\n";
       std::snprintf(line, sizeof line, "%-14s %-10s %6s %13s %13s\n", "condition", "procedure", "tracks",
                     "estimate_pct", "spread_pct");
@@ -171,14 +180,6 @@ std::string format_summary(const StudySummary& s) {
                   c.tracks.size(), est, spr);
     out += line;
   }
-  if (header)
-    for (const ConditionSummary& c : s.conditions)
-      if (c.intervals) {
-        std::snprintf(line, sizeof line, "95 %% intervals: parametric bootstrap, %d resamples, bias-corrected percentiles\n",
-                      c.intervals->resamples);
-        out += line;
-        break;
-      }
   return out;
 }
 

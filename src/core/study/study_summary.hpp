@@ -46,6 +46,7 @@ struct StudySummary {
   std::vector<std::string> participants;
   int simulated_rows = 0;               //!< answered by the simulated observer
   std::vector<ConditionSummary> conditions;  //!< visual_only, tactile_only, both, none, then others
+  int resamples = 0;                         //!< the bootstrap's, per fit (0: no intervals)
 };
 
 //! `participant`: only that participant's rows (empty: everyone's, pooled).
