@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "app/csv_table.hpp"
+#include "core/csv_file.hpp"
 #include "audio/wav_file.hpp"
 #include "core/file_error.hpp"
 #include "core/sample_clock.hpp"
@@ -12,8 +12,8 @@
 namespace mallet::app {
 
 std::vector<ImpactAnalysis> analyze_simulation(const std::filesystem::path& dir, int actuator_channel) {
-  const CsvTable events = read_csv_table(dir / "events.csv");
-  const CsvTable cursor = read_csv_table(dir / "cursor.csv");
+  const csv::Table events = csv::read(dir / "events.csv");
+  const csv::Table cursor = csv::read(dir / "cursor.csv");
   const audio::WavData wav = audio::read_wav(dir / "audio.wav");
   if (actuator_channel < 0 || actuator_channel >= wav.channels)
     throw FileError((dir / "audio.wav").string(), 0, 0,

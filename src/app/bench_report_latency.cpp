@@ -13,7 +13,7 @@
 
 #include "app/audio_setup.hpp"
 #include "app/bench_report.hpp"
-#include "app/csv_table.hpp"
+#include "core/csv_file.hpp"
 #include "app/strike_route.hpp"
 #include "core/quality.hpp"
 #include "input/wiimote/report_tracker.hpp"
@@ -119,13 +119,13 @@ static void include_measured_latency(const ReportOptions& o, ReportSections& out
                           "` before the report to include it");
     return;
   }
-  const CsvTable t = read_csv_table(csv);
+  const csv::Table t = csv::read(csv);
   TextTable measured{"Measured end to end (mallet bench latency): true contact → cue, the real windowed kiosk",
                      {"source", "preset", "align", "cue", "median ms", "p99 ms", "max ms", "strikes", "false",
                       "missed"},
                      {},
                      ""};
-  for (const std::vector<std::string>& row : t.rows) measured.rows.push_back(row);
+  for (const csv::Row& row : t.rows) measured.rows.push_back(row.fields);
   measured.note =
       "Measured, not modelled: Xvfb (no vblank, no panel) and a JACK dummy server as the sound card (2.7 ms "
       "cycles plus 5.3 ms playback latency). Where it differs from the model above: the model's FIFO frame waits "

@@ -8,6 +8,7 @@
 
 #include "app/commands.hpp"
 #include "core/calibration_file.hpp"
+#include "core/csv_file.hpp"
 #include "core/file_error.hpp"
 #include "core/text_lines.hpp"
 #include "core/homography.hpp"
@@ -28,60 +29,37 @@ using text::parse_double;
 // '#' comments and blank lines are skipped; every problem is FILE:LINE: problem.
 PointPairs parse_points_csv(std::string_view text, const std::string& name) {
   static constexpr const char* kColumns[4] = {"cam_x", "cam_y", "screen_x", "screen_y"};
+  constexpr std::string_view kHint = "the header must be cam_x,cam_y,screen_x,screen_y";
+  const csv::Table table = csv::parse(text, name, {.hand_written = true});
+  if (!table.has_header())
+    throw FileError(name, 0, 0, "empty file (expected the header cam_x,cam_y,screen_x,screen_y and rows)");
+  for (std::size_t i = 0; i < table.header.size(); ++i) {
+    const std::string& h = table.header[i];
+    if (std::find(std::begin(kColumns), std::end(kColumns), h) == std::end(kColumns))
+      table.fail(table.header_line, "unknown column \"" + h + "\" (" + std::string(kHint) + ")");
+    if (table.find(h) != i) table.fail(table.header_line, "column \"" + h + "\" appears twice");
+  }
+  std::size_t col[4];
+  for (int k = 0; k < 4; ++k) col[k] = table.column(kColumns[k], kHint);
   PointPairs out;
-  int col[4] = {-1, -1, -1, -1};
-  std::size_t columns = 0;
-  text::Lines lines(text);
-  while (auto raw = lines.next()) {
-    const std::uint32_t line_no = lines.number();
-    const std::string_view line = text::trim(*raw);
-    if (line.empty() || line.front() == '#') continue;
-    const std::vector<std::string_view> fields = text::split_fields(line);
-    if (columns == 0) {  // the header
-      for (std::size_t i = 0; i < fields.size(); ++i) {
-        int k = 0;
-        while (k < 4 && fields[i] != kColumns[k]) ++k;
-        if (k == 4)
-          throw FileError(name, line_no, 0,
-                          "unknown column \"" + std::string(fields[i]) +
-                              "\" (the header must be cam_x,cam_y,screen_x,screen_y)");
-        if (col[k] >= 0) throw FileError(name, line_no, 0, std::string("column \"") + kColumns[k] + "\" appears twice");
-        col[k] = static_cast<int>(i);
-      }
-      for (int k = 0; k < 4; ++k)
-        if (col[k] < 0)
-          throw FileError(name, line_no, 0,
-                          std::string("missing column \"") + kColumns[k] +
-                              "\" (the header must be cam_x,cam_y,screen_x,screen_y)");
-      columns = fields.size();
-      continue;
-    }
-    if (fields.size() != columns)
-      throw FileError(name, line_no, 0,
-                      "expected " + std::to_string(columns) + " fields, got " + std::to_string(fields.size()));
+  for (const csv::Row& row : table.rows) {
     double v[4];
     for (int k = 0; k < 4; ++k) {
-      const std::string_view f = fields[static_cast<std::size_t>(col[k])];
-      if (!parse_double(f, v[k]) || !std::isfinite(v[k]))
-        throw FileError(name, line_no, 0,
-                        std::string(kColumns[k]) + ": \"" + std::string(f) + "\" is not a finite number");
+      v[k] = table.number(row, col[k], kColumns[k]);
+      if (!std::isfinite(v[k]))
+        table.fail(row.line, std::string(kColumns[k]) + ": \"" + row[col[k]] + "\" is not a finite number");
     }
     if (!(v[0] >= 0 && v[0] <= 1023))
-      throw FileError(name, line_no, 0, "cam_x = " + std::string(fields[static_cast<std::size_t>(col[0])]) +
-                                            " is outside the camera's 0..1023 pixels");
+      table.fail(row.line, "cam_x = " + row[col[0]] + " is outside the camera's 0..1023 pixels");
     if (!(v[1] >= 0 && v[1] <= 767))
-      throw FileError(name, line_no, 0, "cam_y = " + std::string(fields[static_cast<std::size_t>(col[1])]) +
-                                            " is outside the camera's 0..767 pixels (1023 = an empty IR slot)");
+      table.fail(row.line, "cam_y = " + row[col[1]] + " is outside the camera's 0..767 pixels (1023 = an empty IR slot)");
     for (int k = 2; k < 4; ++k)
       if (!(v[k] >= 0 && v[k] <= 1))
-        throw FileError(name, line_no, 0, std::string(kColumns[k]) + " = " +
-                                              std::string(fields[static_cast<std::size_t>(col[k])]) +
-                                              " is outside the normalised screen 0..1");
+        table.fail(row.line, std::string(kColumns[k]) + " = " + row[col[k]] + " is outside the normalised screen 0..1");
     out.camera.push_back({v[0], v[1]});
     out.screen.push_back({v[2], v[3]});
-    out.lines.push_back(line_no);
+    out.lines.push_back(row.line);
   }
-  if (columns == 0) throw FileError(name, 0, 0, "empty file (expected the header cam_x,cam_y,screen_x,screen_y and rows)");
   return out;
 }
 

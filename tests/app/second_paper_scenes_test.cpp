@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "app/audio_setup.hpp"
-#include "app/csv_table.hpp"
+#include "core/csv_file.hpp"
 #include "app/headless_loop.hpp"
 #include "app/scene_describe.hpp"
 #include "app/simulate.hpp"
@@ -118,7 +118,7 @@ TEST(SecondPaperScenes, SimulatedTextureSweepSlowsOnTheWayUpAndItsStripesMatchTh
   const SimulateResult r = run_simulate(o);
   EXPECT_TRUE(r.impacts.empty());
 
-  const CsvTable cursor = read_csv_table(dir / "out" / "cursor.csv");
+  const csv::Table cursor = csv::read(dir / "out" / "cursor.csv");
   const std::size_t ct = cursor.column("t"), cx = cursor.column("cursor_x"), hx = cursor.column("hand_x"),
                     cg = cursor.column("gain"), cp = cursor.column("stripe_phase");
   const audio::WavData wav = audio::read_wav(dir / "out" / "audio.wav");
@@ -226,7 +226,7 @@ TEST(SecondPaperScenes, EveryTapOnTheWallIsOneImpactWithTheWallsMaterial) {
     EXPECT_EQ(wall.materials[static_cast<std::size_t>(i.material)].name, "wall_wood");
     EXPECT_NEAR(i.speed_m_per_s, 0.5, 1e-9);
   }
-  const CsvTable events = read_csv_table(dir / "out" / "events.csv");
+  const csv::Table events = csv::read(dir / "out" / "events.csv");
   EXPECT_EQ(events.rows.size(), 4u);
   EXPECT_EQ(events.rows[0][events.column("instrument")], "wall");
   EXPECT_EQ(events.rows[0][events.column("material")], "wall_wood");

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "app/analyze.hpp"
-#include "app/csv_table.hpp"
+#include "core/csv_file.hpp"
 #include "app/simulate.hpp"
 #include "audio/wav_file.hpp"
 #include "core/config/scene_config.hpp"
@@ -68,7 +68,7 @@ TEST(Simulate, ScriptedWoodAndMetalStrikesGiveExactStimuli) {
   ASSERT_EQ(r.impacts.size(), 2u);
 
   // events.csv
-  const CsvTable events = read_csv_table(o.out_dir / "events.csv");
+  const csv::Table events = csv::read(o.out_dir / "events.csv");
   EXPECT_EQ(events.header, (std::vector<std::string>{"t", "target", "instrument", "material", "note", "velocity"}));
   ASSERT_EQ(events.rows.size(), 2u);
   EXPECT_NEAR(events.number(0, 0), s.t_wood, 1e-6);
@@ -108,7 +108,7 @@ TEST(Simulate, ScriptedWoodAndMetalStrikesGiveExactStimuli) {
 
   // cursor.csv: offset is the visual Eq. 1 of the latest impact; while the hand is
   // below the surface the displayed head rests on it (plus the offset).
-  const CsvTable cursor = read_csv_table(o.out_dir / "cursor.csv");
+  const csv::Table cursor = csv::read(o.out_dir / "cursor.csv");
   EXPECT_EQ(cursor.header,
             (std::vector<std::string>{"t", "hand_x", "hand_y", "cursor_x", "cursor_y", "offset"}));
   const double plane = scene.targets[2].top_y + scene.mallet_radius_m;
@@ -194,7 +194,7 @@ fs::path write_one_strike(const fs::path& dir, const Scene& scene, double rate_h
 }
 
 struct CausalRun {
-  CsvTable events;
+  csv::Table events;
   std::vector<float> actuator, acoustic;
 };
 
@@ -213,7 +213,7 @@ CausalRun run_causal(const fs::path& dir, const std::string& name, const std::st
   run_simulate(o);
   const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
   const auto a = wav.channel(1), n = wav.channel(0);
-  return {read_csv_table(o.out_dir / "events.csv"), {a.begin(), a.end()}, {n.begin(), n.end()}};
+  return {csv::read(o.out_dir / "events.csv"), {a.begin(), a.end()}, {n.begin(), n.end()}};
 }
 
 TEST(SimulateCausal, AsapSoundsWhenTheSampleAfterTheContactArrives) {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "app/audio_setup.hpp"
-#include "app/csv_table.hpp"
+#include "core/csv_file.hpp"
 #include "app/headless_loop.hpp"
 #include "app/simulate.hpp"
 #include "app/strike_route.hpp"

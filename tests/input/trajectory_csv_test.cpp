@@ -45,7 +45,7 @@ TEST(TrajectoryCsv, EveryProblemNamesFileAndLine) {
   EXPECT_EQ(error_of("t,x,y\n"), "traj.csv: no data rows after the header");
   EXPECT_EQ(error_of("t,x\n0,0\n"), "traj.csv:1: missing column \"y\" (the header must name the columns t,x,y)");
   EXPECT_EQ(error_of("t,x,y\n0,0\n"), "traj.csv:2: expected 3 fields, got 2");
-  EXPECT_EQ(error_of("t,x,y\n0,0,abc\n"), "traj.csv:2: column y: \"abc\" is not a number");
+  EXPECT_EQ(error_of("t,x,y\n0,0,abc\n"), "traj.csv:2: y: \"abc\" is not a number");
   EXPECT_EQ(error_of("t,x,y\nnan,0,0\n"), "traj.csv:2: t is not a finite number");
   EXPECT_EQ(error_of("t,x,y\n-1,0,0\n"), "traj.csv:2: t must be >= 0 seconds");
   EXPECT_EQ(error_of("t,x,y\n0,0,0\n1e300,0,0\n"), "traj.csv:3: t is out of range");

@@ -12,6 +12,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "core/csv_file.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::study {
@@ -23,15 +24,6 @@ std::string g(double v, const char* format) {
   char buf[48];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
-    fields.push_back(line.substr(start, comma - start));
-  fields.push_back(line.substr(start));
-  return fields;
 }
 
 struct Columns {
@@ -143,37 +135,16 @@ ResultsFile read_results(const std::filesystem::path& path) {
   if (!in) throw FileError(path.string(), 0, 0, "cannot open");
   out.exists = true;
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string file = path.string();
-  Columns columns;
-  std::size_t header_fields = 0;
-  std::uint32_t line_no = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    ++line_no;
-    const std::size_t nl = text.find('\n', pos);
-    if (nl == std::string::npos) {
-      out.warnings.push_back(file + ":" + std::to_string(line_no) +
-                             ": incomplete last line ignored (the program stopped while writing it); "
-                             "that trial will be run again");
-      break;
-    }
-    std::string line = text.substr(pos, nl - pos);
-    pos = nl + 1;
-    out.complete_bytes = pos;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    std::vector<std::string> fields = split(line);
-    if (!out.has_header) {
-      columns = find_columns(fields, file);
-      out.header = line;
-      header_fields = fields.size();
-      out.has_header = true;
-      continue;
-    }
-    if (fields.size() != header_fields)
-      throw FileError(file, line_no, 0, "expected " + std::to_string(header_fields) + " fields, got " +
-                                            std::to_string(fields.size()));
-    out.rows.push_back(parse_row(fields, columns, file, line_no));
-    out.lines.push_back(line_no);
+  const csv::Table table = csv::parse(text, path.string(), {.incomplete_last_line = true});
+  for (const std::string& w : table.warnings) out.warnings.push_back(w + "; that trial will be run again");
+  out.complete_bytes = table.complete_bytes;
+  if (!table.has_header()) return out;
+  const Columns columns = find_columns(table.header, table.file);
+  out.header = table.header_text;
+  out.has_header = true;
+  for (const csv::Row& row : table.rows) {
+    out.rows.push_back(parse_row(row.fields, columns, table.file, row.line));
+    out.lines.push_back(row.line);
   }
   return out;
 }
