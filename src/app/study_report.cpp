@@ -30,6 +30,11 @@ std::vector<const study::ConditionSummary*> fitted(const study::StudySummary& s)
   return out;
 }
 
+//! One more curve of a gnuplot `plot` command: block `block` of `dat`, drawn as `how`.
+void add_curve(std::string& plot, int block, const std::string& dat, const std::string& how) {
+  plot += (block ? ", \\\n     " : "") + ("'" + dat + "' index " + std::to_string(block) + " " + how);
+}
+
 const char* kHeader =
     "set terminal pngcairo size 720,450 font 'DejaVu Sans,10' noenhanced\n"
     "set grid\nset key outside right top noenhanced\n";
@@ -55,9 +60,9 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
     const int colour = block + 1;
     char size[64];
     std::snprintf(size, sizeof size, "(0.6 + 2.4 * sqrt($3 / %d.0))", max_trials);
-    plot += (block ? ", \\\n     " : "") + std::string("'psychometric.dat' index ") + std::to_string(block) +
-            " using 1:2:" + size + " with points pt 7 ps variable lc " + std::to_string(colour) + " title '" +
-            c->condition + "'";
+    add_curve(plot, block, "psychometric.dat",
+              "using 1:2:" + std::string(size) + " with points pt 7 ps variable lc " + std::to_string(colour) +
+                  " title '" + c->condition + "'");
     const study::PsychometricFit& f = *c->fit;
     if (f.ok) {
       char curve[160];
@@ -101,8 +106,8 @@ void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
             << (ci ? c.intervals->threshold.hi : c.fit->threshold) << ' ' << r.participants[i].first << '\n';
       }
     dat << "\n\n";
-    plot += (block ? ", \\\n     " : "") + std::string("'thresholds.dat' index ") + std::to_string(block) +
-            " using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(block + 1) + " title '" + conditions[k] + "'";
+    add_curve(plot, block, "thresholds.dat",
+              "using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(block + 1) + " title '" + conditions[k] + "'");
     ++block;
   }
   write_file(dir / "thresholds.dat", dat.str());
@@ -125,8 +130,8 @@ void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) 
     for (long b = bins.begin()->first - 1; b <= bins.rbegin()->first + 1; ++b)
       dat << (static_cast<double>(b) + 0.5) * kRtBinMs << ' ' << (bins.count(b) ? bins[b] : 0) << '\n';
     dat << "\n\n";
-    plot += (block ? ", \\\n     " : "") + std::string("'response_times.dat' index ") + std::to_string(block) +
-            " using 1:2 with histeps lw 2 lc " + std::to_string(block + 1) + " title '" + c.condition + "'";
+    add_curve(plot, block, "response_times.dat",
+              "using 1:2 with histeps lw 2 lc " + std::to_string(block + 1) + " title '" + c.condition + "'");
     ++block;
   }
   write_file(dir / "response_times.dat", dat.str());
@@ -149,9 +154,9 @@ bool tracks_plot(const StudyReport& r, const std::filesystem::path& dir) {
       dat << '\n';
     }
     dat << '\n';
-    plot += (block ? ", \\\n     " : "") + std::string("'tracks.dat' index ") + std::to_string(block) +
-            " using 1:2 with steps lw 1.5 lc " + std::to_string(block + 1) + " title '" + c.condition + " (" +
-            c.procedure + ")'";
+    add_curve(plot, block, "tracks.dat",
+              "using 1:2 with steps lw 1.5 lc " + std::to_string(block + 1) + " title '" + c.condition + " (" +
+                  c.procedure + ")'");
     ++block;
   }
   if (block == 0) return false;
