@@ -48,8 +48,6 @@ void print_devices() {
 }
 
 void run_audio_test(const AudioTestOptions& o) {
-  if (!(o.seconds > 0 && o.seconds <= 60)) throw CLI::ValidationError("--seconds", "must be in (0, 60]");
-  if (!(o.speed_m_per_s > 0 && o.speed_m_per_s <= 10)) throw CLI::ValidationError("--speed", "must be in (0, 10]");
   const AppConfig config = command_settings(o.config, o.config_dir, "audio test");
   const Scene scene = config::load_scene(o.scene);
   if (o.target < 0 || static_cast<std::size_t>(o.target) >= scene.targets.size())
@@ -140,10 +138,14 @@ void register_audio(CLI::App& app) {
       ->check(CLI::IsMember({"actuator", "acoustic"}));
   add_settings_options(*test, o->config, o->config_dir);
   test->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
-  test->add_option("--seconds", o->seconds, "How long the stream runs")->capture_default_str();
+  test->add_option("--seconds", o->seconds, "How long the stream runs")
+      ->capture_default_str()
+      ->check(positive_at_most(60.0));
   test->add_option("--target", o->target, "Bar id to strike (`mallet scene describe`; 3 = a wood bar)")
       ->capture_default_str();
-  test->add_option("--speed", o->speed_m_per_s, "Impact speed in m/s")->capture_default_str();
+  test->add_option("--speed", o->speed_m_per_s, "Impact speed in m/s")
+      ->capture_default_str()
+      ->check(positive_at_most(10.0));
   test->add_option("--sample-format", o->sample_format,
                    "Device sample type; int16 for outputs that take only 16-bit (e.g. ALSA's file plugin)")
       ->check(CLI::IsMember({"float32", "int16"}))

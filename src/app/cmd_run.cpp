@@ -33,12 +33,15 @@ void register_run(CLI::App& app) {
   add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
   cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (its close button quits)");
-  cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")->capture_default_str();
+  cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")
+      ->capture_default_str()
+      ->check(positive_at_most(86400.0));
   cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
   cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
       ->capture_default_str();
   cmd->add_option("--idle-after", o->idle_after_s,
-                  "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)");
+                  "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)")
+      ->check(positive_at_most(86400.0));
   cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render].device)");
   cmd->add_flag("--no-frame-cap", o->no_frame_cap,
                 "With a display: draw frames as fast as they come, ignoring [render] max_fps (to measure what the "

@@ -52,10 +52,14 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--input-space", *space, "screen: x,y normalised 0..1; world: sphere centre in metres")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
-  cmd->add_option("--sample-rate", *rate, "Audio sample rate in Hz (default: [audio].sample_rate_hz, 48000)");
-  cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")->capture_default_str();
+  cmd->add_option("--sample-rate", *rate, "Audio sample rate in Hz (default: [audio].sample_rate_hz, 48000)")
+      ->check(CLI::Range(1000, 384000));
+  cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")
+      ->capture_default_str()
+      ->check(positive_at_most(1e6));
   cmd->add_option("--tail", options->tail_s, "Seconds rendered after the last trajectory sample")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
   cmd->add_flag("--allow-long", options->allow_long,
                 "Simulate a trajectory whose t goes past 3600 s (one hour) instead of refusing it");
   cmd->add_flag("--causal", options->causal, "Decide strikes as the live kiosk does (see below)");

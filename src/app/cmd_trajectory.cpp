@@ -30,19 +30,22 @@ void register_trajectory(CLI::App& app) {
       "--speed m/s downwards, sampled at --rate Hz.");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str();
   cmd->add_option("--targets", o->targets, "Target ids to strike, in order (e.g. 0,2,4,7)")->required()->delimiter(',');
-  cmd->add_option("--start", o->start_s, "Time of the first strike (s)")->capture_default_str();
-  cmd->add_option("--interval", o->interval_s, "Time between strikes (s)")->capture_default_str();
-  cmd->add_option("--speed", o->speed, "Downward speed at contact (m/s)")->capture_default_str();
-  cmd->add_option("--rate", o->rate_hz, "Samples per second")->capture_default_str();
+  cmd->add_option("--start", o->start_s, "Time of the first strike (s)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--interval", o->interval_s, "Time between strikes (s)")
+      ->capture_default_str()
+      ->check(positive_at_most());
+  cmd->add_option("--speed", o->speed, "Downward speed at contact (m/s)")
+      ->capture_default_str()
+      ->check(positive_at_most(100.0));
+  cmd->add_option("--rate", o->rate_hz, "Samples per second")->capture_default_str()->check(CLI::Range(1.0, 100000.0));
   cmd->add_option("--space", o->space, "screen: normalised 0..1; world: sphere centre in metres")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output CSV")->required();
   cmd->callback([o] {
     const Scene scene = config::load_scene(o->scene);
-    if (!(o->rate_hz >= 1 && o->rate_hz <= 100000)) throw FileError("--rate", 0, 0, "must be in [1, 100000] Hz");
-    if (!(o->speed > 0 && o->speed <= 100)) throw FileError("--speed", 0, 0, "must be in (0, 100] m/s");
-    if (!(o->interval_s > 0) || !(o->start_s >= 0)) throw FileError("--interval", 0, 0, "must be > 0 (and --start >= 0)");
     std::vector<ScriptedStrike> strikes;
     for (std::size_t k = 0; k < o->targets.size(); ++k) {
       const int id = o->targets[k];

@@ -6,6 +6,11 @@
 
 namespace mallet::app {
 
+//! A flag's check for a number in (0, `most`] (no upper bound when `most` is 0), worded
+//! "must be > 0 and at most 60, got 0". CLI11's own PositiveNumber would quote the largest
+//! double as its bound.
+CLI::Validator positive_at_most(double most = 0);
+
 //! Adds every subcommand to the command line; each runs from its parse callback.
 void register_commands(CLI::App& app);
 
