@@ -39,6 +39,16 @@ const char* kHeader =
     "set terminal pngcairo size 720,450 font 'DejaVu Sans,10' noenhanced\n"
     "set grid\nset key outside right top noenhanced\n";
 
+//! NAME.dat and NAME.gp in `dir`: the script draws NAME.png from the data, in the common
+//! terminal and style, with the plot's own `settings` and `plot` command (an empty plot when
+//! it has no curve).
+void write_plot(const std::filesystem::path& dir, const std::string& name, const std::ostringstream& dat,
+                const std::ostringstream& settings, const std::string& plot, int curves) {
+  write_file(dir / (name + ".dat"), dat.str());
+  write_file(dir / (name + ".gp"), std::string(kHeader) + "set output '" + name + ".png'\n" + settings.str() +
+                                       (curves ? plot : "plot 0 notitle") + "\n");
+}
+
 void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
   std::ostringstream dat, gp;
   dat << "# per condition (blocks): difference_pct proportion_correct trials\n";
@@ -46,8 +56,7 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
   double x_max = 0;
   for (const study::ConditionSummary* c : fitted(r.pooled))
     for (const study::PsychometricLevel& l : c->levels) max_trials = std::max(max_trials, l.trials), x_max = std::max(x_max, l.x);
-  gp << kHeader << "set output 'psychometric.png'\n"
-     << "set title 'Pooled psychometric functions (2AFC); points sized by trials, bars: 95 % intervals'\n"
+  gp << "set title 'Pooled psychometric functions (2AFC); points sized by trials, bars: 95 % intervals'\n"
      << "set xlabel 'difference in B (%)'\nset ylabel 'proportion correct'\nset yrange [0.3:1.05]\n"
      << "set xrange [" << 0 << ":" << x_max * 1.05 + 1 << "]\n"
      << "set arrow from graph 0, first 0.75 to graph 1, first 0.75 nohead dt 2 lc rgb '#888888'\n";
@@ -77,8 +86,7 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
     }
     ++block;
   }
-  write_file(dir / "psychometric.dat", dat.str());
-  write_file(dir / "psychometric.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+  write_plot(dir, "psychometric", dat, gp, plot, block);
 }
 
 void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
@@ -86,8 +94,7 @@ void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
   dat << "# per condition (blocks): participant_index threshold_pct ci_lo ci_hi participant\n";
   std::vector<std::string> conditions;
   for (const study::ConditionSummary* c : fitted(r.pooled)) conditions.push_back(c->condition);
-  gp << kHeader << "set output 'thresholds.png'\n"
-     << "set title \"Each participant's threshold with its 95 % interval\"\n"
+  gp << "set title \"Each participant's threshold with its 95 % interval\"\n"
      << "set ylabel 'threshold: difference in B (%) at 75 % correct'\nset xrange [0.5:"
      << static_cast<double>(r.participants.size()) + 0.5 << "]\nset xtics (";
   for (std::size_t i = 0; i < r.participants.size(); ++i)
@@ -110,15 +117,13 @@ void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
               "using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(block + 1) + " title '" + conditions[k] + "'");
     ++block;
   }
-  write_file(dir / "thresholds.dat", dat.str());
-  write_file(dir / "thresholds.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+  write_plot(dir, "thresholds", dat, gp, plot, block);
 }
 
 void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) {
   std::ostringstream dat, gp;
   dat << "# per condition (blocks): bin_centre_ms trials (" << kRtBinMs << " ms bins)\n";
-  gp << kHeader << "set output 'response_times.png'\n"
-     << "set title 'Response times per condition (" << kRtBinMs << " ms bins)'\n"
+  gp << "set title 'Response times per condition (" << kRtBinMs << " ms bins)'\n"
      << "set xlabel 'response time (ms)'\nset ylabel 'trials'\n";
   std::string plot = "plot ";
   int block = 0;
@@ -134,16 +139,14 @@ void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) 
               "using 1:2 with histeps lw 2 lc " + std::to_string(block + 1) + " title '" + c.condition + "'");
     ++block;
   }
-  write_file(dir / "response_times.dat", dat.str());
-  write_file(dir / "response_times.gp", gp.str() + (block ? plot : "plot 0 notitle") + "\n");
+  write_plot(dir, "response_times", dat, gp, plot, block);
 }
 
 //! The adaptive tracks: each track's tested difference against its trial, per condition.
 bool tracks_plot(const StudyReport& r, const std::filesystem::path& dir) {
   std::ostringstream dat, gp;
   dat << "# per condition (blocks), per track (separated by a blank line): track_trial difference_pct\n";
-  gp << kHeader << "set output 'tracks.png'\n"
-     << "set title 'Adaptive tracks: the difference each trial tested'\n"
+  gp << "set title 'Adaptive tracks: the difference each trial tested'\n"
      << "set xlabel \"trial in the condition's track\"\nset ylabel 'difference in B (%)'\n";
   std::string plot = "plot ";
   int block = 0;
@@ -160,8 +163,7 @@ bool tracks_plot(const StudyReport& r, const std::filesystem::path& dir) {
     ++block;
   }
   if (block == 0) return false;
-  write_file(dir / "tracks.dat", dat.str());
-  write_file(dir / "tracks.gp", gp.str() + plot + "\n");
+  write_plot(dir, "tracks", dat, gp, plot, block);
   return true;
 }
 

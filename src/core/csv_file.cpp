@@ -31,30 +31,19 @@ double Table::number(const Row& row, std::size_t column, std::string_view label)
 Table parse(std::string_view text, std::string file, Options options) {
   Table t;
   t.file = std::move(file);
-  std::uint32_t line_no = 0;
-  for (std::size_t pos = 0; pos < text.size();) {
-    ++line_no;
-    const std::size_t nl = text.find('\n', pos);
-    if (nl == std::string_view::npos && options.incomplete_last_line) {
+  text::Lines lines(text);
+  while (std::optional<std::string_view> next = lines.next()) {
+    const std::uint32_t line_no = lines.number();
+    if (!lines.ended() && options.incomplete_last_line) {
       t.warnings.push_back(t.file + ":" + std::to_string(line_no) +
                            ": incomplete last line ignored (the program stopped while writing it)");
       break;
     }
-    std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-    pos = nl == std::string_view::npos ? text.size() : nl + 1;
-    t.complete_bytes = pos;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (options.hand_written) line = text::trim(line);
+    t.complete_bytes = lines.offset();
+    const std::string_view line = options.hand_written ? text::trim(*next) : *next;
     if (line.empty() || (options.hand_written && line.front() == '#')) continue;
     std::vector<std::string> fields;
-    if (options.hand_written) {
-      for (std::string_view f : text::split_fields(line)) fields.emplace_back(f);
-    } else {
-      std::size_t start = 0;
-      for (std::size_t comma; (comma = line.find(',', start)) != std::string_view::npos; start = comma + 1)
-        fields.emplace_back(line.substr(start, comma - start));
-      fields.emplace_back(line.substr(start));
-    }
+    for (std::string_view f : text::split_fields(line, options.hand_written)) fields.emplace_back(f);
     if (!t.has_header()) {
       t.header = std::move(fields);
       t.header_text = std::string(line);

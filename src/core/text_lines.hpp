@@ -30,13 +30,14 @@ inline std::string_view trim(std::string_view s) {
   return s;
 }
 
-//! The comma-separated fields of a line, each trimmed.
-inline std::vector<std::string_view> split_fields(std::string_view line) {
+//! The comma-separated fields of a line, each trimmed (`trimmed` false: kept as written).
+inline std::vector<std::string_view> split_fields(std::string_view line, bool trimmed = true) {
   std::vector<std::string_view> out;
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    const std::string_view field = line.substr(start, comma == std::string_view::npos ? comma : comma - start);
+    out.push_back(trimmed ? trim(field) : field);
     if (comma == std::string_view::npos) return out;
     start = comma + 1;
   }
@@ -59,16 +60,22 @@ class Lines {
     const std::size_t nl = text_.find('\n', pos_);
     std::string_view line = text_.substr(pos_, nl == std::string_view::npos ? std::string_view::npos : nl - pos_);
     pos_ = nl == std::string_view::npos ? text_.size() : nl + 1;
+    ended_ = nl != std::string_view::npos;
     ++number_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     return line;
   }
   std::uint32_t number() const { return number_; }  //!< of the line last returned
+  //! Whether the line last returned ended with its '\n' (a file cut mid-write does not).
+  bool ended() const { return ended_; }
+  //! The bytes of the text up to the end of the line last returned.
+  std::size_t offset() const { return pos_; }
 
  private:
   std::string_view text_;
   std::size_t pos_ = 0;
   std::uint32_t number_ = 0;
+  bool ended_ = false;
 };
 
 }  // namespace mallet::text

@@ -6,12 +6,6 @@
 
 namespace mallet::render {
 
-PixelRect bounding(const PixelRect& a, const PixelRect& b) {
-  if (a.empty()) return b;
-  if (b.empty()) return a;
-  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
-}
-
 PixelRect overlay_rect(const std::vector<OverlayVertex>& vertices, int width, int height) {
   if (vertices.empty() || width <= 0 || height <= 0) return {};
   float x0 = vertices[0].x, y0 = vertices[0].y, x1 = x0, y1 = y0;

@@ -48,8 +48,6 @@ struct FrameLook {
   const FontAtlas* overlay_atlas = nullptr;
 };
 
-//! The smallest rectangle holding both (either may be empty).
-PixelRect bounding(const PixelRect& a, const PixelRect& b);
 //! The pixels an overlay's shapes cover: their vertices' box, a pixel of margin, clamped.
 PixelRect overlay_rect(const std::vector<OverlayVertex>& vertices, int width, int height);
 

@@ -134,11 +134,6 @@ void begin_rendering(VkCommandBuffer cmd, std::span<const VkRenderingAttachmentI
   begin_rendering(cmd, colors, depth, extent, {{0, 0}, extent});
 }
 
-PixelRect intersection(const PixelRect& a, const PixelRect& b) {
-  const PixelRect r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
-  return r.empty() ? PixelRect{} : r;
-}
-
 }  // namespace
 
 bool supports_samples(const Context& ctx, VkSampleCountFlagBits samples) {

@@ -4,6 +4,7 @@
 // proportions (unstretched, the rest filled with more of the world), and the placement of
 // every model instance (bars scaled from their unit model, rails under the nodal points,
 // the mallet head).
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,17 @@ double sphere_visibility(const SphereShadow& s, glm::dvec3 p);
 PixelRect screen_rect(const glm::mat4& view_proj, int width, int height, const Box& box);
 inline bool overlap(const PixelRect& a, const PixelRect& b) {
   return !a.empty() && !b.empty() && a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+//! The pixels in both (empty when they do not overlap).
+inline PixelRect intersection(const PixelRect& a, const PixelRect& b) {
+  const PixelRect r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? PixelRect{} : r;
+}
+//! The smallest rectangle holding both (either may be empty).
+inline PixelRect bounding(const PixelRect& a, const PixelRect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
 //! A screen rectangle (clamped to width × height) outside which the sphere darkens nothing
