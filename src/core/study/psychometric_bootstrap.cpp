@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+
+#include "core/study/balanced_schedule.hpp"
 
 namespace mallet::study {
 
@@ -48,9 +49,7 @@ PsychometricIntervals bootstrap_2afc(const std::vector<PsychometricLevel>& level
                                      int resamples, std::uint64_t seed) {
   PsychometricIntervals out;
   if (!fit.ok || resamples < 20) return out;
-  std::mt19937_64 rng(seed);
-  // Uniform in [0, 1) from the generator's top 53 bits: the same on every standard library.
-  auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  SplitMix64 rng(seed);  // the study's own generator: the same draws on every machine
   double x_min = levels.empty() ? 0 : levels.front().x, x_max = x_min;
   for (const PsychometricLevel& l : levels) x_min = std::min(x_min, l.x), x_max = std::max(x_max, l.x);
   std::vector<double> thresholds, slopes;
@@ -59,7 +58,7 @@ PsychometricIntervals bootstrap_2afc(const std::vector<PsychometricLevel>& level
     for (PsychometricLevel& l : drawn) {
       const double p = psychometric_2afc(l.x, fit.threshold, fit.slope);
       l.correct = 0;
-      for (int k = 0; k < l.trials; ++k) l.correct += uniform() < p;
+      for (int k = 0; k < l.trials; ++k) l.correct += rng.unit() < p;
     }
     PsychometricFit refit = refit_psychometric_2afc(drawn, fit);
     if (!refit.ok) refit = fit_psychometric_2afc(drawn, kBootstrapGrid);

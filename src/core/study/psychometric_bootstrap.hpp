@@ -3,9 +3,10 @@
 // the parametric bootstrap (Wichmann & Hill 2001, "The psychometric function: II.
 // Bootstrap-based confidence intervals and sampling"). Each resample draws every level's
 // correct answers anew from the fitted function, Binomial(trials, P(x)), and is fitted
-// again; the interval is the 2.5th to 97.5th percentile of the refits. The draws come from
-// one seeded generator (mt19937_64, each answer a uniform < P): the same intervals on every
-// machine for the same data and seed.
+// again; the interval runs between the refits' bias-corrected 2.5th and 97.5th percentiles
+// (Efron 1987: moved by how far the refits' median lies from the fit). The draws come from
+// one seeded generator (the study's SplitMix64, each answer a uniform < P): the same
+// intervals on every machine for the same data and seed.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,7 +22,7 @@ struct Interval {
 
 struct PsychometricIntervals {
   bool ok = false;
-  Interval threshold, slope;  //!< 95 %, percentile
+  Interval threshold, slope;  //!< 95 %, bias-corrected percentiles
   int resamples = 0;          //!< refits that gave a fit
   int extrapolated = 0;       //!< of those, thresholds beyond the tested range (a caveat)
 };

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/study/balanced_schedule.hpp"
 #include "core/study/study_protocol.hpp"
 
 namespace mallet::study {
@@ -16,15 +17,10 @@ int condition_rank(const std::string& name) {
   return 4;
 }
 
-//! The bootstrap's seed for one participant's (or the pool's, "") condition: FNV-1a over
-//! both names, mixed with the user's seed.
+//! The bootstrap's seed for one participant's (or the pool's, "") condition: the schedule's
+//! own mixing of a name into a seed (participant_seed), over both names.
 std::uint64_t interval_seed(std::uint64_t seed, const std::string& participant, const std::string& condition) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const std::string* part : {&participant, &condition}) {
-    for (unsigned char c : *part) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ 0x1f) * 1099511628211ull;
-  }
-  return h ^ (seed * 0x9e3779b97f4a7c15ull);
+  return participant_seed(seed, participant + '\x1f' + condition);
 }
 
 //! "[lo, hi]" with the given decimals, or "-" without an interval.
