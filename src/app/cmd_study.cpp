@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "app/study_report.hpp"
 #include "app/study_session.hpp"
 #include "app/study_window.hpp"
+#include "app/visitor_study.hpp"
 #include "core/file_error.hpp"
 #include "core/study/results_csv.hpp"
 #include "core/study/study_summary.hpp"
@@ -112,6 +114,58 @@ void add_summary(CLI::App& study) {
   });
 }
 
+void add_visitors(CLI::App& study) {
+  auto o = std::make_shared<SimulatedVisitors>();
+  o->scene = default_scene();
+  o->out_dir = "visitor-study";
+  CLI::App* cmd = study.add_subcommand("visitors", "Simulate the kiosk's visitor micro-study headless");
+  cmd->footer(
+      "mallet study visitors --protocol config/study/visitor.toml --visitors N [--out-dir DIR]\n"
+      "Runs N simulated visitors through a visitor protocol (one with a [visitor] table) on a\n"
+      "simulated clock, as the kiosk runs a visitor who accepted its offer: the consent screen,\n"
+      "agreed by striking \"1\" (Yes), then the protocol's [visitor] trials, answered by the simulated\n"
+      "observer striking the answer bars through the kiosk's strike route. Each visitor is a random\n"
+      "session id (visitor-XXXXXXXX, from --seed) and the date; rows are appended to\n"
+      "DIR/visitors-YYYY-MM-DD.csv as the kiosk appends them. --abandon-after N: every second visitor\n"
+      "walks away after N trials (the kiosk waits the protocol's answer_timeout_s); --decline-every K:\n"
+      "every K-th visitor strikes \"2\" (No) at the consent screen and nothing is written for them.\n"
+      "Prints one line per visitor. Bad input: exit 2 with FILE:LINE: problem.");
+  cmd->add_option("--protocol", o->protocol, "Visitor protocol (TOML with a [visitor] table)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--visitors", o->visitors, "How many visitors")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_option("--out-dir", o->out_dir, "Folder of the day files")->capture_default_str();
+  cmd->add_option("--abandon-after", o->abandon_after, "Every second visitor walks away after this many trials (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--decline-every", o->decline_every, "Every K-th visitor declines at the consent screen (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000));
+  cmd->add_option("--seed", o->seed, "Seed of the session ids")->capture_default_str();
+  cmd->add_option("--date", o->date, "The day the rows are dated (YYYY-MM-DD; default: today, UTC)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            const bool ok = v.size() == 10 && v[4] == '-' && v[7] == '-' &&
+                            std::all_of(v.begin(), v.end(), [](char c) { return c == '-' || (c >= '0' && c <= '9'); });
+            return ok ? std::string() : "expected YYYY-MM-DD, got \"" + v + "\"";
+          },
+          "YYYY-MM-DD"));
+  cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
+  add_settings_options(*cmd, o->config, o->config_dir);
+  cmd->callback([o] {
+    const std::vector<VisitorSessionResult> sessions = run_simulated_visitors(*o);
+    std::set<std::filesystem::path> written;
+    for (const VisitorSessionResult& v : sessions) {
+      const char* how = !v.consented ? (v.abandoned ? "walked away at the consent" : "declined")
+                        : v.abandoned ? "abandoned"
+                                      : "completed";
+      std::printf("%s: %s, %d of %d trials\n", v.id.c_str(), how, v.answered, v.planned);
+      if (v.answered > 0) written.insert(v.csv);
+    }
+    for (const auto& f : written) std::printf("wrote %s\n", f.c_str());
+  });
+}
+
 }  // namespace
 
 void register_study(CLI::App& app) {
@@ -127,6 +181,7 @@ void register_study(CLI::App& app) {
       "mallet study --protocol FILE.toml --participant ID [--windowed] [--out CSV]   (a participant)\n"
       "mallet study --protocol FILE.toml --participant ID --headless [--answers FILE] [--out CSV]\n"
       "mallet study summary --results CSV\n"
+      "mallet study visitors --protocol FILE.toml --visitors N   (the kiosk's visitor study, simulated)\n"
       "Runs a psychophysics protocol (config/study/example.toml documents one): every condition\n"
       "(visual_only, tactile_only, both, none) x pair or stimulus, `repetitions` times, in an order\n"
       "shuffled per participant (seeded by the protocol's seed and the ID: the same ID gets the same\n"
@@ -138,13 +193,19 @@ void register_study(CLI::App& app) {
       "the protocol's materials, or 1-9 when two share one). Keys pressed during the taps are ignored;\n"
       "the response time runs from the end of the last tap (rows marked source=keys). Esc, Q or\n"
       "closing the window stops: answered trials are kept, and the same command resumes.\n"
+      "A protocol with response = \"strike\" (config/study/strike.toml) is answered with the same\n"
+      "mallet on answer bars labelled \"1\" and \"2\" (or the materials' names) beside the stimulus bar;\n"
+      "an answer strike sounds a neutral click and no actuator signal (the protocol's [answer_strike]),\n"
+      "and its response time runs to the contact the strike route finds (rows marked source=strike;\n"
+      "headless, the simulated observer or the script strikes its answers through the same route).\n"
       "The actuator_peak column is the signal sent, rendered by the same engine offline.\n"
       "--headless, or without a display: on a simulated clock,\n"
       "through the kiosk's own audio engine and bounce; answers come from --answers (one a line:\n"
       "1 or 2, or a material name, optionally followed by a response time in ms) or, without it, from\n"
       "a simulated observer (rows marked source=simulated). One CSV row per trial, fsync'd before the\n"
       "next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then\n"
-      "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak.\n"
+      "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak, then\n"
+      "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct.\n"
       "Run again with the same participant to resume: trials already in the CSV are skipped; an\n"
       "incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.");
   cmd->add_option("--protocol", o->protocol, "Protocol file (TOML)")->check(CLI::ExistingFile);
@@ -163,8 +224,9 @@ void register_study(CLI::App& app) {
   cmd->add_option("--stop-after", *stop_after, "Test hook: end the process abruptly after N rows, as a crash would")
       ->group("");
   add_summary(*cmd);
+  add_visitors(*cmd);
   cmd->callback([cmd, o, headless, stop_after, window] {
-    if (cmd->get_subcommand("summary")->parsed()) return;
+    if (cmd->get_subcommand("summary")->parsed() || cmd->get_subcommand("visitors")->parsed()) return;
     if (o->protocol.empty()) throw CLI::RequiredError("--protocol");
     if (o->participant.empty()) throw CLI::RequiredError("--participant");
     const bool windowed = !*headless && render::WindowSystem::display_available();
@@ -187,7 +249,9 @@ void register_study(CLI::App& app) {
                   o->participant.c_str(), r.total, r.procedure.c_str());
     if (r.already_recorded)
       std::printf("resumed: %d trial(s) already in %s\n", r.already_recorded, r.csv.c_str());
-    if (r.answered && r.simulated)
+    if (r.answered && r.simulated && r.source == "strike")
+      std::printf("note: no --answers: the simulated observer answered by striking (rows marked source=strike)\n");
+    else if (r.answered && r.simulated)
       std::printf("note: no --answers: the simulated observer answered (rows marked source=simulated)\n");
     std::printf("answered %d trial(s) in this run, %d correct; %d of %d recorded\n", r.answered, r.correct,
                 r.already_recorded + r.answered, r.total);

@@ -46,7 +46,7 @@ void HeadlessLoop::feed_ghost_until(Nanos t) {
   feeding_ghost_ = false;
 }
 
-void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
+std::optional<Strike> HeadlessLoop::visitor(Nanos t, Vec2 hand) {
   // Everything before this sample's segment is settled; its own strike (at or before t)
   // must be posted before the audio up to t is rendered.
   if (t - kStep > now_) advance(t - kStep);
@@ -57,9 +57,10 @@ void HeadlessLoop::visitor(Nanos t, Vec2 hand) {
     route_.loop().set_cycle_materials(false);
   }
   last_visitor_ = t;
-  route_.feed(t, hand);
+  std::optional<Strike> strike = route_.feed(t, hand);
   render_audio_until(t);
   now_ = std::max(now_, t);
+  return strike;
 }
 
 Strike HeadlessLoop::present(const Impact& impact) {

@@ -36,8 +36,8 @@ class HeadlessLoop {
   HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos idle_after, bool acoustic_enabled = true);
 
   //! A visitor's hand (sphere centre, world metres) at t >= now(): takes over from the
-  //! ghost at once.
-  void visitor(Nanos t, Vec2 hand);
+  //! ghost at once. The strike it made, if any.
+  std::optional<Strike> visitor(Nanos t, Vec2 hand);
   //! A strike made by the program, not the hand (a study stimulus) at impact.t_ns >= now():
   //! the audio up to it is rendered first, then both channels and the bounce start as for a
   //! visitor's strike.

@@ -46,20 +46,27 @@ void draw_banner(render::Overlay& overlay, std::string_view text, float width, f
                  {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
 }
 
-void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
-                     float height) {
-  if (scene.kind != SceneKind::percussion) return;
+void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height, const std::vector<BarLabel>& labels) {
   const float px = overlay.atlas().pixel_height();
-  for (const Target& t : scene.targets) {
+  for (const BarLabel& label : labels) {
+    const Target& t = scene.targets.at(static_cast<std::size_t>(label.target));
     // On the bar's top, a little in from its near end (the end towards the visitor).
     const glm::dvec3 at{(t.x_min + t.x_max) / 2, t.top_y, t.length_m / 2 - 0.03};
     const glm::dvec2 s = render::project_to_screen(view_proj, at);
-    const std::string name = note_name(t.note);
     const float x = static_cast<float>(s.x) * width, y = static_cast<float>(s.y) * height;
-    const float w = overlay.atlas().measure(name) + px * 0.4f;
+    const float w = overlay.atlas().measure(label.text) + px * 0.4f;
     overlay.fill_rect(x - w / 2, y - px * 0.95f, w, px * 1.2f, {0.0f, 0.0f, 0.0f, 0.45f});
-    overlay.text(x, y, name, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center);
+    overlay.text(x, y, label.text, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center);
   }
+}
+
+void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height) {
+  if (scene.kind != SceneKind::percussion) return;
+  std::vector<BarLabel> labels;
+  for (const Target& t : scene.targets) labels.push_back({t.id, note_name(t.note)});
+  draw_bar_labels(overlay, scene, view_proj, width, height, labels);
 }
 
 }  // namespace mallet::app

@@ -3,6 +3,7 @@
 // log line of a strike and the one-line banner (the invitation, the hints).
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/impact.hpp"
 #include "core/scene.hpp"
@@ -18,6 +19,15 @@ std::string strike_line(const Scene& scene, const Impact& impact);
 //! The text centred near the top of a width×height screen, on a translucent band; wrapped
 //! onto more lines where one would not fit the screen's width (render/text_wrap.hpp).
 void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
+
+//! A label on a bar: its near end, as `view_proj` shows the bar on a width×height image, on
+//! a small translucent band so it reads on wood and metal alike.
+struct BarLabel {
+  int target = 0;
+  std::string text;
+};
+void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height, const std::vector<BarLabel>& labels);
 
 //! Each bar's note name ([visual] note_names) on its near end, as `view_proj` shows the bar
 //! on a width×height image, on a small translucent band so it reads on wood and metal alike.

@@ -23,6 +23,8 @@ std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
     motion_ = texture_->update(t, hand);
     return std::nullopt;
   }
+  // A bar only the program strikes: the hand rests on it, as after a touch.
+  if (impact && !scene_.targets.at(static_cast<std::size_t>(impact->target)).hand_strikes) impact.reset();
   if (impact) {
     show(*impact);
     if (cycle_materials_) next_wall_material();

@@ -8,11 +8,11 @@
 #include <memory>
 #include <set>
 
-#include "app/headless_loop.hpp"
+#include "app/study_headless.hpp"
 #include "app/settings_source.hpp"
 #include "app/study_stimuli.hpp"
-#include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"
+#include "core/config/instruments_config.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
@@ -114,39 +114,57 @@ AdaptiveSchedule replay_adaptive(const StudyPlan& plan) {
 
 int StudyPlan::stimuli_per_trial() const { return protocol.task == StudyTask::two_afc_harder ? 2 : 1; }
 
-StudyPlan plan_study(const StudyOptions& o) {
-  // --- everything that can be wrong with the input is found before a trial runs
-  if (!is_plain_name(o.participant))
-    throw FileError("--participant", 0, 0,
-                    "\"" + o.participant + "\" must be 1-64 letters, digits, '_', '-' or '.'");
+StudyPlan plan_session(AppConfig config, Scene base, StudyProtocol protocol, const std::string& participant,
+                       const fs::path& csv) {
   StudyPlan p;
-  p.participant = o.participant;
-  p.config = command_settings(o.config, o.config_dir, "study");
-  p.base = config::load_scene(o.scene);
-  p.protocol = load_study_protocol(o.protocol, p.base.materials, p.base.targets.size());
+  p.participant = participant;
+  p.config = std::move(config);
+  p.base = std::move(base);
+  p.protocol = std::move(protocol);
   const int rate = p.config.audio.sample_rate_hz;
   for (const Stimulus& s : p.protocol.stimuli)
     if (auto problem = actuator_band_problem(s.material, rate))
       throw FileError(p.protocol.file, 0, 0, "stimulus " + s.name + ": " + *problem);
-  p.schedule = balanced_schedule(p.protocol, o.participant);
-  p.csv = o.out ? *o.out : fs::path(p.protocol.output);
+  if (p.protocol.response == StudyResponse::strike && !p.protocol.answer_strike.voice.empty()) {
+    const std::vector<ModalPreset> voices = config::load_instruments(p.base.instruments_file);
+    const std::string& voice = p.protocol.answer_strike.voice;
+    if (std::none_of(voices.begin(), voices.end(), [&](const ModalPreset& v) { return v.name == voice; })) {
+      std::string known;
+      for (const ModalPreset& v : voices) known += (known.empty() ? "" : ", ") + v.name;
+      throw FileError(p.protocol.answer_strike.voice_at, "answer_strike.sound: no voice \"" + voice + "\" in " +
+                                                          p.base.instruments_file + " (known: " + known + ", none)");
+    }
+  }
+  p.schedule = balanced_schedule(p.protocol, participant);
+  p.csv = csv;
   p.existing = read_results(p.csv);
-  if (p.existing.has_header && p.existing.header != kResultsHeader &&
-      p.existing.header != kResultsHeaderWithoutTiming)
+  if (p.existing.has_header && results_columns(p.existing.header) == 0)
     throw FileError(p.csv.string(), 1, 0,
                     "its columns are not the ones this version writes; use a new --out (expected " +
                         std::string(kResultsHeader) + ")");
   if (p.protocol.procedure == StudyProcedure::constant) {
-    p.done = recorded_trials(p.existing, p.csv, p.protocol, o.participant, p.schedule);
+    p.done = recorded_trials(p.existing, p.csv, p.protocol, participant, p.schedule);
     p.total_trials = static_cast<int>(p.schedule.size());
     p.finished = p.done.size() == p.schedule.size();
   } else {
-    const AdaptiveSchedule replayed = replay_rows(p.existing, p.csv, p.protocol, o.participant);
+    const AdaptiveSchedule replayed = replay_rows(p.existing, p.csv, p.protocol, participant);
     for (int n = 1; n <= replayed.trials(); ++n) p.done.insert(n);
     p.total_trials = replayed.max_trials();
     p.finished = !replayed.next();
   }
   return p;
+}
+
+StudyPlan plan_study(const StudyOptions& o) {
+  // --- everything that can be wrong with the input is found before a trial runs
+  if (!is_plain_name(o.participant))
+    throw FileError("--participant", 0, 0,
+                    "\"" + o.participant + "\" must be 1-64 letters, digits, '_', '-' or '.'");
+  AppConfig config = command_settings(o.config, o.config_dir, "study");
+  Scene base = config::load_scene(o.scene);
+  StudyProtocol protocol = load_study_protocol(o.protocol, base.materials, base.targets.size());
+  const fs::path csv = o.out ? *o.out : fs::path(protocol.output);
+  return plan_session(std::move(config), std::move(base), std::move(protocol), o.participant, csv);
 }
 
 std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, const ScheduledTrial& trial,
@@ -204,14 +222,20 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   return row;
 }
 
-StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage& stage, AnswerSource& answers,
-                           const std::function<void(int)>& after_row) {
+StudyRunResult nothing_run(const StudyPlan& plan) {
   StudyRunResult result;
   result.csv = plan.csv;
   result.total = plan.total_trials;
   result.procedure = std::string(procedure_name(plan.protocol.procedure));
   result.warnings = plan.existing.warnings;
   result.already_recorded = static_cast<int>(plan.done.size());
+  return result;
+}
+
+StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage& stage, AnswerSource& answers,
+                           const std::function<void(int)>& after_row) {
+  StudyRunResult result = nothing_run(plan);
+  result.source = answers.name();
   if (plan.finished) return result;
   // The trials still to run: the schedule's not yet recorded, or what the adaptive tracks
   // give, one at a time, after replaying the recorded rows.
@@ -225,11 +249,12 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
     return plan.schedule[next_index++];
   };
   ResultsWriter writer(plan.csv, plan.existing);
-  const std::string session = utc_now();
+  const std::string session = plan.session.empty() ? utc_now() : plan.session;
   Nanos t = stage.now();
   const std::string procedure(procedure_name(plan.protocol.procedure));
   while (const std::optional<ScheduledTrial> next_one = next_trial()) {
     const ScheduledTrial& trial = *next_one;
+    if (plan.max_trials > 0 && result.already_recorded + result.answered >= plan.max_trials) break;
     if (!answers.has_more()) {
       result.stopped = true;
       break;
@@ -241,6 +266,7 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
       break;
     }
     row->procedure = procedure;
+    row->planned_trials = plan.planned_trials();
     if (adaptive) {  // the track's state after this answer
       adaptive->record(trial, row->correct);
       const TrackState s = adaptive->state(trial.condition);
@@ -278,87 +304,32 @@ std::vector<AnswerKey> answer_keys(const StudyProtocol& protocol) {
 }
 
 std::string answer_prompt(const StudyProtocol& protocol) {
+  const bool strike = protocol.response == StudyResponse::strike;
+  if (protocol.task == StudyTask::two_afc_harder)
+    return strike ? tr("Which tap felt harder? Strike 1 or 2") : tr("Which tap felt harder? Press 1 or 2");
+  if (strike) return tr("Which material? Strike its bar");
   const std::vector<AnswerKey> keys = answer_keys(protocol);
-  if (protocol.task == StudyTask::two_afc_harder) return tr("Which tap felt harder? Press 1 or 2");
   std::string text = tr("Which material?");
   for (std::size_t i = 0; i < keys.size(); ++i)
     text += std::string(i ? ", " : " ") + keys[i].key + " " + keys[i].answer;
   return text;
 }
 
-namespace {
-
-//! The simulated clock: the kiosk's loop without a window.
-class HeadlessStage final : public StudyStage {
- public:
-  HeadlessStage(const Scene& scene, const StudyPlan& plan, const std::optional<fs::path>& wav_path)
-      : loop_(scene, plan.config, HeadlessLoop::kNoAttract, plan.protocol.sound),
-        actuator_channel_(plan.config.audio.routing.actuator) {
-    if (wav_path) wav_ = std::make_unique<audio::WavWriter>(*wav_path, loop_.channels(), plan.config.audio.sample_rate_hz);
-    const auto channels = static_cast<std::size_t>(loop_.channels());
-    loop_.on_audio = [this, channels](std::span<const float> block) {
-      if (wav_) wav_->write(block);
-      for (std::size_t i = static_cast<std::size_t>(actuator_channel_); i < block.size(); i += channels)
-        peak_ = std::max(peak_, static_cast<double>(std::fabs(block[i])));
-    };
-  }
-  Nanos now() override { return loop_.now(); }
-  bool wait_until(Nanos t) override {
-    loop_.advance(std::max(t, loop_.now()));
-    return true;
-  }
-  Strike present(const Impact& impact) override { return loop_.present(impact); }
-  double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
-  double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
-  void finish() {
-    loop_.drain_audio(loop_.now() + kNanosPerSecond);
-    if (wav_) wav_->close();
-  }
-
- private:
-  HeadlessLoop loop_;
-  int actuator_channel_;
-  std::unique_ptr<audio::WavWriter> wav_;
-  double peak_ = 0;
-};
-
-//! Answers given in advance (--answers) or by the simulated observer.
-class ScriptedAnswers final : public AnswerSource {
- public:
-  ScriptedAnswers(const StudyPlan& plan, std::vector<ObserverAnswer> script, bool simulated)
-      : observer_(plan.protocol, plan.participant), script_(std::move(script)), simulated_(simulated) {}
-  bool has_more() const override { return simulated_ || next_ < script_.size(); }
-  std::optional<TrialAnswer> answer(const ScheduledTrial& trial, Nanos opens) override {
-    if (!has_more()) return std::nullopt;
-    const ObserverAnswer a = simulated_ ? observer_.respond(trial) : script_[next_++];
-    return TrialAnswer{a.answer, opens + a.response_time};
-  }
-  std::string name() const override { return simulated_ ? "simulated" : "file"; }
-
- private:
-  SimulatedObserver observer_;
-  std::vector<ObserverAnswer> script_;
-  bool simulated_;
-  std::size_t next_ = 0;
-};
-
-}  // namespace
 
 StudyRunResult run_study(const StudyOptions& o) {
   const StudyPlan plan = plan_study(o);
   std::vector<ObserverAnswer> script;
   if (o.answers) script = read_answer_script(*o.answers, plan.protocol.answer_choices());
-  if (plan.done.size() == plan.schedule.size()) {  // nothing left: the file is not touched
-    StudyRunResult r;
-    r.csv = plan.csv;
-    r.total = r.already_recorded = static_cast<int>(plan.schedule.size());
-    r.warnings = plan.existing.warnings;
+  if (plan.finished) {  // nothing left: the file is not touched
+    StudyRunResult r = nothing_run(plan);
     r.simulated = !o.answers;
     return r;
   }
   const Scene scene = make_study_scene(plan.base, plan.protocol);
   HeadlessStage stage(scene, plan, o.audio);
-  ScriptedAnswers answers(plan, std::move(script), !o.answers);
+  ScriptedAnswers scripted(plan, std::move(script), !o.answers);
+  StrikeAnswers struck(scripted, stage, scene, plan.protocol);
+  AnswerSource& answers = plan.protocol.response == StudyResponse::strike ? static_cast<AnswerSource&>(struck) : scripted;
   StudyRunResult result = run_session(plan, scene, stage, answers, o.after_row);
   result.simulated = !o.answers;
   result.answers_ran_out = o.answers && result.stopped;

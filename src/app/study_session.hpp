@@ -12,6 +12,7 @@
 //   windowed: the monotonic clock, a real window, the audio device; answers from the
 //             participant's keys (study_window.hpp).
 #include <filesystem>
+#include <algorithm>
 #include <functional>
 #include <optional>
 #include <set>
@@ -48,6 +49,7 @@ struct StudyRunResult {
   int answered = 0;          //!< in this run
   int correct = 0;           //!< in this run
   bool simulated = false;    //!< the simulated observer answered
+  std::string source;        //!< the rows' `source` (AnswerSource::name)
   bool answers_ran_out = false;
   bool stopped = false;      //!< the answer source stopped before the schedule's end (script, Esc)
   std::vector<std::string> warnings;  //!< FILE:LINE: ... (an incomplete last line ignored)
@@ -69,6 +71,12 @@ struct StudyPlan {
   int total_trials = 0;
   //! Nothing left to run: every trial recorded, or every adaptive track done.
   bool finished = false;
+  //! A visitor's session (visitor_study.hpp): at most this many trials (0: all), and its
+  //! `session` column (empty: the run's start, UTC).
+  int max_trials = 0;
+  std::string session;
+  //! The rows' planned_trials: total_trials, or max_trials when it is fewer.
+  int planned_trials() const { return max_trials > 0 ? std::min(max_trials, total_trials) : total_trials; }
   int stimuli_per_trial() const;
 };
 
@@ -78,6 +86,9 @@ study::AdaptiveSchedule replay_adaptive(const StudyPlan& plan);
 
 //! Bad protocol, scene, config or CSV → FileError (exit 2).
 StudyPlan plan_study(const StudyOptions& options);
+//! The same checks and plan from what is already loaded (the kiosk's visitor study).
+StudyPlan plan_session(AppConfig config, Scene base, study::StudyProtocol protocol, const std::string& participant,
+                       const std::filesystem::path& csv);
 
 //! Where a trial is presented, on its own clock (int64 ns).
 class StudyStage {
@@ -96,6 +107,9 @@ class StudyStage {
   virtual double take_actuator_peak() = 0;
   //! The question of the trial about to run (windowed: shown on the screen).
   virtual void trial_starts(const study::ScheduledTrial&) {}
+  //! A participant's hand (sphere centre, world metres) at t >= now(), through the same
+  //! strike route as the stimuli: the strike it made, if any (answers by striking).
+  virtual std::optional<Strike> hand(Nanos t, Vec2 hand) = 0;
 };
 
 //! An answer, given at `at` on the stage's clock.
@@ -112,7 +126,7 @@ class AnswerSource {
   //! The answer to `trial`, whose answer window opened at `opens` (the end of the last
   //! stimulus); nothing: stop here (the participant quit, or no answer is left).
   virtual std::optional<TrialAnswer> answer(const study::ScheduledTrial& trial, Nanos opens) = 0;
-  //! The rows' `source` column: "file", "simulated", "keys".
+  //! The rows' `source` column: "file", "simulated", "keys", "strike".
   virtual std::string name() const = 0;
 };
 
@@ -122,6 +136,9 @@ std::optional<study::ResultRow> run_trial(const StudyPlan& plan, const Scene& st
                                           const study::ScheduledTrial& trial, StudyStage& stage,
                                           AnswerSource& answers, Nanos start, const std::string& session,
                                           Nanos& next_start);
+
+//! What a run that runs no trial reports (every trial already recorded).
+StudyRunResult nothing_run(const StudyPlan& plan);
 
 //! The remaining trials of the plan through `stage` and `answers`, each row durable
 //! before the next trial. `study_scene` = make_study_scene(plan.base, plan.protocol).
@@ -135,7 +152,8 @@ struct AnswerKey {
   std::string answer;
 };
 std::vector<AnswerKey> answer_keys(const study::StudyProtocol& protocol);
-//! "Which tap felt harder? Press 1 or 2" / "Which material? R rubber, W wood, A aluminium".
+//! "Which tap felt harder? Press 1 or 2" / "Which material? R rubber, W wood, A aluminium";
+//! with response = "strike": "... Strike 1 or 2" / "Which material? Strike its bar".
 std::string answer_prompt(const study::StudyProtocol& protocol);
 
 //! Headless: bad protocol, scene, config, answers or CSV → FileError (exit 2); a failure to

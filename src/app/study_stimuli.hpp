@@ -5,7 +5,18 @@
 // keeps only what the condition presents: visual_only zeroes the actuator triple's A,
 // tactile_only the visual one, none both. A tap is then an Impact on that bar: the audio
 // engine plays Eq. 1 on the actuator channel and the strike loop bounces the mallet with
-// Eq. 1, exactly as for a visitor's strike.
+// Eq. 1, exactly as for a visitor's strike. The stimulus bars are all in the reference
+// bar's place and only the program strikes them (Target::hand_strikes); the speaker plays
+// their note only when the protocol's `sound` says so (Instrument::speaker).
+//
+// With response = "strike" the scene also has one answer bar per answer choice, in its
+// order: a bar of the reference's shape on its own rails, spread beside the stimulus bar,
+// struck by the participant's mallet. An answer strike sounds the protocol's
+// answer_strike voice (a neutral click) and carries its `feel` (none by default: no
+// actuator signal, no bounce).
+#include <string>
+#include <vector>
+
 #include "core/impact.hpp"
 #include "core/scene.hpp"
 #include "core/study/study_protocol.hpp"
@@ -13,6 +24,14 @@
 namespace mallet::app {
 
 Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol);
+
+//! The answer bars of a study scene and the answer each gives, in the protocol's order of
+//! answer_choices(); empty unless response = "strike".
+struct AnswerBar {
+  int target = 0;
+  std::string answer;
+};
+std::vector<AnswerBar> answer_bars(const Scene& study_scene, const study::StudyProtocol& protocol);
 
 //! The tap presenting `stimulus` (index in protocol.stimuli) under `condition` at t.
 Impact stimulus_impact(const Scene& study_scene, const study::StudyProtocol& protocol, int stimulus,

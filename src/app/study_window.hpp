@@ -6,9 +6,14 @@
 // none) — then a prompt asks for the answer, taken from the keys (1/2, or a material's
 // letter); the response time runs from the end of the last tap. Esc, Q or closing the
 // window stops: the rows already written stay, and a new run resumes.
+#include <functional>
 #include <string>
+#include <vector>
 
+#include "app/render_setup.hpp"
 #include "app/study_session.hpp"
+#include "app/visitor_study.hpp"
+#include "core/pointer_sample.hpp"
 
 namespace mallet::app {
 
@@ -23,5 +28,16 @@ struct StudyWindowOptions {
 //! ::audio are not used). `validation_failed`: Vulkan validation reported a message.
 StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window,
                                 bool& validation_failed);
+
+//! A visitor's session (visitor_study.hpp) in the kiosk's own window `win`: the consent
+//! screen and the trials, answered by striking; "Thank you" for 3 s after the last. The
+//! window's key and cursor callbacks and user pointer are the study's until it returns (the
+//! caller sets its own again). `pointer`: the kiosk's pointer samples (normalised screen)
+//! since the last call, or empty for the window system's cursor; `each_frame`: called once a
+//! frame (the kiosk feeds its watchdog), false to stop (the kiosk was asked to). Esc and Q do not stop a visitor's session; no strike for the protocol's
+//! answer_timeout_s does (the visitor walked away).
+VisitorSessionResult run_visitor_window(ProductWindow& win, const StudyPlan& plan,
+                                        std::function<std::vector<PointerSample>()> pointer = {},
+                                        std::function<bool()> each_frame = {});
 
 }  // namespace mallet::app

@@ -6,8 +6,10 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,7 +30,9 @@
 #include "app/simulate.hpp"
 #include "app/strike_loop.hpp"
 #include "app/strike_route.hpp"
+#include "app/study_window.hpp"
 #include "app/systemd_notify.hpp"
+#include "app/visitor_study.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/bar_lights.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -44,6 +48,7 @@
 #include "input/wiimote/replay_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 #include "core/quality.hpp"
+#include "core/study/visitor_offer.hpp"
 #include "core/visitor_language.hpp"
 #include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
@@ -104,6 +109,8 @@ struct Stage {
   std::string mouse_line;  //!< how the mouse is read, for the log and the operator page
   std::unique_ptr<MousePointer> mouse;
   std::unique_ptr<input::evdev::EvdevMouse> evdev;
+  //! [study] visitor_protocol, loaded against this scene (none: off, or it did not load).
+  std::optional<study::StudyProtocol> visitor;
 };
 
 //! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
@@ -148,6 +155,15 @@ class WindowKiosk {
   void retire_metrics(const Stage& old);  //!< a reload: keep the replaced stage's counts
   //! The stage's scene renderer on the window's current device.
   std::unique_ptr<render::SceneRenderer> make_renderer(const Stage& stage);
+  void install_callbacks();  //!< the window's key and cursor events to this kiosk
+  //! The visitor micro-study: whether it is offered now (on the percussion scene, in the
+  //! attract mode or play); and a visitor's strike on the "Yes" bar while it is.
+  bool visitor_offered(Nanos now);
+  bool visitor_accepted(Nanos now, const StrikeLoop::View& view);
+  //! One visitor's session in this window (blocking), the instrument paused meanwhile.
+  void run_visitor_session();
+  //! The bar a visitor strikes to accept the offer: the scene's last (rightmost) one.
+  int visitor_yes_bar() const { return static_cast<int>(stage_->scene.targets.size()) - 1; }
 
   KioskOptions options_;
   ProductWindow win_;
@@ -188,18 +204,13 @@ class WindowKiosk {
   StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
   std::uint64_t xruns_retired_ = 0;   //!< by the audio outputs a reload replaced
   Nanos metrics_frame_at_ = 0;        //!< the last drawn frame's time
+  std::optional<study::VisitorOffer> offer_;  //!< [study]: when the visitor study is offered
+  Nanos offer_since_ = 0;             //!< the current offer's start: strikes before it do not accept
 };
 
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
     : options_(o), win_(setup.config.render, o.device, o.size, o.windowed, "Mallet") {
-  glfwSetWindowUserPointer(win_.window->window(), this);
-  glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
-    if (action == GLFW_PRESS || action == GLFW_REPEAT)
-      static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
-  });
-  glfwSetCursorPosCallback(win_.window->window(), [](GLFWwindow* w, double x, double y) {
-    static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
-  });
+  install_callbacks();
   started_ = monotonic_now();
   volume_ = setup.config.audio.volume;
   gain_ = setup.config.actuator.gain;
@@ -211,6 +222,88 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
 std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const Stage& stage) {
   return std::make_unique<render::SceneRenderer>(*win_.ctx, stage.scene, models_dir(), win_.window->format(),
                                                  render_settings(*win_.ctx, stage.config.render), win_.cache->get());
+}
+
+void WindowKiosk::install_callbacks() {
+  glfwSetWindowUserPointer(win_.window->window(), this);
+  glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (action == GLFW_PRESS || action == GLFW_REPEAT)
+      static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
+  });
+  glfwSetCursorPosCallback(win_.window->window(), [](GLFWwindow* w, double x, double y) {
+    static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
+  });
+}
+
+bool WindowKiosk::visitor_offered(Nanos now) {
+  if (!stage_->visitor || !offer_ || stage_->scene.kind != SceneKind::percussion) return false;
+  const KioskState state = states_->state();
+  if (state != KioskState::attract && state != KioskState::play) return false;
+  const bool was = offer_since_ > 0;
+  const bool offered = offer_->offered(now);
+  if (offered && !was) {
+    offer_since_ = now;
+    std::fprintf(stderr, "<6>visitor study: offered (%s)\n", stage_->visitor->visitor->offer.c_str());
+  }
+  if (!offered) offer_since_ = 0;
+  return offered;
+}
+
+bool WindowKiosk::visitor_accepted(Nanos now, const StrikeLoop::View& view) {
+  if (!visitor_offered(now) || !states_->visitor_plays()) return false;
+  const std::optional<Nanos> struck = view.vibration.impact_time();
+  return struck && *struck >= offer_since_ && view.vibration.target() == visitor_yes_bar();
+}
+
+void WindowKiosk::run_visitor_session() {
+  std::fprintf(stderr, "<6>visitor study: a visitor accepted; the instrument pauses\n");
+  // The study's own audio and strike route play meanwhile: the kiosk's stop, and its
+  // pointers' threads strike nothing (they still hand their samples over).
+  if (stage_->output) stage_->output->stop();
+  if (stage_->remote) stage_->remote->set_playing(false);
+  if (stage_->mouse) stage_->mouse->set_playing(false);
+  std::function<std::vector<PointerSample>()> pointer;  // empty: the window system's cursor
+  if (stage_->source != InputSource::mouse && stage_->remote) {
+    pointer = [r = stage_->remote.get()] {
+      std::vector<PointerSample> out;
+      for (const RemoteSample& s : r->take())
+        if (s.screen) out.push_back({s.t_ns, s.screen->x, s.screen->y});
+      return out;
+    };
+  } else if (stage_->mouse) {
+    pointer = [m = stage_->mouse.get()] { return m->take(); };
+  }
+  try {
+    std::random_device random;
+    const std::uint64_t id = (static_cast<std::uint64_t>(random()) << 32) ^ random();
+    const StudyPlan plan = plan_visitor(stage_->config, stage_->scene, *stage_->visitor,
+                                        visitor_results_dir(stage_->config.study), study::visitor_session_id(id),
+                                        study::utc_date(std::time(nullptr)));
+    // The study's frames are the kiosk's life meanwhile: they feed its watchdog.
+    const VisitorSessionResult r = run_visitor_window(win_, plan, pointer, [this] {
+      const Nanos now = monotonic_now(), interval = notifier_.watchdog_interval().value_or(0);
+      if (interval > 0 && now >= next_watchdog_) {
+        notifier_.watchdog();
+        next_watchdog_ = now + interval;
+      }
+      return !g_stop.load();
+    });
+    std::fprintf(stderr, "<6>visitor study: %s %s, %d of %d trials, %s\n", r.id.c_str(),
+                 !r.consented ? (r.abandoned ? "walked away at the consent" : "declined")
+                 : r.abandoned ? "abandoned"
+                               : "completed",
+                 r.answered, r.planned, r.csv.c_str());
+  } catch (const std::exception& e) {  // the kiosk plays on
+    std::fprintf(stderr, "<3>visitor study: %s\n", e.what());
+  }
+  install_callbacks();
+  cursor_.clear();
+  // The swapchain's images hold the study's frames: a new renderer draws them whole.
+  stage_->renderer = make_renderer(*stage_);
+  stage_->route->reset();
+  if (stage_->output) stage_->output->start();
+  offer_->session_ended(monotonic_now());
+  offer_since_ = 0;
 }
 
 void WindowKiosk::build(KioskSetup setup) {
@@ -228,6 +321,14 @@ void WindowKiosk::build(KioskSetup setup) {
                                                RouteOptions{audio::Producer::main, false, true});
   stage->route->on_strike = [t = stage->tally.get()](const Strike& s) { t->record(s.impact); };
   choose_input(*stage);  // a bad replay file throws here, before anything running is touched
+  if (!c.study.visitor_protocol.empty() && stage->scene.kind == SceneKind::percussion) {
+    try {  // a protocol that does not load: one line, and no offer
+      stage->visitor = load_visitor_protocol(c.study, stage->scene);
+    } catch (const std::exception& e) {
+      stage->problems.push_back(std::string("visitor study off: ") + e.what());
+      std::fprintf(stderr, "<4>visitor study off: %s\n", e.what());
+    }
+  }
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
@@ -242,6 +343,11 @@ void WindowKiosk::build(KioskSetup setup) {
                                  stage_->config.attract.languages != c.attract.languages ||
                                  stage_->config.attract.language_every_s != c.attract.language_every_s;
   stage_ = std::move(stage);
+  offer_.reset();
+  offer_since_ = 0;
+  if (stage_->visitor)
+    offer_.emplace(static_cast<Nanos>(std::llround(c.study.offer_every_s * 1e9)),
+                   static_cast<Nanos>(std::llround(c.study.offer_for_s * 1e9)), now);
   seed_strike_labels(stage_->scene, strikes_retired_);
   metrics_file_.configure(stage_->config.metrics);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
@@ -745,7 +851,11 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
   else if (stage_->config.note_names)
     draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
-  if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
+  if (visitor_offered(now)) {  // the visitor study's offer, and its "Yes" on the last bar
+    draw_banner(o, stage_->visitor->visitor->offer + " " + tr("(strike Yes)"), w, h);
+    draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
+                    {{visitor_yes_bar(), tr("Yes")}});
+  } else if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
     draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
   // Subdued but readable: half-white over the room's grey is 8.3:1 (WCAG 2.1's AAA asks
@@ -941,6 +1051,10 @@ int WindowKiosk::run() {
                                   : !mouse                 ? stage_->remote->view()
                                   : stage_->mouse          ? stage_->mouse->view()
                                                            : route.view();
+    if (visitor_accepted(now, view)) {
+      run_visitor_session();
+      continue;
+    }
     state.mallet_centre = view.displayed(present);
     // The bar under the mallet (where it is held, not where it bounces) and the bar struck.
     state.bar_lights = bar_lights(stage_->scene, view.shown, view.vibration, present);

@@ -39,7 +39,8 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
     for (int id : scene.instruments[i].targets) {
       const Target& t = scene.targets[static_cast<std::size_t>(id)];
       targets_[static_cast<std::size_t>(id)] = {scene.materials[static_cast<std::size_t>(t.material)].actuator,
-                                                &presets_[i], t.frequency_hz, static_cast<int>(i), t.note};
+                                                &presets_[i], t.frequency_hz, static_cast<int>(i), t.note,
+                                                scene.instruments[i].speaker};
     }
   }
   for (const Material& m : scene.materials) material_actuator_.push_back(m.actuator);
@@ -135,10 +136,11 @@ void AudioEngine::start_voice(const Pending& p) {
                                                                                          : t.actuator;
   voice->actuator.start(gain_.load(std::memory_order_relaxed) * act.amplitude * v, act.decay_per_s, act.freq_hz,
                         p.delay_s, fs);
-  if (settings_.acoustic_enabled && !external_) voice->acoustic.strike(*t.preset, t.fundamental_hz, v, p.delay_s, fs);
+  const bool speaker = settings_.acoustic_enabled && t.speaker;
+  if (speaker && !external_) voice->acoustic.strike(*t.preset, t.fundamental_hz, v, p.delay_s, fs);
   else voice->acoustic.stop();
   // An external synth has no sub-sample phase: its note starts on this sample.
-  if (settings_.acoustic_enabled && external_) external_->note_on(t.instrument, t.note, v);
+  if (speaker && external_) external_->note_on(t.instrument, t.note, v);
   voice->active = true;
   voice->serial = serial_++;
 }

@@ -132,6 +132,7 @@ class AudioEngine {
     double fundamental_hz = 0;
     int instrument = 0;
     int note = 0;
+    bool speaker = true;  //!< Instrument::speaker
   };
 
   void schedule(const Impact& impact, std::int64_t block_start);

@@ -137,6 +137,19 @@ struct MetricsConfig {
   double interval_s = 15.0;  //!< how often it is replaced (node_exporter's default scrape is 15 s)
 };
 
+//! [study]: the visitor micro-study the kiosk offers (app/visitor_study.hpp).
+struct StudyConfig {
+  //! A study protocol with a [visitor] table; empty = off (the one key that switches it
+  //! off). Relative: to the settings file's folder.
+  std::string visitor_protocol;
+  FilePlace visitor_protocol_at;  //!< where it was set (a protocol that does not load is reported there)
+  double offer_every_s = 300.0;   //!< the attract screen offers it this often...
+  double offer_for_s = 30.0;      //!< ...for this long
+  //! The visitors' results, one file a day (visitors-YYYY-MM-DD.csv); empty: the kiosk's
+  //! state folder's visitor-study/. Relative: to the settings file's folder.
+  std::string results_dir;
+};
+
 //! Where speed is traded for accuracy: a preset of knobs (core/quality.hpp).
 enum class Quality {
   fast,      //!< frames first: an old mini-PC with software rendering
@@ -161,6 +174,7 @@ struct AppConfig {
   ScenesConfig scenes;
   TimingConfig timing;
   MetricsConfig metrics;
+  StudyConfig study;
 };
 
 }  // namespace mallet

@@ -27,6 +27,9 @@ struct Target {
   double top_y = 0;          //!< metres
   double length_m = 0;       //!< along the depth axis (drawn, not used by contact)
   double thickness_m = 0;    //!< drawn, not used by contact
+  //! False: a hand's mallet rests on it but never strikes it; only the program does (a
+  //! study's stimulus bars, which a participant's answer strikes must not play).
+  bool hand_strikes = true;
 };
 
 //! An instrument as configured: a row of bars of one material.
@@ -38,6 +41,9 @@ struct Instrument {
   std::vector<int> targets;  //!< ids, left to right
   std::string bar_model;     //!< glTF file in models/ drawn for each bar (unit bar, scaled)
   std::string rail_model;    //!< glTF file in models/ for the two rails under the bars
+  //! False: its strikes are silent on the speaker channel (a study's stimuli without sound,
+  //! beside answer bars that click).
+  bool speaker = true;
 };
 
 //! Where the visitor's eye is for the perspective view. The screen shows exactly the

@@ -12,6 +12,7 @@
 
 #include "app/metrics_file.hpp"
 #include "run_cli.hpp"
+#include "child_process.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -73,16 +74,7 @@ TEST(MetricsFile, TheHeadlessRunsFileParsesAndCountsTheStrikesAndFramesOfItsLog)
   EXPECT_NE(text.find("mallet_uptime_seconds 4\n"), std::string::npos) << "the simulated clock:\n" << text;
 }
 
-//! The test's LD_PRELOAD without the validation layer (GLFW looks the loader up by name; see
-//! tests/CMakeLists.txt), for a child that opens a window.
-std::string child_preload() {
-  const char* preload = std::getenv("LD_PRELOAD");
-  std::string kept, entry;
-  std::stringstream in(preload ? preload : "");
-  while (std::getline(in, entry, ':'))
-    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
-  return "LD_PRELOAD='" + kept + "' ";
-}
+using test::child_preload;
 
 TEST(MetricsFile, TheWindowKiosksFileCountsTheFramesAndStrikesItsLogSays) {
   ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";

@@ -19,29 +19,15 @@
 #include "app/render_setup.hpp"
 #include "app/replay.hpp"
 #include "render/image.hpp"
+#include "child_process.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
 namespace {
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-//! The sanitizer build preloads the Vulkan driver and the validation layer (see
-//! tests/CMakeLists.txt). GLFW looks vkGetInstanceProcAddr up by name, and a preloaded
-//! layer would answer instead of the loader: the child keeps only the driver.
-std::string child_preload() {
-  const char* preload = std::getenv("LD_PRELOAD");
-  std::string kept, entry;
-  std::stringstream in(preload ? preload : "");
-  while (std::getline(in, entry, ':'))
-    if (!entry.empty() && entry.find("VkLayer") == std::string::npos) kept += (kept.empty() ? "" : ":") + entry;
-  return "LD_PRELOAD='" + kept + "' ";
-}
+using test::child_preload;
+using test::slurp;
+using test::wait_for;
 
 TEST(WindowSmoke, SwapchainUnderXvfbPresentsTheOffscreenPicture) {
   ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";
@@ -123,14 +109,6 @@ TEST(WindowSmoke, ALostVulkanDeviceIsRebuiltAndTheKioskGoesOn) {
 }
 
 //! Waits (polling, up to a minute) until `file` contains `text`.
-bool wait_for(const std::filesystem::path& file, const std::string& text) {
-  for (int i = 0; i < 600; ++i) {
-    if (slurp(file).find(text) != std::string::npos) return true;
-    std::system("sleep 0.1");
-  }
-  return false;
-}
-
 TEST(WindowSmoke, SighupReloadsTheSettingsAndRefusesABrokenFile) {
   const auto dir = test::scratch_dir();
   const auto cfg = dir / "mallet.toml";

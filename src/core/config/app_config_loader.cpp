@@ -186,6 +186,19 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->read("interval_s", m.interval_s, 1, 3600);
     t->finish();
   }
+  if (auto t = top.optional_table("study")) {
+    StudyConfig& st = c.study;
+    const auto relative_to_file = [&](const std::string& p) {
+      return p.empty() || std::filesystem::path(p).is_absolute() ? p
+                                                                  : (std::filesystem::path(file).parent_path() / p).string();
+    };
+    st.visitor_protocol = relative_to_file(t->string_or("visitor_protocol", st.visitor_protocol));
+    st.visitor_protocol_at = t->place("visitor_protocol");
+    t->read("offer_every_s", st.offer_every_s, 10, 86400);
+    t->read("offer_for_s", st.offer_for_s, 5, 600);
+    st.results_dir = relative_to_file(t->string_or("results_dir", st.results_dir));
+    t->finish();
+  }
   top.finish();
   return c;
 }

@@ -96,6 +96,38 @@ StimulusPair read_pair(TableReader t, const std::vector<Stimulus>& stimuli) {
   return p;
 }
 
+AnswerStrike read_answer_strike(TableReader t, const std::vector<Material>& materials) {
+  AnswerStrike a;
+  const std::string sound = t.string_or("sound", a.voice);
+  a.voice = sound == "none" ? "" : sound;
+  a.voice_at = t.place("sound");
+  const std::string feel = t.string_or("feel", "none");
+  if (feel != "none") {
+    for (const Material& m : materials)
+      if (m.name == feel) a.feel = m;
+    if (!a.feel) {
+      std::string known;
+      for (const Material& m : materials) known += ", " + m.name;
+      t.fail("feel", "expected \"none\" or a material of the scene (" + known.substr(2) + "), got \"" + feel + "\"");
+    }
+  }
+  t.finish();
+  return a;
+}
+
+VisitorProtocol read_visitor(TableReader t) {
+  VisitorProtocol v;
+  v.offer = t.string_or("offer", v.offer);
+  if (v.offer.empty() || v.offer.size() > 120) t.fail("offer", "must be 1-120 characters (one line on the attract screen)");
+  v.consent = t.string("consent");
+  if (v.consent.empty() || v.consent.size() > 1200)
+    t.fail("consent", "must be 1-1200 characters (it is shown on one screen)");
+  t.read("trials", v.trials, 1, 50);
+  v.answer_timeout = seconds_key(t, "answer_timeout_s", to_seconds(v.answer_timeout), 3, 600);
+  t.finish();
+  return v;
+}
+
 //! A difference (%) an adaptive track may test: on the grid of generated stimuli.
 double grid_pct(TableReader& t, std::string_view key, double fallback, double lo, double hi) {
   double v = fallback;
@@ -223,6 +255,21 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
     top.fail("reference_bar", "must name a bar of the scene: 0 to " + std::to_string(bar_count - 1));
   p.reference_bar = static_cast<int>(bar);
   if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing);
+  const std::string response = top.string_or("response", "keys");
+  if (response == "strike") p.response = StudyResponse::strike;
+  else if (response != "keys") top.fail("response", "expected \"keys\" or \"strike\", got \"" + response + "\"");
+  if (auto answer = top.optional_table("answer_strike")) {
+    if (p.response != StudyResponse::strike)
+      top.fail("answer_strike", "only response = \"strike\" uses it");
+    p.answer_strike = read_answer_strike(*answer, materials);
+  } else {
+    p.answer_strike.voice_at = top.place("response");
+  }
+  if (auto visitor = top.optional_table("visitor")) {
+    if (p.response != StudyResponse::strike)
+      top.fail("visitor", "a visitor answers by striking: it needs response = \"strike\"");
+    p.visitor = read_visitor(*visitor);
+  }
 
   std::set<std::string> names;
   std::vector<TableReader> stimulus_tables = top.tables("stimulus");

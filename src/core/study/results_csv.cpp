@@ -1,5 +1,6 @@
 #include "core/study/results_csv.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -32,7 +33,8 @@ struct Columns {
       correct = kMissing, response_time_ms = kMissing, protocol = kMissing, task = kMissing,
       difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
       actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing, procedure = kMissing,
-      track_trial = kMissing, reversals = kMissing, estimate_pct = kMissing, estimate_sd_pct = kMissing;
+      track_trial = kMissing, reversals = kMissing, estimate_pct = kMissing, estimate_sd_pct = kMissing,
+      planned_trials = kMissing;
 };
 
 Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
@@ -45,7 +47,8 @@ Columns find_columns(const std::vector<std::string>& header, const std::string& 
       {"visual_peak_m", &c.visual_peak_m}, {"actuator_peak", &c.actuator_peak},
       {"actuator_onset_ms", &c.actuator_onset_ms}, {"picture_onset_ms", &c.picture_onset_ms},
       {"procedure", &c.procedure}, {"track_trial", &c.track_trial}, {"reversals", &c.reversals},
-      {"estimate_pct", &c.estimate_pct}, {"estimate_sd_pct", &c.estimate_sd_pct}};
+      {"estimate_pct", &c.estimate_pct}, {"estimate_sd_pct", &c.estimate_sd_pct},
+      {"planned_trials", &c.planned_trials}};
   for (const auto& [name, index] : names)
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) *index = static_cast<int>(i);
@@ -96,11 +99,14 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
     throw FileError(file, line, 0, "procedure: \"" + r.procedure + "\" is not constant, staircase or quest");
   const double track_trial = number(field(c.track_trial), file, line, "track_trial", true);
   const double reversals = number(field(c.reversals), file, line, "reversals", true);
-  for (const auto& [v, name] : {std::pair{track_trial, "track_trial"}, std::pair{reversals, "reversals"}})
+  const double planned = number(field(c.planned_trials), file, line, "planned_trials", true);
+  for (const auto& [v, name] : {std::pair{track_trial, "track_trial"}, std::pair{reversals, "reversals"},
+                                std::pair{planned, "planned_trials"}})
     if (!std::isnan(v) && (v < 0 || v > 1e6 || v != std::floor(v)))
       throw FileError(file, line, 0, std::string(name) + ": not a count");
   r.track_trial = std::isnan(track_trial) ? 0 : static_cast<int>(track_trial);
   r.reversals = std::isnan(reversals) ? -1 : static_cast<int>(reversals);
+  r.planned_trials = std::isnan(planned) ? 0 : static_cast<int>(planned);
   r.estimate_pct = number(field(c.estimate_pct), file, line, "estimate_pct", true);
   r.estimate_sd_pct = number(field(c.estimate_sd_pct), file, line, "estimate_sd_pct", true);
   return r;
@@ -112,16 +118,25 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
 
 }  // namespace
 
-std::string format_row(const ResultRow& r, bool timing) {
-  std::string out = r.participant + ',' + std::to_string(r.trial) + ',' + r.condition + ',' + r.stimuli + ',' +
-                    r.answer + ',' + (r.correct ? "1" : "0") + ',' + g(r.response_time_ms, "%.3f") + ',' +
-                    r.protocol + ',' + r.task + ',' + g(r.difference_pct, "%.6g") + ',' + r.source + ',' +
-                    r.session + ',' + g(r.visual_peak_m, "%.6g") + ',' + g(r.actuator_peak, "%.6g");
-  if (timing)
-    out += ',' + g(r.actuator_onset_ms, "%.3f") + ',' + g(r.picture_onset_ms, "%.3f") + ',' + r.procedure + ',' +
-           (r.track_trial > 0 ? std::to_string(r.track_trial) : "") + ',' +
-           (r.reversals >= 0 ? std::to_string(r.reversals) : "") + ',' + g(r.estimate_pct, "%.4g") + ',' +
-           g(r.estimate_sd_pct, "%.4g");
+std::size_t results_columns(std::string_view header) {
+  const std::string_view all = kResultsHeader;
+  const std::string_view oldest = kResultsHeaderWithoutTiming;
+  if (header.size() < oldest.size() || !all.starts_with(header) ||
+      (header.size() < all.size() && all[header.size()] != ','))
+    return 0;
+  return static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+}
+
+std::string format_row(const ResultRow& r, std::size_t columns) {
+  const std::string fields[kResultsColumns] = {
+      r.participant, std::to_string(r.trial), r.condition, r.stimuli, r.answer, r.correct ? "1" : "0",
+      g(r.response_time_ms, "%.3f"), r.protocol, r.task, g(r.difference_pct, "%.6g"), r.source, r.session,
+      g(r.visual_peak_m, "%.6g"), g(r.actuator_peak, "%.6g"), g(r.actuator_onset_ms, "%.3f"),
+      g(r.picture_onset_ms, "%.3f"), r.procedure, r.track_trial > 0 ? std::to_string(r.track_trial) : "",
+      r.reversals >= 0 ? std::to_string(r.reversals) : "", g(r.estimate_pct, "%.4g"), g(r.estimate_sd_pct, "%.4g"),
+      r.planned_trials > 0 ? std::to_string(r.planned_trials) : ""};
+  std::string out;
+  for (std::size_t i = 0; i < std::min(columns, kResultsColumns); ++i) out += (i ? "," : "") + fields[i];
   out += '\n';
   return out;
 }
@@ -155,7 +170,7 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsFil
   const auto keep = existing.has_header ? static_cast<off_t>(existing.complete_bytes) : 0;
   if (::ftruncate(fd_, keep) != 0) fail_io(path, "cannot cut off the incomplete last line", errno);
   if (::lseek(fd_, 0, SEEK_END) < 0) fail_io(path, "cannot seek", errno);
-  timing_ = !existing.has_header || existing.header != kResultsHeaderWithoutTiming;
+  if (existing.has_header && results_columns(existing.header) > 0) columns_ = results_columns(existing.header);
   if (!existing.has_header) {
     write_durably(std::string(kResultsHeader) + "\n");
     // A new file: its folder entry must reach the disk too.
@@ -183,6 +198,6 @@ void ResultsWriter::write_durably(const std::string& bytes) {
   if (::fsync(fd_) != 0) fail_io(path_, "fsync failed", errno);
 }
 
-void ResultsWriter::append(const ResultRow& row) { write_durably(format_row(row, timing_)); }
+void ResultsWriter::append(const ResultRow& row) { write_durably(format_row(row, columns_)); }
 
 }  // namespace mallet::study

@@ -6,6 +6,7 @@
 //   ,protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak  (extras)
 //   ,actuator_onset_ms,picture_onset_ms                                      (timing)
 //   ,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct            (adaptive)
+//   ,planned_trials                                                          (sessions)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
@@ -16,12 +17,15 @@
 // for an adaptive one, after the trial's answer: the trial's number in its condition's
 // track, the staircase's reversals, the estimate (the staircase's mean level at its last
 // reversals once it has them; QUEST's posterior mean) and QUEST's posterior SD (empty where
-// they do not apply). A file begun before these columns keeps its header: its rows are
-// appended without them.
+// they do not apply). `planned_trials` is how many trials the run that wrote the row meant
+// to give (the schedule's, an adaptive protocol's bound, a visitor's few): a participant
+// with fewer rows stopped early (a visitor who walked away). A file begun before some of
+// these columns keeps its header: its rows are appended with the columns it has.
 #include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mallet::study {
@@ -32,7 +36,13 @@ inline constexpr const char* kResultsHeaderWithoutTiming =
 inline constexpr const char* kResultsHeader =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
-    "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct";
+    "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct,"
+    "planned_trials";
+//! The columns this version writes.
+inline constexpr std::size_t kResultsColumns = 22;
+//! How many of kResultsHeader's columns a file's header has: kResultsHeaderWithoutTiming
+//! or longer, up to all of them, in this order; 0 for any other header (not resumable).
+std::size_t results_columns(std::string_view header);
 
 struct ResultRow {
   std::string participant;
@@ -56,11 +66,11 @@ struct ResultRow {
   int reversals = -1;     //!< staircase: its reversals after this answer; −1: none
   double estimate_pct = std::numeric_limits<double>::quiet_NaN();
   double estimate_sd_pct = std::numeric_limits<double>::quiet_NaN();
+  int planned_trials = 0;  //!< 0: not recorded
 };
 
-//! The row as written, ending in '\n'; `timing`: with the columns after actuator_peak
-//! (kResultsHeader), else as kResultsHeaderWithoutTiming has them.
-std::string format_row(const ResultRow& row, bool timing = true);
+//! The row as written, ending in '\n': its first `columns` columns (kResultsHeader's order).
+std::string format_row(const ResultRow& row, std::size_t columns = kResultsColumns);
 
 struct ResultsFile {
   bool exists = false;
@@ -95,7 +105,7 @@ class ResultsWriter {
   void write_durably(const std::string& bytes);
   std::filesystem::path path_;
   int fd_ = -1;
-  bool timing_ = true;  //!< the file's header has the onset columns
+  std::size_t columns_ = kResultsColumns;  //!< as many as the file's header has
 };
 
 }  // namespace mallet::study

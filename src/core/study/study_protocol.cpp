@@ -34,6 +34,10 @@ std::vector<std::string> StudyProtocol::answer_choices() const {
   return out;
 }
 
+std::string_view response_name(StudyResponse response) {
+  return response == StudyResponse::strike ? "strike" : "keys";
+}
+
 std::string_view procedure_name(StudyProcedure procedure) {
   switch (procedure) {
     case StudyProcedure::constant: return "constant";

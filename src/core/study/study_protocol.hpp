@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/file_error.hpp"
 #include "core/material.hpp"
 #include "core/study/quest.hpp"
 #include "core/study/staircase.hpp"
@@ -66,6 +67,30 @@ struct StudyTiming {
 enum class StudyProcedure { constant, staircase, quest };
 std::string_view procedure_name(StudyProcedure procedure);
 
+//! How the participant answers: keys (1/2, a material's letter), or by striking one of the
+//! answer bars shown beside the stimulus bar with the same mallet.
+enum class StudyResponse { keys, strike };
+std::string_view response_name(StudyResponse response);
+
+//! What an answer strike gives, stated in the protocol so that answers do not
+//! contaminate the stimuli: by default a neutral click on the speaker and nothing on the
+//! actuator or in the mallet's bounce.
+struct AnswerStrike {
+  std::string voice = "click";   //!< the instruments file's preset the answer bars sound; empty: silent
+  FilePlace voice_at;            //!< where it was set (a voice the scene lacks is reported there)
+  std::optional<Material> feel;  //!< Eq. 1's actuator signal and bounce of an answer strike; none: neither
+};
+
+//! A visitor micro-study (the kiosk's [study] visitor_protocol): the attract screen's offer,
+//! the one-screen consent text a visitor agrees to by striking, how many trials a visitor
+//! does, and how long the kiosk waits for a strike before the session counts as abandoned.
+struct VisitorProtocol {
+  std::string offer = "Help science: 60 seconds, 6 taps";
+  std::string consent;
+  int trials = 6;
+  Nanos answer_timeout = 20'000'000'000;
+};
+
 //! The grid an adaptive track's differences are rounded to: each is one generated stimulus,
 //! the reference with B larger by that much.
 inline constexpr double kAdaptiveGridPct = 0.5;
@@ -98,6 +123,9 @@ struct StudyProtocol {
   bool sound = false;               //!< the speaker's note: off, or one note for every stimulus
   int reference_bar = 0;            //!< the bar whose note (and voice) every stimulus uses
   StudyTiming timing;
+  StudyResponse response = StudyResponse::keys;
+  AnswerStrike answer_strike;  //!< response = strike
+  std::optional<VisitorProtocol> visitor;  //!< [visitor]: a protocol the kiosk offers its visitors
 
   //! Items per condition: pairs (2AFC) or named stimuli.
   std::size_t items() const { return task == StudyTask::two_afc_harder ? pairs.size() : named.size(); }

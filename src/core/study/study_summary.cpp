@@ -7,6 +7,7 @@
 
 #include "core/study/balanced_schedule.hpp"
 #include "core/study/study_protocol.hpp"
+#include "core/study/visitor_offer.hpp"
 
 namespace mallet::study {
 
@@ -72,6 +73,16 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
       l.correct += r.correct ? 1 : 0;
     }
   }
+  // Visitor sessions: complete when a session's rows reach the trials it planned.
+  std::map<std::string, std::pair<int, int>> visitor_rows;  // participant → (rows, planned)
+  for (const ResultRow& r : rows) {
+    if ((!participant.empty() && r.participant != participant) || !is_visitor_session(r.participant)) continue;
+    auto& [count, planned] = visitor_rows[r.participant];
+    ++count;
+    planned = std::max(planned, r.planned_trials);
+  }
+  for (const auto& [who, counts] : visitor_rows)
+    ++(counts.first >= counts.second ? s.visitor_sessions_completed : s.visitor_sessions_abandoned);
   // Adaptive tracks: each participant's rows of a condition in trial order.
   std::map<std::string, std::map<std::string, std::map<int, const ResultRow*>>> tracks;  // condition → track → trial
   std::map<std::string, std::vector<std::string>> track_order;
@@ -122,6 +133,11 @@ std::string format_summary(const StudySummary& s) {
   out += line;
   if (s.simulated_rows)
     out += "note: " + std::to_string(s.simulated_rows) + " row(s) were answered by the simulated observer (source=simulated)\n";
+  if (const int n = s.visitor_sessions_completed + s.visitor_sessions_abandoned; n > 0) {
+    std::snprintf(line, sizeof line, "visitor sessions: %d (%d completed, %d abandoned)\n", n,
+                  s.visitor_sessions_completed, s.visitor_sessions_abandoned);
+    out += line;
+  }
   std::snprintf(line, sizeof line, "%-14s %7s %8s %9s %10s\n", "condition", "trials", "correct", "accuracy", "mean_rt_ms");
   out += line;
   for (const ConditionSummary& c : s.conditions) {

@@ -47,6 +47,9 @@ struct StudySummary {
   int simulated_rows = 0;               //!< answered by the simulated observer
   std::vector<ConditionSummary> conditions;  //!< visual_only, tactile_only, both, none, then others
   int resamples = 0;                         //!< the bootstrap's, per fit (0: no intervals)
+  //! The kiosk's visitor micro-study: its sessions (participants "visitor-…") whose rows reach
+  //! their planned_trials, and those that stopped before (the visitor walked away).
+  int visitor_sessions_completed = 0, visitor_sessions_abandoned = 0;
 };
 
 //! `participant`: only that participant's rows (empty: everyone's, pooled).

@@ -106,5 +106,55 @@ TEST(StudyProtocol, AnAdaptiveProtocolsMistakesAreOneLineEach) {
             "bad.toml:6:13: reference: no [[stimulus]] named \"oak\" (known: wood)");
 }
 
+TEST(StudyProtocol, StrikeAnswersAreStatedInTheProtocol) {
+  const StudyProtocol keys = load_shipped("example.toml");
+  EXPECT_EQ(keys.response, StudyResponse::keys);
+  const StudyProtocol s = load_shipped("strike.toml");
+  EXPECT_EQ(s.response, StudyResponse::strike);
+  EXPECT_EQ(s.answer_strike.voice, "click");
+  EXPECT_FALSE(s.answer_strike.feel);  // no actuator signal, no bounce
+  const std::string ok = replaced(test::kTwoAfcProtocol, "seed = 42", "seed = 42\nresponse = \"strike\"");
+  const StudyProtocol defaults = test::parse_protocol(ok, "a.toml");
+  EXPECT_EQ(defaults.response, StudyResponse::strike);
+  EXPECT_EQ(defaults.answer_strike.voice, "click");
+  EXPECT_FALSE(defaults.answer_strike.feel);
+  const StudyProtocol felt =
+      test::parse_protocol(ok + "[answer_strike]\nsound = \"none\"\nfeel = \"metal\"\n", "a.toml");
+  EXPECT_EQ(felt.answer_strike.voice, "");
+  ASSERT_TRUE(felt.answer_strike.feel);
+  EXPECT_EQ(felt.answer_strike.feel->name, "metal");
+  EXPECT_EQ(felt.answer_strike.feel->actuator.amplitude, test::percussion().materials[1].actuator.amplitude);
+}
+
+TEST(StudyProtocol, StrikeAnswerMistakesAreOneLineEach) {
+  const std::string ok = test::kTwoAfcProtocol;
+  EXPECT_EQ(error_of(replaced(ok, "seed = 42", "seed = 42\nresponse = \"voice\"")),
+            "bad.toml:7:12: response: expected \"keys\" or \"strike\", got \"voice\"");
+  const std::string strike = replaced(ok, "seed = 42", "seed = 42\nresponse = \"strike\"");
+  EXPECT_EQ(error_of(strike + "[answer_strike]\nfeel = \"glass\"\n"),
+            "bad.toml:26:8: answer_strike.feel: expected \"none\" or a material of the scene (wood, metal), got "
+            "\"glass\"");
+  EXPECT_EQ(error_of(ok + "[answer_strike]\nsound = \"click\"\n"),
+            "bad.toml:24:1: answer_strike: only response = \"strike\" uses it");
+}
+
+TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
+  const StudyProtocol v = load_shipped("visitor.toml");
+  ASSERT_TRUE(v.visitor);
+  EXPECT_EQ(v.response, StudyResponse::strike);
+  EXPECT_EQ(v.visitor->offer, "Help science: 60 seconds, 6 taps");
+  EXPECT_NE(v.visitor->consent.find("no time of day"), std::string::npos);
+  EXPECT_EQ(v.visitor->trials, 6);
+  EXPECT_EQ(v.visitor->answer_timeout, 20 * kNanosPerSecond);
+  EXPECT_FALSE(load_shipped("strike.toml").visitor);
+  const std::string keys = test::kTwoAfcProtocol;
+  EXPECT_EQ(error_of(keys + "[visitor]\nconsent = \"ok\"\n"),
+            "bad.toml:24:1: visitor: a visitor answers by striking: it needs response = \"strike\"");
+  const std::string strike = replaced(keys, "seed = 42", "seed = 42\nresponse = \"strike\"");
+  EXPECT_EQ(error_of(strike + "[visitor]\ntrials = 6\n"), "bad.toml:25:1: visitor.consent: missing (required)");
+  EXPECT_EQ(error_of(strike + "[visitor]\nconsent = \"ok\"\ntrials = 0\n"),
+            "bad.toml:27:10: visitor.trials: must be in [1, 50], got 0");
+}
+
 }  // namespace
 }  // namespace mallet::study

@@ -46,8 +46,8 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
-            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,\n");
-  EXPECT_EQ(format_row(row(3, true), false),
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,\n");
+  EXPECT_EQ(format_row(row(3, true), 14),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
   naming.difference_pct = std::nan("");
@@ -151,7 +151,7 @@ TEST(ResultsCsv, TheCuesOnsetsRoundTripAndAFileFromBeforeThemResumesWithoutThem)
   // rows in the same columns (the onsets read back as not recorded).
   {
     std::ofstream old(dir / "old.csv");
-    old << kResultsHeaderWithoutTiming << "\n" << format_row(row(1, true), false);
+    old << kResultsHeaderWithoutTiming << "\n" << format_row(row(1, true), 14);
   }
   {
     ResultsWriter w(dir / "old.csv", read_results(dir / "old.csv"));
@@ -162,6 +162,33 @@ TEST(ResultsCsv, TheCuesOnsetsRoundTripAndAFileFromBeforeThemResumesWithoutThem)
   ASSERT_EQ(resumed.rows.size(), 2u);
   EXPECT_TRUE(std::isnan(resumed.rows[1].actuator_onset_ms));
   EXPECT_EQ(std::string(kResultsHeader).rfind(kResultsHeaderWithoutTiming, 0), 0u) << "the new columns come last";
+}
+
+TEST(ResultsCsv, EachVersionsHeaderResumesInItsOwnColumnsAndPlannedTrialsRoundTrip) {
+  EXPECT_EQ(results_columns(kResultsHeader), kResultsColumns);
+  EXPECT_EQ(results_columns(kResultsHeaderWithoutTiming), 14u);
+  const std::string before_planned = std::string(kResultsHeader).substr(0, std::string(kResultsHeader).rfind(','));
+  EXPECT_EQ(results_columns(before_planned), 21u);
+  EXPECT_EQ(results_columns("participant,trial,condition,stimuli,answer,correct,response_time_ms"), 0u);
+  EXPECT_EQ(results_columns(before_planned + ",planned"), 0u) << "a column cut short is not ours";
+  EXPECT_EQ(results_columns(std::string(kResultsHeader) + ",more"), 0u);
+  const fs::path dir = test::scratch_dir();
+  ResultRow planned = row(1, true);
+  planned.planned_trials = 6;
+  { std::ofstream(dir / "v21.csv") << before_planned << "\n" << format_row(row(1, true), 21); }
+  {
+    ResultsWriter w(dir / "v21.csv", read_results(dir / "v21.csv"));
+    w.append(planned);
+    ResultsWriter n(dir / "new.csv", read_results(dir / "new.csv"));
+    n.append(planned);
+  }
+  const ResultsFile old = read_results(dir / "v21.csv");
+  EXPECT_EQ(old.header, before_planned);
+  ASSERT_EQ(old.rows.size(), 2u);
+  EXPECT_EQ(old.rows[1].planned_trials, 0) << "not in that file's columns";
+  const ResultsFile now = read_results(dir / "new.csv");
+  ASSERT_EQ(now.rows.size(), 1u);
+  EXPECT_EQ(now.rows[0].planned_trials, 6);
 }
 
 TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
@@ -191,7 +218,7 @@ TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
 
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }

@@ -83,6 +83,31 @@ TEST(StudySummary, PerConditionAccuracyCountsAndOrder) {
   EXPECT_NE(text.find("not enough levels (1 distinct stimulus difference; a fit needs 3)"), std::string::npos) << text;
 }
 
+TEST(StudySummary, VisitorSessionsAreCompletedWhenTheirRowsReachTheirPlannedTrials) {
+  std::vector<ResultRow> rows;
+  const auto add = [&](const std::string& who, int n, int planned) {
+    for (int t = 1; t <= n; ++t) {
+      ResultRow r = row(who, "both", 10, true, 500);
+      r.trial = t;
+      r.planned_trials = planned;
+      rows.push_back(r);
+    }
+  };
+  add("visitor-00000001", 6, 6);
+  add("visitor-00000002", 2, 6);  // walked away
+  add("visitor-00000003", 6, 6);
+  add("P01", 3, 32);  // a lab participant who stopped early is not a visitor
+  const StudySummary s = summarize(rows);
+  EXPECT_EQ(s.visitor_sessions_completed, 2);
+  EXPECT_EQ(s.visitor_sessions_abandoned, 1);
+  EXPECT_NE(format_summary(s).find("visitor sessions: 3 (2 completed, 1 abandoned)\n"), std::string::npos)
+      << format_summary(s);
+  const std::vector<ResultRow> lab(rows.end() - 3, rows.end());
+  EXPECT_EQ(format_summary(summarize(lab)).find("visitor sessions"), std::string::npos) << "only when there are any";
+  rows.resize(3);  // the first visitor's first 3 of 6 trials
+  EXPECT_EQ(summarize(rows).visitor_sessions_abandoned, 1);
+}
+
 TEST(StudySummary, NamingRowsHaveNoFit) {
   std::vector<ResultRow> rows{row("P01", "both", std::nan(""), true, 500)};
   const StudySummary s = summarize(rows);
