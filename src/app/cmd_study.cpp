@@ -173,7 +173,6 @@ void register_study(CLI::App& app) {
   auto headless = std::make_shared<bool>(false);
   auto stop_after = std::make_shared<int>(0);
   auto window = std::make_shared<StudyWindowOptions>();
-  o->scene = default_scene();
   o->config = default_settings();
   CLI::App* cmd = app.add_subcommand("study", "Run a perception study protocol (2AFC harder / name the material)");
   cmd->require_subcommand(0, 1);
@@ -213,7 +212,10 @@ void register_study(CLI::App& app) {
   cmd->add_option("--out", o->out, "Results CSV, appended to (default: the protocol's `output`)");
   cmd->add_option("--answers", o->answers, "Answer script; without it a simulated observer answers");
   cmd->add_option("--audio", o->audio, "Also write this run's stimuli to a WAV file (channels as [audio.routing])");
-  cmd->add_option("--scene", o->scene, "Scene file (its materials and bars)")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--scene", o->scene,
+                  "Scene file (its materials and bars; default: the shipped percussion.toml, or texture.toml for "
+                  "a texture_slope protocol)")
+      ->check(CLI::ExistingFile);
   add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (--answers or the simulated observer)");
   cmd->add_flag("--windowed", window->windowed, "With a display: a window instead of fullscreen");

@@ -13,7 +13,7 @@ using namespace mallet::study;
 
 HeadlessStage::HeadlessStage(const Scene& scene, const StudyPlan& plan, const std::optional<std::filesystem::path>& wav)
     : loop_(scene, plan.config, HeadlessLoop::kNoAttract),  // the speaker per instrument (study_stimuli.hpp)
-      actuator_channel_(plan.config.audio.routing.actuator) {
+      config_(plan.config), actuator_channel_(plan.config.audio.routing.actuator) {
   if (wav) wav_ = std::make_unique<audio::WavWriter>(*wav, loop_.channels(), plan.config.audio.sample_rate_hz);
   const auto channels = static_cast<std::size_t>(loop_.channels());
   loop_.on_audio = [this, channels](std::span<const float> block) {
@@ -26,6 +26,19 @@ HeadlessStage::HeadlessStage(const Scene& scene, const StudyPlan& plan, const st
 bool HeadlessStage::wait_until(Nanos t) {
   loop_.advance(std::max(t, loop_.now()));
   return true;
+}
+
+Exploration HeadlessStage::explore(const Scene& scene, Nanos until) {
+  const TextureRelief& relief = scene.texture.value().relief;
+  const Nanos from = loop_.now();
+  std::vector<PointerSample> hand;
+  for (Nanos t = from; t <= until; t += 1'000'000) {
+    const double s = until > from ? static_cast<double>(t - from) / static_cast<double>(until - from) : 1.0;
+    hand.push_back({t, relief.center.x + (2 * s - 1) * 1.4 * relief.radius_m, relief.center.y});
+  }
+  const Exploration e = measure_crossing(scene, config_, hand);
+  loop_.advance(until);
+  return e;
 }
 
 double HeadlessStage::take_actuator_peak() { return std::exchange(peak_, 0.0); }

@@ -28,11 +28,15 @@ class HeadlessStage final : public StudyStage {
   double visual_offset_m(Nanos t) const override { return loop_.visual_offset_m(t); }
   double take_actuator_peak() override;
   std::optional<Strike> hand(Nanos t, Vec2 hand) override { return loop_.visitor(t, hand); }
+  //! A straight crossing through the disc's centre, left to right, from 0.4 R outside it on
+  //! each side, at constant speed over the time given (sampled at 1 kHz).
+  Exploration explore(const Scene& trial_scene, Nanos until) override;
   //! The audio's last second rendered, and the WAV closed.
   void finish();
 
  private:
   HeadlessLoop loop_;
+  const AppConfig& config_;
   int actuator_channel_;
   std::unique_ptr<audio::WavWriter> wav_;
   double peak_ = 0;

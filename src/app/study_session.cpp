@@ -9,6 +9,7 @@
 #include <set>
 
 #include "app/study_headless.hpp"
+#include "app/data_paths.hpp"
 #include "app/settings_source.hpp"
 #include "app/study_stimuli.hpp"
 #include "core/actuator_signal.hpp"
@@ -112,7 +113,27 @@ AdaptiveSchedule replay_adaptive(const StudyPlan& plan) {
   return replay_rows(plan.existing, plan.csv, plan.protocol, plan.participant);
 }
 
-int StudyPlan::stimuli_per_trial() const { return protocol.task == StudyTask::two_afc_harder ? 2 : 1; }
+int StudyPlan::stimuli_per_trial() const { return protocol.paired() ? 2 : 1; }
+
+Exploration measure_crossing(const Scene& scene, const AppConfig& config, const std::vector<PointerSample>& hand) {
+  Exploration out;
+  if (hand.empty()) return out;
+  HeadlessLoop loop(scene, config, HeadlessLoop::kNoAttract);
+  const int actuator = config.audio.routing.actuator;
+  const auto channels = static_cast<std::size_t>(loop.channels());
+  loop.on_audio = [&](std::span<const float> block) {
+    for (std::size_t i = static_cast<std::size_t>(actuator); i < block.size(); i += channels)
+      out.actuator_peak = std::max(out.actuator_peak, static_cast<double>(std::fabs(block[i])));
+  };
+  const Nanos t0 = hand.front().t_ns;  // on the loop's own clock from 0
+  for (const PointerSample& p : hand) {
+    loop.visitor(p.t_ns - t0, {p.x, p.y});
+    const Vec2 c = loop.strike_loop().view().shown;
+    out.cursor_offset_peak_m = std::max(out.cursor_offset_peak_m, std::hypot(c.x - p.x, c.y - p.y));
+  }
+  loop.drain_audio(hand.back().t_ns - t0 + 100'000'000);  // the stripes' fade after the last motion
+  return out;
+}
 
 StudyPlan plan_session(AppConfig config, Scene base, StudyProtocol protocol, const std::string& participant,
                        const fs::path& csv) {
@@ -121,9 +142,13 @@ StudyPlan plan_session(AppConfig config, Scene base, StudyProtocol protocol, con
   p.config = std::move(config);
   p.base = std::move(base);
   p.protocol = std::move(protocol);
+  if (p.protocol.texture() != (p.base.kind == SceneKind::texture))
+    throw FileError(p.protocol.file, 0, 0,
+                    p.protocol.texture() ? "task texture_slope needs a texture scene (--scene config/scenes/texture.toml), not " + p.base.file
+                                         : std::string("a percussion task needs a percussion scene, not ") + p.base.file);
   const int rate = p.config.audio.sample_rate_hz;
   for (const Stimulus& s : p.protocol.stimuli)
-    if (auto problem = actuator_band_problem(s.material, rate))
+    if (auto problem = s.relief ? std::nullopt : actuator_band_problem(s.material, rate))
       throw FileError(p.protocol.file, 0, 0, "stimulus " + s.name + ": " + *problem);
   if (p.protocol.response == StudyResponse::strike && !p.protocol.answer_strike.voice.empty()) {
     const std::vector<ModalPreset> voices = config::load_instruments(p.base.instruments_file);
@@ -161,8 +186,12 @@ StudyPlan plan_study(const StudyOptions& o) {
     throw FileError("--participant", 0, 0,
                     "\"" + o.participant + "\" must be 1-64 letters, digits, '_', '-' or '.'");
   AppConfig config = command_settings(o.config, o.config_dir, "study");
-  Scene base = config::load_scene(o.scene);
+  Scene base = config::load_scene(o.scene.empty() ? default_scene() : o.scene);
   StudyProtocol protocol = load_study_protocol(o.protocol, base.materials, base.targets.size());
+  if (o.scene.empty() && protocol.texture()) {  // no --scene: the shipped scene of the task's kind
+    base = config::load_scene(config_dir() / "scenes" / "texture.toml");
+    protocol = load_study_protocol(o.protocol, base.materials, base.targets.size());
+  }
   const fs::path csv = o.out ? *o.out : fs::path(protocol.output);
   return plan_session(std::move(config), std::move(base), std::move(protocol), o.participant, csv);
 }
@@ -176,12 +205,23 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   stage.trial_starts(trial);
   if (!stage.wait_until(timeline.onset(0))) return std::nullopt;
   stage.take_actuator_peak();
-  double visual_peak = 0;
+  double visual_peak = 0, crossing_peak = 0;
   // The cues' onsets from the strike route, relative to each tap's contact: the latest of
   // the trial's taps (a trial is as late as its latest cue).
   Nanos actuator_onset = 0, picture_onset = 0;
   const std::vector<int> shown = shown_stimuli(protocol, trial);
+  bool tapped = false;
   for (int k = 0; k < stimuli; ++k) {
+    if (protocol.texture()) {  // a crossing of the disc, for as long as a stimulus lasts
+      const Stimulus& s = protocol.stimuli[static_cast<std::size_t>(shown[static_cast<std::size_t>(k)])];
+      const Exploration e = stage.explore(texture_trial_scene(scene, s, trial.condition),
+                                          timeline.onset(k) + protocol.timing.stimulus);
+      visual_peak = std::max(visual_peak, e.cursor_offset_peak_m);
+      crossing_peak = std::max(crossing_peak, e.actuator_peak);
+      if (!stage.wait_until(k + 1 < stimuli ? timeline.onset(k + 1) : timeline.answer_opens())) return std::nullopt;
+      continue;
+    }
+    tapped = true;
     const Strike strike = stage.present(
         stimulus_impact(scene, protocol, shown[static_cast<std::size_t>(k)], trial.condition, timeline.onset(k)));
     actuator_onset = std::max(actuator_onset, strike.heard_ns - strike.impact.t_ns);
@@ -191,7 +231,7 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
       visual_peak = std::max(visual_peak, std::fabs(stage.visual_offset_m(probe)));
     if (!stage.wait_until(k + 1 < stimuli ? timeline.onset(k + 1) : timeline.answer_opens())) return std::nullopt;
   }
-  const double actuator_peak = stage.take_actuator_peak();
+  const double actuator_peak = std::max(stage.take_actuator_peak(), crossing_peak);
   const std::optional<TrialAnswer> given = answers.answer(trial, timeline.answer_opens());
   if (!given) return std::nullopt;
   // An answer from before the window opened cannot come from a source (it ignores those);
@@ -216,8 +256,10 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   row.session = session;
   row.visual_peak_m = visual_peak;
   row.actuator_peak = actuator_peak;
-  row.actuator_onset_ms = static_cast<double>(actuator_onset) / 1e6;
-  row.picture_onset_ms = static_cast<double>(picture_onset) / 1e6;
+  if (tapped) {  // a crossing is no strike: no onsets
+    row.actuator_onset_ms = static_cast<double>(actuator_onset) / 1e6;
+    row.picture_onset_ms = static_cast<double>(picture_onset) / 1e6;
+  }
   next_start = *timeline.next_start();
   return row;
 }
@@ -305,6 +347,8 @@ std::vector<AnswerKey> answer_keys(const StudyProtocol& protocol) {
 
 std::string answer_prompt(const StudyProtocol& protocol) {
   const bool strike = protocol.response == StudyResponse::strike;
+  if (protocol.texture())
+    return protocol.paired() ? tr("Which was steeper? Press 1 or 2") : tr("A bump or a hole? Press B or H");
   if (protocol.task == StudyTask::two_afc_harder)
     return strike ? tr("Which tap felt harder? Strike 1 or 2") : tr("Which tap felt harder? Press 1 or 2");
   if (strike) return tr("Which material? Strike its bar");

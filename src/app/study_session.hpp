@@ -21,6 +21,7 @@
 
 #include "app/strike_route.hpp"
 #include "core/app_config.hpp"
+#include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
 #include "core/study/adaptive_schedule.hpp"
 #include "core/study/balanced_schedule.hpp"
@@ -33,7 +34,7 @@ struct StudyOptions {
   std::filesystem::path protocol;
   std::string participant;
   std::optional<std::filesystem::path> out;      //!< results CSV; default: the protocol's `output`
-  std::filesystem::path scene;
+  std::filesystem::path scene;  //!< empty: the shipped scene of the protocol's kind (percussion, texture)
   std::optional<std::filesystem::path> config;   //!< mallet.toml; built-in defaults if absent
   std::optional<std::filesystem::path> config_dir;  //!< its drop-ins (none: FILE.d)
   std::optional<std::filesystem::path> answers;  //!< answer script; absent: the simulated observer
@@ -90,6 +91,18 @@ StudyPlan plan_study(const StudyOptions& options);
 StudyPlan plan_session(AppConfig config, Scene base, study::StudyProtocol protocol, const std::string& participant,
                        const std::filesystem::path& csv);
 
+//! What a crossing of a texture_slope trial presented, measured on the strike route's own
+//! output: the largest distance between the drawn cursor and the hand (the Speed
+//! technique's visible effect, metres) and the largest actuator sample (the stripes).
+struct Exploration {
+  double cursor_offset_peak_m = 0;
+  double actuator_peak = 0;
+};
+
+//! One crossing's hand samples (world metres, any clock) through `trial_scene`'s own route
+//! and engine, offline: what it presented.
+Exploration measure_crossing(const Scene& trial_scene, const AppConfig& config, const std::vector<PointerSample>& hand);
+
 //! Where a trial is presented, on its own clock (int64 ns).
 class StudyStage {
  public:
@@ -110,6 +123,9 @@ class StudyStage {
   //! A participant's hand (sphere centre, world metres) at t >= now(), through the same
   //! strike route as the stimuli: the strike it made, if any (answers by striking).
   virtual std::optional<Strike> hand(Nanos t, Vec2 hand) = 0;
+  //! texture_slope: the participant crosses `trial_scene`'s disc from now until `until`
+  //! (headless: a straight crossing through its centre); what it presented.
+  virtual Exploration explore(const Scene& trial_scene, Nanos until) = 0;
 };
 
 //! An answer, given at `at` on the stage's clock.

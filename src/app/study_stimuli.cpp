@@ -36,6 +36,7 @@ std::vector<double> answer_centres(const Scene& base, const Target& reference, s
 }  // namespace
 
 Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) {
+  if (protocol.texture()) return base;  // each crossing's scene: texture_trial_scene
   const Target& reference = base.targets.at(static_cast<std::size_t>(protocol.reference_bar));
   Scene scene = base;
   scene.materials.clear();
@@ -94,6 +95,16 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
     scene.targets.push_back(t);
     scene.instruments.push_back(std::move(inst));
   }
+  return scene;
+}
+
+Scene texture_trial_scene(const Scene& base, const study::Stimulus& stimulus, study::StudyCondition condition) {
+  Scene scene = base;
+  TextureStimulus& t = scene.texture.value();
+  t.relief.shape = stimulus.relief.value().shape;
+  t.relief.height_m = stimulus.relief->height_m;
+  if (!study::shows_visual(condition)) t.speed.slope_gain = 0;
+  if (!study::plays_actuator(condition)) t.stripes.amplitude = 0;
   return scene;
 }
 

@@ -33,6 +33,12 @@ struct AnswerBar {
 };
 std::vector<AnswerBar> answer_bars(const Scene& study_scene, const study::StudyProtocol& protocol);
 
+//! texture_slope: the texture scene one crossing presents: `base` with the stimulus's relief
+//! (shape and height), the Speed technique off (slope_gain 0: the cursor follows the hand)
+//! unless the condition shows the visual cue, the stripes off (amplitude 0) unless it plays
+//! the tactile one.
+Scene texture_trial_scene(const Scene& base, const study::Stimulus& stimulus, study::StudyCondition condition);
+
 //! The tap presenting `stimulus` (index in protocol.stimuli) under `condition` at t.
 Impact stimulus_impact(const Scene& study_scene, const study::StudyProtocol& protocol, int stimulus,
                        study::StudyCondition condition, Nanos t);

@@ -74,15 +74,15 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int) {
       if (action == GLFW_PRESS) static_cast<StudyWindow*>(glfwGetWindowUserPointer(w))->pressed_.push_back({key, monotonic_now()});
     });
-    if (!bars_.empty()) {  // answers by striking: the mouse is the mallet, stamped as it is read
+    if (!bars_.empty() || scene_.texture) {  // striking answers, crossing discs: the mouse, stamped as it is read
       glfwSetCursorPosCallback(win_.window->window(), [](GLFWwindow* w, double x, double y) {
         auto* self = static_cast<StudyWindow*>(glfwGetWindowUserPointer(w));
         int width = 1, height = 1;
         glfwGetWindowSize(w, &width, &height);
         self->cursor_.push_back({monotonic_now(), x / std::max(width, 1), y / std::max(height, 1)});
       });
-      for (const AnswerBar& b : bars_) labels_.push_back({b.target, b.answer});
     }
+    for (const AnswerBar& b : bars_) labels_.push_back({b.target, b.answer});
     make_renderer();
     rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz);  // the speaker per instrument (study_stimuli.hpp)
     route_ = std::make_unique<StrikeRoute>(scene_, c, rig_.engine.get(), &win_.window->present_clock());
@@ -135,9 +135,39 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   double visual_offset_m(Nanos t) const override { return route_->view().vibration.offset_m(t); }
   double take_actuator_peak() override { return std::exchange(peak_, 0.0); }
   std::optional<Strike> hand(Nanos t, Vec2 hand) override {
+    if (crossing_) {  // a texture crossing: the hand drives its own route, and is recorded
+      crossing_->route->feed(t, hand, monotonic_now());
+      crossing_->hand.push_back({t, hand.x, hand.y});
+      return std::nullopt;
+    }
     std::optional<Strike> strike = route_->feed(t, hand, monotonic_now());
     if (strike) struck_.push_back(*strike);
     return strike;
+  }
+  Exploration explore(const Scene& trial_scene, Nanos until) override {
+    const AppConfig& c = plan_.config;
+    banner_ = tr("Cross the white disc");
+    std::fprintf(stderr, "<6>crossing for %.1f s: %s\n", to_seconds(until - monotonic_now()), banner_.c_str());
+    // The crossing's own engine and route (its relief, its cues); the study's output pauses
+    // meanwhile, as one device takes one stream.
+    if (output_) output_->stop();
+    Crossing crossing{make_audio_rig(trial_scene, c, c.audio.sample_rate_hz), {}, {}};
+    crossing.route = std::make_unique<StrikeRoute>(trial_scene, c, crossing.rig.engine.get(),
+                                                   &win_.window->present_clock());
+    std::string status;
+    std::unique_ptr<audio::PortAudioOutput> out = output_ ? start_output(*crossing.rig.engine, c.audio, status) : nullptr;
+    crossing.rig.engine->set_actuator_gain(c.actuator.gain);
+    crossing.route->feed(monotonic_now(), route_->view().shown);  // the cursor starts where it rests
+    crossing_ = &crossing;
+    hand_live_ = true;
+    while (monotonic_now() < until && frame()) {
+    }
+    hand_live_ = false;
+    crossing_ = nullptr;
+    if (out) out->stop();
+    if (output_) output_->start();
+    banner_.clear();
+    return measure_crossing(trial_scene, c, crossing.hand);
   }
   void trial_starts(const ScheduledTrial& trial) override {
     ++trials_shown_;
@@ -249,7 +279,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
     render::FrameState state;
     const Nanos present = win_.window->predicted_present(now);
-    state.mallet_centre = route_->view().displayed(present);
+    state.mallet_centre = (crossing_ ? crossing_->route->view() : route_->view()).displayed(present);
     state.overlay = win_.overlay.get();
     win_.draw_or_recover(*renderer_, state, [this] { renderer_.reset(); }, [this] { make_renderer(); });
     return true;
@@ -287,8 +317,13 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   //! The mallet back on the stimulus bar, where the program taps it; the mouse lets go.
   void rest() {
     hand_live_ = false;
-    const Target& bar = scene_.targets.at(0);
     route_->reset();
+    if (scene_.texture) {  // left of the disc, where a crossing starts
+      const TextureRelief& r = scene_.texture->relief;
+      route_->feed(monotonic_now(), {r.center.x - 1.4 * r.radius_m, r.center.y});
+      return;
+    }
+    const Target& bar = scene_.targets.at(0);
     route_->feed(monotonic_now(), {0.5 * (bar.x_min + bar.x_max), bar.top_y});  // held on its top
   }
 
@@ -319,7 +354,14 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   double peak_ = 0;
   int tap_ = 0, trials_shown_ = 0;
   bool quit_ = false, thanking_ = false;
-  bool hand_live_ = false;  //!< the mouse moves the mallet (an answer is being struck)
+  bool hand_live_ = false;  //!< the mouse moves the mallet (an answer is being struck, a disc crossed)
+  //! A texture_slope crossing in progress: its engine, route and the hand's samples (world).
+  struct Crossing {
+    AudioRig rig;
+    std::unique_ptr<StrikeRoute> route;
+    std::vector<PointerSample> hand;
+  };
+  Crossing* crossing_ = nullptr;
 };
 
 }  // namespace

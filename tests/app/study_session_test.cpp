@@ -61,6 +61,7 @@ class FakeStage final : public StudyStage {
   double visual_offset_m(Nanos) const override { return taps.empty() ? 0.0 : 0.002; }
   double take_actuator_peak() override { return std::exchange(peak, 0.0) + (taps.empty() ? 0.0 : 0.25); }
   std::optional<Strike> hand(Nanos, Vec2) override { return std::nullopt; }
+  Exploration explore(const Scene&, Nanos) override { return {}; }
   Nanos t = 5 * kNanosPerSecond;  // not 0: the real clock is not
   double peak = 0;
   std::vector<Impact> taps;

@@ -17,7 +17,7 @@ std::uint64_t participant_seed(std::uint64_t protocol_seed, std::string_view par
 
 std::vector<ScheduledTrial> balanced_schedule(const StudyProtocol& protocol, std::string_view participant) {
   std::vector<ScheduledTrial> trials;
-  const bool two_afc = protocol.task == StudyTask::two_afc_harder;
+  const bool two_afc = protocol.paired();
   for (StudyCondition c : protocol.conditions)
     for (std::size_t item = 0; item < protocol.items(); ++item)
       for (int r = 0; r < protocol.repetitions; ++r)
@@ -29,7 +29,7 @@ std::vector<ScheduledTrial> balanced_schedule(const StudyProtocol& protocol, std
 }
 
 std::vector<int> shown_stimuli(const StudyProtocol& protocol, const ScheduledTrial& trial) {
-  if (protocol.task == StudyTask::name_material) return {protocol.named.at(static_cast<std::size_t>(trial.item))};
+  if (!protocol.paired()) return {protocol.named.at(static_cast<std::size_t>(trial.item))};
   const StimulusPair& p = protocol.pairs.at(static_cast<std::size_t>(trial.item));
   return trial.swapped ? std::vector<int>{p.b, p.a} : std::vector<int>{p.a, p.b};
 }
@@ -45,13 +45,14 @@ std::string stimuli_text(const StudyProtocol& protocol, const ScheduledTrial& tr
 
 std::string correct_answer(const StudyProtocol& protocol, const ScheduledTrial& trial) {
   const std::vector<int> shown = shown_stimuli(protocol, trial);
-  if (protocol.task == StudyTask::name_material) return protocol.stimuli[static_cast<std::size_t>(shown[0])].material.name;
+  const Stimulus& first = protocol.stimuli[static_cast<std::size_t>(shown[0])];
+  if (!protocol.paired()) return first.relief ? to_string(first.relief->shape) : first.material.name;
   const int harder = protocol.pairs[static_cast<std::size_t>(trial.item)].harder;
   return shown[0] == harder ? "1" : "2";
 }
 
 double difference_pct(const StudyProtocol& protocol, const ScheduledTrial& trial) {
-  if (protocol.task == StudyTask::name_material) return std::nan("");
+  if (!protocol.paired()) return std::nan("");
   return protocol.pairs.at(static_cast<std::size_t>(trial.item)).difference_pct;
 }
 

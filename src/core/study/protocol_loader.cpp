@@ -66,6 +66,24 @@ Stimulus read_stimulus(TableReader t, const std::vector<Material>& materials) {
   return s;
 }
 
+//! A texture_slope stimulus: the relief's shape and height (the scene gives its profile,
+//! centre and radius).
+Stimulus read_texture_stimulus(TableReader t) {
+  Stimulus s;
+  s.name = t.string("name");
+  if (!is_plain_name(s.name)) t.fail("name", "\"" + s.name + "\" " + kPlain);
+  TextureRelief relief;
+  const std::string shape = t.string("relief");
+  if (shape == "bump") relief.shape = ReliefShape::bump;
+  else if (shape == "hole") relief.shape = ReliefShape::hole;
+  else t.fail("relief", "expected \"bump\" or \"hole\", got \"" + shape + "\"");
+  relief.height_m = t.number("height_m");
+  t.require_range("height_m", relief.height_m, 0.0002, 0.05);
+  s.relief = relief;
+  t.finish();
+  return s;
+}
+
 int stimulus_index(TableReader& t, std::string_view key, const std::vector<Stimulus>& stimuli) {
   const std::string name = t.string(key);
   for (std::size_t i = 0; i < stimuli.size(); ++i)
@@ -81,6 +99,15 @@ StimulusPair read_pair(TableReader t, const std::vector<Stimulus>& stimuli) {
   p.b = stimulus_index(t, "b", stimuli);
   t.finish();
   if (p.a == p.b) t.fail("b", "a pair needs two different stimuli");
+  if (const auto& ra = stimuli[static_cast<std::size_t>(p.a)].relief) {  // texture_slope: the steeper
+    const TextureRelief& rb = *stimuli[static_cast<std::size_t>(p.b)].relief;
+    if (ra->shape != rb.shape) t.fail("b", "\"which was steeper\" compares two bumps or two holes");
+    if (ra->height_m == rb.height_m) t.fail("b", "\"steeper\" is the higher relief; these two are as high");
+    p.harder = rb.height_m > ra->height_m ? p.b : p.a;
+    const double hard = std::max(ra->height_m, rb.height_m), soft = std::min(ra->height_m, rb.height_m);
+    p.difference_pct = 100.0 * (hard / soft - 1.0);
+    return p;
+  }
   const Material& a = stimuli[static_cast<std::size_t>(p.a)].material;
   const Material& b = stimuli[static_cast<std::size_t>(p.b)].material;
   const double dv = b.visual.decay_per_s - a.visual.decay_per_s;
@@ -214,7 +241,16 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   const std::string task = top.string("task");
   if (task == "2afc_harder") p.task = StudyTask::two_afc_harder;
   else if (task == "name_material") p.task = StudyTask::name_material;
-  else top.fail("task", "expected \"2afc_harder\" or \"name_material\", got \"" + task + "\"");
+  else if (task == "texture_slope") p.task = StudyTask::texture_slope;
+  else top.fail("task", "expected \"2afc_harder\", \"name_material\" or \"texture_slope\", got \"" + task + "\"");
+  if (p.texture()) {
+    const std::string question = top.string("question");
+    if (question == "steeper") p.question = TextureQuestion::steeper;
+    else if (question != "bump_or_hole")
+      top.fail("question", "expected \"bump_or_hole\" or \"steeper\", got \"" + question + "\"");
+  } else if (top.has("question")) {
+    top.fail("question", "only task = \"texture_slope\" asks one");
+  }
 
   std::set<std::string> seen;
   for (const std::string& c : top.strings("conditions")) {
@@ -236,8 +272,8 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   if (!adaptive) {
     const std::int64_t reps = top.integer("repetitions");
     top.require_range("repetitions", static_cast<double>(reps), 1, 1000);
-    if (p.task == StudyTask::two_afc_harder && reps % 2 != 0)
-      top.fail("repetitions", "must be even for 2afc_harder, so each pair is shown in both orders equally often");
+    if (p.paired() && reps % 2 != 0)
+      top.fail("repetitions", "must be even for 2afc_harder and steeper, so each pair is shown in both orders equally often");
     p.repetitions = static_cast<int>(reps);
   } else if (top.has("repetitions")) {
     top.fail("repetitions", "an adaptive protocol's trials end by its own stop rule ([" + procedure + "]); remove it");
@@ -250,12 +286,19 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   if (p.output.empty()) top.fail("output", "must not be empty");
   top.read("impact_speed_m_per_s", p.impact_speed_m_per_s, 0.01, 10);
   p.sound = top.boolean_or("sound", false);
-  const std::int64_t bar = top.integer_or("reference_bar", 0);
-  if (bar < 0 || static_cast<std::size_t>(bar) >= bar_count)
-    top.fail("reference_bar", "must name a bar of the scene: 0 to " + std::to_string(bar_count - 1));
-  p.reference_bar = static_cast<int>(bar);
+  if (p.texture()) {
+    for (const char* key : {"reference_bar", "sound"})
+      if (top.has(key)) top.fail(key, "a texture_slope trial strikes no bar; remove it");
+  } else {
+    const std::int64_t bar = top.integer_or("reference_bar", 0);
+    if (bar < 0 || static_cast<std::size_t>(bar) >= bar_count)
+      top.fail("reference_bar", "must name a bar of the scene: 0 to " + std::to_string(bar_count - 1));
+    p.reference_bar = static_cast<int>(bar);
+  }
   if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing);
   const std::string response = top.string_or("response", "keys");
+  if (response == "strike" && p.texture())
+    top.fail("response", "a texture_slope trial has no bars to strike: its answers are keys");
   if (response == "strike") p.response = StudyResponse::strike;
   else if (response != "keys") top.fail("response", "expected \"keys\" or \"strike\", got \"" + response + "\"");
   if (auto answer = top.optional_table("answer_strike")) {
@@ -274,7 +317,7 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   std::set<std::string> names;
   std::vector<TableReader> stimulus_tables = top.tables("stimulus");
   for (TableReader& t : stimulus_tables) {
-    p.stimuli.push_back(read_stimulus(t, materials));
+    p.stimuli.push_back(p.texture() ? read_texture_stimulus(t) : read_stimulus(t, materials));
     if (!names.insert(p.stimuli.back().name).second)
       t.fail("name", "a second [[stimulus]] named \"" + p.stimuli.back().name + "\"");
   }
@@ -285,13 +328,18 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
     if (p.procedure == StudyProcedure::staircase) read_staircase(top.table("staircase"), p.adaptive);
     else read_quest(top.table("quest"), p.adaptive);
     make_adaptive_pairs(p);
-  } else if (p.task == StudyTask::two_afc_harder) {
+  } else if (p.paired()) {
     for (const char* key : {"reference", "staircase", "quest"})
       if (top.has(key)) top.fail(key, "only an adaptive procedure (procedure = \"staircase\" or \"quest\") uses it");
     for (TableReader& t : top.tables("pair")) p.pairs.push_back(read_pair(t, p.stimuli));
   } else {
-    if (top.has("pair")) top.fail("pair", "only a 2afc_harder protocol has pairs");
+    if (top.has("pair")) top.fail("pair", "only a 2afc_harder or steeper protocol has pairs");
     for (std::size_t i = 0; i < p.stimuli.size(); ++i) p.named.push_back(static_cast<int>(i));
+    if (p.texture()) {
+      bool bump = false, hole = false;
+      for (const Stimulus& st : p.stimuli) (st.relief->shape == ReliefShape::bump ? bump : hole) = true;
+      if (!bump || !hole) top.fail("stimulus", "\"bump or hole\" needs at least one of each");
+    }
   }
   top.finish();
   return p;

@@ -21,7 +21,29 @@ double SimulatedObserver::threshold_pct(StudyCondition condition) {
   return std::numeric_limits<double>::infinity();
 }
 
+double SimulatedObserver::texture_threshold_pct(StudyCondition condition) {
+  switch (condition) {
+    case StudyCondition::both: return 20.0;
+    case StudyCondition::visual_only: return 25.0;
+    case StudyCondition::tactile_only:  // the stripes say where the disc is, not its slope
+    case StudyCondition::none: break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 namespace {
+//! texture_slope's bump or hole: the Speed technique shows the slope's sign; the stripes alone
+//! do not (a guess, as with neither).
+double shape_accuracy(StudyCondition condition) {
+  switch (condition) {
+    case StudyCondition::both: return 0.90;
+    case StudyCondition::visual_only: return 0.85;
+    case StudyCondition::tactile_only:
+    case StudyCondition::none: break;
+  }
+  return 0.5;
+}
+
 double naming_accuracy(StudyCondition condition) {
   switch (condition) {
     case StudyCondition::both: return 0.95;
@@ -41,13 +63,17 @@ ObserverAnswer SimulatedObserver::respond(const ScheduledTrial& trial) const {
   const double rt_ms = 400.0 + 400.0 * u_time + (trial.condition == StudyCondition::none ? 200.0 : 0.0);
   out.response_time = static_cast<Nanos>(rt_ms * 1e6);
   const std::string correct = correct_answer(protocol_, trial);
-  if (protocol_.task == StudyTask::two_afc_harder) {
-    const double t = threshold_pct(trial.condition);
+  if (protocol_.paired()) {
+    const double t = protocol_.texture() ? texture_threshold_pct(trial.condition) : threshold_pct(trial.condition);
     const double p = std::isinf(t) ? 0.5 : psychometric_2afc(difference_pct(protocol_, trial), t, kSlopePerPct);
     out.answer = u_answer < p ? correct : (correct == "1" ? "2" : "1");
     return out;
   }
   std::vector<std::string> choices = protocol_.answer_choices();
+  if (protocol_.texture()) {
+    out.answer = u_answer < shape_accuracy(trial.condition) ? correct : correct == "bump" ? "hole" : "bump";
+    return out;
+  }
   if (u_answer < naming_accuracy(trial.condition)) {
     out.answer = correct;
     return out;

@@ -7,6 +7,10 @@
 //   name_material: correct with 0.95 (both), 0.85 (tactile_only), 0.70 (visual_only),
 //         otherwise (and always in "none") a uniform guess among the other materials
 //         (in "none", among all of them).
+//   texture_slope (the visual cue is the Speed technique, the tactile one the stripes, which
+//         show where the disc is but not its slope): "steeper" as 2AFC above with T = 20 %
+//         (both), 25 % (visual_only), chance otherwise; "bump or hole" correct with 0.90
+//         (both), 0.85 (visual_only), a guess otherwise.
 //   Response time: 400–800 ms after the answer window opens, +200 ms in "none".
 #include <string>
 #include <string_view>
@@ -30,6 +34,8 @@ class SimulatedObserver {
   ObserverAnswer respond(const ScheduledTrial& trial) const;
   //! The observer's 75 % threshold in a condition (percent difference in B); none: infinite.
   static double threshold_pct(StudyCondition condition);
+  //! The same for texture_slope's "steeper" (percent difference in the reliefs' height).
+  static double texture_threshold_pct(StudyCondition condition);
 
  private:
   const StudyProtocol& protocol_;

@@ -5,7 +5,12 @@
 namespace mallet::study {
 
 std::string_view task_name(StudyTask task) {
-  return task == StudyTask::two_afc_harder ? "2afc_harder" : "name_material";
+  switch (task) {
+    case StudyTask::two_afc_harder: return "2afc_harder";
+    case StudyTask::name_material: return "name_material";
+    case StudyTask::texture_slope: return "texture_slope";
+  }
+  return "?";
 }
 
 std::string_view condition_name(StudyCondition condition) {
@@ -25,7 +30,8 @@ std::optional<StudyCondition> condition_from_name(std::string_view name) {
 }
 
 std::vector<std::string> StudyProtocol::answer_choices() const {
-  if (task == StudyTask::two_afc_harder) return {"1", "2"};
+  if (paired()) return {"1", "2"};
+  if (texture()) return {"bump", "hole"};
   std::vector<std::string> out;
   for (int i : named) {
     const std::string& m = stimuli[static_cast<std::size_t>(i)].material.name;

@@ -14,6 +14,7 @@
 #include "core/material.hpp"
 #include "core/study/quest.hpp"
 #include "core/study/staircase.hpp"
+#include "core/texture_relief.hpp"
 #include "core/time.hpp"
 
 namespace mallet::study {
@@ -21,10 +22,19 @@ namespace mallet::study {
 enum class StudyTask {
   two_afc_harder,  //!< "2afc_harder": two taps, which felt harder (answer 1 or 2)
   name_material,   //!< "name_material": one tap, name its material
+  //! "texture_slope": the second paper's bump or hole, crossed with the mouse or the remote
+  //! (a texture scene); `question` says what is asked.
+  texture_slope,
 };
 
+//! What a texture_slope trial asks: after one crossing, "bump or hole"; after two (of
+//! reliefs of the same shape), "which was steeper" (answer 1 or 2: the higher one).
+enum class TextureQuestion { bump_or_hole, steeper };
+
 //! What a condition keeps of the stimulus: the visual vibration (Eq. 1, the material's
-//! visual triple), the actuator signal (Eq. 1, its actuator triple), both or neither.
+//! visual triple), the actuator signal (Eq. 1, its actuator triple), both or neither. In a
+//! texture_slope task the visual cue is the Speed technique (the cursor's speed follows the
+//! slope) and the tactile one the vibrotactile stripes on the actuator.
 enum class StudyCondition { visual_only, tactile_only, both, none };
 
 inline constexpr StudyCondition kAllConditions[] = {StudyCondition::visual_only, StudyCondition::tactile_only,
@@ -43,6 +53,9 @@ struct Stimulus {
   std::string name;     //!< unique in the protocol; what the CSV's `stimuli` column shows
   Material material;    //!< name = the base material (the answer of name_material); triples scaled
   double decay_scale = 1.0;
+  //! texture_slope: the relief under the disc (its shape and height; the scene's profile,
+  //! centre and radius).
+  std::optional<TextureRelief> relief;
 };
 
 //! Two stimuli compared in a 2AFC trial. `harder` is the one with the larger B; the
@@ -108,6 +121,7 @@ struct StudyProtocol {
   std::string file;               //!< where it was loaded from (messages)
   std::string name;               //!< CSV column `protocol`
   StudyTask task = StudyTask::two_afc_harder;
+  TextureQuestion question = TextureQuestion::bump_or_hole;  //!< texture_slope
   std::vector<StudyCondition> conditions;
   std::vector<Stimulus> stimuli;
   std::vector<StimulusPair> pairs;  //!< 2AFC only
@@ -127,8 +141,13 @@ struct StudyProtocol {
   AnswerStrike answer_strike;  //!< response = strike
   std::optional<VisitorProtocol> visitor;  //!< [visitor]: a protocol the kiosk offers its visitors
 
+  bool texture() const { return task == StudyTask::texture_slope; }
+  //! Trials of two stimuli and the answer 1 or 2 (2afc_harder, texture_slope's steeper).
+  bool paired() const {
+    return task == StudyTask::two_afc_harder || (texture() && question == TextureQuestion::steeper);
+  }
   //! Items per condition: pairs (2AFC) or named stimuli.
-  std::size_t items() const { return task == StudyTask::two_afc_harder ? pairs.size() : named.size(); }
+  std::size_t items() const { return paired() ? pairs.size() : named.size(); }
   //! The answers a participant may give: "1", "2" or the materials' names.
   std::vector<std::string> answer_choices() const;
 };

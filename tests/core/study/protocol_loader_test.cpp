@@ -138,6 +138,47 @@ TEST(StudyProtocol, StrikeAnswerMistakesAreOneLineEach) {
             "bad.toml:24:1: answer_strike: only response = \"strike\" uses it");
 }
 
+TEST(StudyProtocol, ATextureProtocolAsksBumpOrHoleOrTheSteeper) {
+  const StudyProtocol t = load_shipped("texture.toml");
+  EXPECT_EQ(t.task, StudyTask::texture_slope);
+  EXPECT_EQ(t.question, TextureQuestion::bump_or_hole);
+  EXPECT_FALSE(t.paired());
+  EXPECT_EQ(t.answer_choices(), (std::vector<std::string>{"bump", "hole"}));
+  ASSERT_EQ(t.stimuli.size(), 4u);
+  ASSERT_TRUE(t.stimuli[2].relief);
+  EXPECT_EQ(t.stimuli[2].relief->shape, ReliefShape::hole);
+  EXPECT_EQ(t.stimuli[2].relief->height_m, 0.004);
+  EXPECT_EQ(t.items() * t.conditions.size() * static_cast<std::size_t>(t.repetitions), 32u);
+
+  const std::string steeper =
+      "name = \"s\"\ntask = \"texture_slope\"\nquestion = \"steeper\"\nconditions = [\"both\"]\n"
+      "repetitions = 2\nseed = 1\n[[stimulus]]\nname = \"b4\"\nrelief = \"bump\"\nheight_m = 0.004\n"
+      "[[stimulus]]\nname = \"b5\"\nrelief = \"bump\"\nheight_m = 0.005\n[[pair]]\na = \"b5\"\nb = \"b4\"\n";
+  const StudyProtocol s = test::parse_protocol(steeper, "s.toml");
+  EXPECT_TRUE(s.paired());
+  ASSERT_EQ(s.pairs.size(), 1u);
+  EXPECT_EQ(s.pairs[0].harder, s.pairs[0].a) << "the higher relief is the steeper";
+  EXPECT_NEAR(s.pairs[0].difference_pct, 25.0, 1e-9);
+  EXPECT_EQ(s.answer_choices(), (std::vector<std::string>{"1", "2"}));
+
+  EXPECT_EQ(error_of(replaced(steeper, "height_m = 0.005", "height_m = 0.004")),
+            "bad.toml:16:5: pair[0].b: \"steeper\" is the higher relief; these two are as high");
+  EXPECT_EQ(error_of(replaced(steeper, "name = \"b5\"\nrelief = \"bump\"", "name = \"b5\"\nrelief = \"hole\"")),
+            "bad.toml:16:5: pair[0].b: \"which was steeper\" compares two bumps or two holes");
+  EXPECT_EQ(error_of(replaced(steeper, "question = \"steeper\"", "question = \"deeper\"")),
+            "bad.toml:3:12: question: expected \"bump_or_hole\" or \"steeper\", got \"deeper\"");
+  EXPECT_EQ(error_of(replaced(steeper, "seed = 1", "seed = 1\nresponse = \"strike\"")),
+            "bad.toml:7:12: response: a texture_slope trial has no bars to strike: its answers are keys");
+  EXPECT_EQ(error_of(replaced(steeper, "seed = 1", "seed = 1\nreference_bar = 0")),
+            "bad.toml:7:17: reference_bar: a texture_slope trial strikes no bar; remove it");
+  EXPECT_EQ(error_of(replaced(steeper, "relief = \"bump\"\nheight_m = 0.004", "relief = \"ridge\"\nheight_m = 0.004")),
+            "bad.toml:9:10: stimulus[0].relief: expected \"bump\" or \"hole\", got \"ridge\"");
+  const std::string bumps_only = replaced(replaced(steeper, "\"steeper\"", "\"bump_or_hole\""),
+                                          "[[pair]]\na = \"b5\"\nb = \"b4\"\n", "");
+  EXPECT_NE(error_of(bumps_only).find("stimulus: \"bump or hole\" needs at least one of each"), std::string::npos)
+      << error_of(bumps_only);
+}
+
 TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
   const StudyProtocol v = load_shipped("visitor.toml");
   ASSERT_TRUE(v.visitor);
