@@ -167,7 +167,10 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     if (out) out->stop();
     if (output_) output_->start();
     banner_.clear();
-    return measure_crossing(trial_scene, c, crossing.hand);
+    const Exploration e = measure_crossing(trial_scene, c, crossing.hand);
+    std::fprintf(stderr, "<6>crossed: %zu samples, the cursor up to %.2f mm off the hand, the stripes up to %.3f\n",
+                 crossing.hand.size(), e.cursor_offset_peak_m * 1e3, e.actuator_peak);
+    return e;
   }
   void trial_starts(const ScheduledTrial& trial) override {
     ++trials_shown_;

@@ -9,7 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench_latency_x11.hpp"
 #include "app/strike_loop.hpp"
 #include "app/study_session.hpp"
 #include "app/study_stimuli.hpp"
@@ -17,8 +16,6 @@
 #include "core/app_config.hpp"
 #include "core/ghost_player.hpp"
 #include "core/study/results_csv.hpp"
-#include "render/scene_view.hpp"
-#include "child_process.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -159,52 +156,6 @@ TEST(StudyStrike, AVoiceTheSceneLacksIsReportedWhereTheProtocolNamesIt) {
         << what;
     EXPECT_NE(what.find("(known: xylophone, glockenspiel"), std::string::npos) << what;
   }
-}
-
-//! The real window under its own Xvfb: at the prompt, the X pointer (XTest, as a mouse's
-//! events arrive) sweeps down through answer bar "2"; the row says so, source=strike.
-TEST(StudyStrike, InAWindowTheMouseStrikesAnAnswerBar) {
-  const fs::path dir = test::scratch_dir();
-  const StudyOptions o = options(dir, strike_protocol(k2afc) + kPair);
-  const int w = 640, h = 360;
-  latency::VirtualDisplay display(w, h);
-  const std::string launch = "(" + test::child_preload() + "DISPLAY=" + display.name() + " " +
-                             std::string(MALLET_TEST_BINARY) + " study --windowed --size 640x360 --quit-after 60" +
-                             " --device llvmpipe --protocol " + o.protocol.string() + " --participant P3 --out " +
-                             o.out->string() + " > " + (dir / "log.txt").string() + " 2>&1; echo exit=$? >> " +
-                             (dir / "log.txt").string() + ") &";
-  ASSERT_EQ(std::system(launch.c_str()), 0);
-  ASSERT_TRUE(test::wait_for(dir / "log.txt", "trial 1 of 4: Which tap felt harder? Strike 1 or 2"))
-      << test::slurp(dir / "log.txt");
-  latency::FakePointer pointer(display.name());
-  std::optional<latency::PixelBox> box;
-  for (int i = 0; i < 100 && !box; ++i, std::system("sleep 0.1")) box = pointer.find_window(w, h);
-  ASSERT_TRUE(box);
-  // Where answer bar "2" is on that window, above it and below its top.
-  const StudyPlan plan = plan_study(o);
-  const Scene scene = make_study_scene(plan.base, plan.protocol);
-  const Target& bar = scene.targets.at(static_cast<std::size_t>(answer_bars(scene, plan.protocol).at(1).target));
-  const glm::mat4 vp = render::view_projection(scene, static_cast<double>(w) / h);
-  const double x = (bar.x_min + bar.x_max) / 2;
-  const glm::dvec2 above = render::project_to_screen(vp, {x, bar.top_y + scene.mallet_radius_m + 0.06, 0});
-  const glm::dvec2 below = render::project_to_screen(vp, {x, bar.top_y, 0});
-  for (int k = 0; k <= 30; ++k) {  // 30 steps of 20 ms: about one a frame
-    const double y = above.y + (below.y - above.y) * k / 30.0;
-    pointer.move_to(box->x + static_cast<int>(above.x * w), box->y + static_cast<int>(y * h));
-    std::system("sleep 0.02");
-  }
-  ASSERT_TRUE(test::wait_for(dir / "log.txt", "trial 2 of 4")) << test::slurp(dir / "log.txt");
-  const std::string stop = "pkill -f '^" + std::string(MALLET_TEST_BINARY) + " study .*" + o.out->string() + "'";
-  EXPECT_EQ(std::system(stop.c_str()), 0);
-  ASSERT_TRUE(test::wait_for(dir / "log.txt", "exit=")) << test::slurp(dir / "log.txt");
-  const std::string log = test::slurp(dir / "log.txt");
-  EXPECT_NE(log.find("bar=" + std::to_string(bar.id) + " answer 2"), std::string::npos) << log;
-  EXPECT_NE(log.find("exit=0"), std::string::npos) << log;
-  const std::vector<study::ResultRow> rows = study::read_results(*o.out).rows;
-  ASSERT_EQ(rows.size(), 1u) << log;
-  EXPECT_EQ(rows[0].answer, "2");
-  EXPECT_EQ(rows[0].source, "strike");
-  EXPECT_GT(rows[0].response_time_ms, 0.0);
 }
 
 }  // namespace
