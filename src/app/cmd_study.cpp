@@ -17,6 +17,7 @@
 #include "core/file_error.hpp"
 #include "core/study/results_csv.hpp"
 #include "core/study/study_summary.hpp"
+#include "core/study/visitor_offer.hpp"
 #include "render/window_target.hpp"
 
 namespace mallet::app {
@@ -40,7 +41,9 @@ void add_summary(CLI::App& study) {
       "time; then, for 2AFC rows (those with a difference_pct), the maximum-likelihood fit of\n"
       "  P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold)))\n"
       "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference,\n"
-      "pooled over the participants; then, with more than one participant, each one's fit.\n"
+      "pooled over the participants; then, with more than one participant, each one's fit (not the\n"
+      "visitor micro-study's sessions, visitor-*: they are pooled only, and counted as completed or\n"
+      "abandoned).\n"
       "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.\n"
       "Each fit has 95% confidence intervals for its threshold and slope (threshold_95ci,\n"
       "slope_95ci): the parametric bootstrap, --bootstrap resamples drawn from the fitted curve and\n"
@@ -95,11 +98,18 @@ void add_summary(CLI::App& study) {
     report.seed = o->seed;
     report.pooled = study::summarize(rows, o->participant, options);
     report.pooled_text = study::format_summary(report.pooled);
-    if (report.pooled.participants.size() > 1) {
-      report.participants = study::summarize_participants(rows, options);
+    // Each participant's own fit, but not a visitor's: a visitor's few trials are pooled only.
+    std::vector<study::ResultRow> own;
+    for (const study::ResultRow& r : rows)
+      if (!study::is_visitor_session(r.participant) && (o->participant.empty() || r.participant == o->participant))
+        own.push_back(r);
+    const study::StudySummary participants = study::summarize(own, {}, {});
+    if (participants.participants.size() > 1) {
+      report.participants = study::summarize_participants(own, options);
       report.participants_text = study::format_participant_fits(report.participants);
-    } else if (report.pooled.participants.size() == 1) {
-      report.participants = {{report.pooled.participants.front(), report.pooled}};
+    } else if (participants.participants.size() == 1) {
+      report.participants = {{participants.participants.front(),
+                              own.size() == rows.size() ? report.pooled : study::summarize(own, {}, options)}};
     }
     std::printf("%s: ", files.size() == 1 ? files.front().c_str()
                                           : (std::to_string(files.size()) + " results files").c_str());

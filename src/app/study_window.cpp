@@ -148,14 +148,15 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     const AppConfig& c = plan_.config;
     banner_ = tr("Cross the white disc");
     std::fprintf(stderr, "<6>crossing for %.1f s: %s\n", to_seconds(until - monotonic_now()), banner_.c_str());
-    // The crossing's own engine and route (its relief, its cues); the study's output pauses
-    // meanwhile, as one device takes one stream.
-    if (output_) output_->stop();
+    // The crossing's own engine and route (its relief, its cues); the study's output is
+    // closed meanwhile, as a device may take only one stream.
+    const bool sound = output_ != nullptr;
+    output_.reset();
     Crossing crossing{make_audio_rig(trial_scene, c, c.audio.sample_rate_hz), {}, {}};
     crossing.route = std::make_unique<StrikeRoute>(trial_scene, c, crossing.rig.engine.get(),
                                                    &win_.window->present_clock());
     std::string status;
-    std::unique_ptr<audio::PortAudioOutput> out = output_ ? start_output(*crossing.rig.engine, c.audio, status) : nullptr;
+    std::unique_ptr<audio::PortAudioOutput> out = sound ? start_output(*crossing.rig.engine, c.audio, status) : nullptr;
     crossing.rig.engine->set_actuator_gain(c.actuator.gain);
     crossing.route->feed(monotonic_now(), route_->view().shown);  // the cursor starts where it rests
     crossing_ = &crossing;
@@ -164,8 +165,8 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     }
     hand_live_ = false;
     crossing_ = nullptr;
-    if (out) out->stop();
-    if (output_) output_->start();
+    out.reset();
+    if (sound) output_ = start_output(*rig_.engine, c.audio, audio_status_);
     banner_.clear();
     const Exploration e = measure_crossing(trial_scene, c, crossing.hand);
     std::fprintf(stderr, "<6>crossed: %zu samples, the cursor up to %.2f mm off the hand, the stripes up to %.3f\n",

@@ -257,9 +257,12 @@ bool WindowKiosk::visitor_accepted(Nanos now, const StrikeLoop::View& view) {
 
 void WindowKiosk::run_visitor_session() {
   std::fprintf(stderr, "<6>visitor study: a visitor accepted; the instrument pauses\n");
-  // The study's own audio and strike route play meanwhile: the kiosk's stop, and its
-  // pointers' threads strike nothing (they still hand their samples over).
-  if (stage_->output) stage_->output->stop();
+  // The study's own audio and strike route play meanwhile: the kiosk's output is closed (a
+  // device may take only one stream), and its pointers' threads strike nothing (they still
+  // hand their samples over).
+  const bool sound = stage_->output != nullptr;
+  if (sound) xruns_retired_ += stage_->output->counters().xruns;
+  stage_->output.reset();
   if (stage_->remote) stage_->remote->set_playing(false);
   if (stage_->mouse) stage_->mouse->set_playing(false);
   std::function<std::vector<PointerSample>()> pointer;  // empty: the window system's cursor
@@ -301,7 +304,8 @@ void WindowKiosk::run_visitor_session() {
   // The swapchain's images hold the study's frames: a new renderer draws them whole.
   stage_->renderer = make_renderer(*stage_);
   stage_->route->reset();
-  if (stage_->output) stage_->output->start();
+  if (sound) stage_->output = start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status);
+  callbacks_at_beat_ = 0;  // the new output's callbacks count from 0
   offer_->session_ended(monotonic_now());
   offer_since_ = 0;
 }
