@@ -16,10 +16,10 @@
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
 
 #include "app/audio_setup.hpp"
 #include "app/data_paths.hpp"
-#include "app/json_writer.hpp"
 #include "app/kiosk_setup.hpp"
 #include "app/remote_pointer.hpp"
 #include "app/settings_source.hpp"
@@ -467,18 +467,18 @@ std::vector<DoctorCheck> run_doctor(const DoctorOptions& o) {
 }
 
 std::string doctor_json(const std::vector<DoctorCheck>& checks) {
-  JsonWriter j;
+  nlohmann::ordered_json j;
   int counts[3] = {0, 0, 0};
-  j.begin_object().key("checks").begin_array();
+  j["checks"] = nlohmann::ordered_json::array();
   for (const DoctorCheck& c : checks) {
     ++counts[static_cast<int>(c.level)];
-    j.begin_object().field("name", c.name).field("status", to_string(c.level)).field("found", c.found).field("fix", c.fix);
-    j.end_object();
+    j["checks"].push_back({{"name", c.name}, {"status", to_string(c.level)}, {"found", c.found}, {"fix", c.fix}});
   }
-  j.end_array();
-  j.field("ok", counts[0]).field("warn", counts[1]).field("fail", counts[2]);
-  j.end_object();
-  return j.str() + "\n";
+  j["ok"] = counts[0];
+  j["warn"] = counts[1];
+  j["fail"] = counts[2];
+  // What a check found can quote a device's bytes: any that are not UTF-8 become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mallet::app

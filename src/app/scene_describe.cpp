@@ -1,83 +1,104 @@
 #include "app/scene_describe.hpp"
 
-#include "app/json_writer.hpp"
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
 
 namespace mallet::app {
 
+namespace {
+
+// A number as the contract prints it: twelve significant digits (523.251130601, not
+// 523.2511306011972), a whole number without a decimal point (440), null for what JSON
+// cannot hold (nothing should produce a NaN).
+nlohmann::ordered_json number(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  char text[40];
+  const int size = std::snprintf(text, sizeof text, "%.12g", v);
+  const std::string_view digits(text, static_cast<std::size_t>(size));
+  long long whole = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), whole);
+  if (error == std::errc() && end == digits.data() + digits.size()) return whole;
+  return std::strtod(text, nullptr);
+}
+
+}  // namespace
+
 std::string describe_scene_json(const Scene& scene) {
-  JsonWriter j;
-  j.begin_object();
-  j.field("kind", to_string(scene.kind));
-  j.field("name", scene.name);
+  nlohmann::ordered_json j;
+  j["kind"] = to_string(scene.kind);
+  j["name"] = scene.name;
   if (scene.texture) {  // the texture scene: the disc, its relief and its stripes
     const TextureStimulus& tex = *scene.texture;
-    j.key("texture").begin_object();
-    j.field("shape", to_string(tex.relief.shape));
-    j.field("profile", to_string(tex.relief.profile));
-    j.field("center_x", tex.relief.center.x);
-    j.field("center_y", tex.relief.center.y);
-    j.field("radius", tex.relief.radius_m);
-    j.field("height", tex.relief.height_m);
-    j.field("stripe_wavelength", tex.stripes.wavelength_m);
-    j.field("stripe_amplitude", tex.stripes.amplitude);
-    j.field("stripe_phase", tex.stripes.phase_rad);
-    j.end_object();
-    j.key("speed_technique").begin_object();
-    j.field("law", "g = clamp(1 - slope_gain * (grad h . u), gain_min, gain_max)");
-    j.field("slope_gain", tex.speed.slope_gain);
-    j.field("gain_min", tex.speed.gain_min);
-    j.field("gain_max", tex.speed.gain_max);
-    j.field("relax_distance", tex.speed.relax_distance_m);
-    j.field("max_offset", tex.speed.max_offset_m);
-    j.end_object();
+    j["texture"] = {
+        {"shape", to_string(tex.relief.shape)},
+        {"profile", to_string(tex.relief.profile)},
+        {"center_x", number(tex.relief.center.x)},
+        {"center_y", number(tex.relief.center.y)},
+        {"radius", number(tex.relief.radius_m)},
+        {"height", number(tex.relief.height_m)},
+        {"stripe_wavelength", number(tex.stripes.wavelength_m)},
+        {"stripe_amplitude", number(tex.stripes.amplitude)},
+        {"stripe_phase", number(tex.stripes.phase_rad)},
+    };
+    j["speed_technique"] = {
+        {"law", "g = clamp(1 - slope_gain * (grad h . u), gain_min, gain_max)"},
+        {"slope_gain", number(tex.speed.slope_gain)},
+        {"gain_min", number(tex.speed.gain_min)},
+        {"gain_max", number(tex.speed.gain_max)},
+        {"relax_distance", number(tex.speed.relax_distance_m)},
+        {"max_offset", number(tex.speed.max_offset_m)},
+    };
   }
-  j.field("mallet_radius", scene.mallet_radius_m);
-  j.field("tuning_a4_hz", scene.tuning_a4_hz);
-  j.key("targets").begin_array();
+  j["mallet_radius"] = number(scene.mallet_radius_m);
+  j["tuning_a4_hz"] = number(scene.tuning_a4_hz);
+  j["targets"] = nlohmann::ordered_json::array();
   for (const Target& t : scene.targets) {
-    j.begin_object();
-    j.field("id", t.id);
-    j.field("instrument", t.instrument);
-    j.field("material", scene.materials[t.material].name);
-    j.field("note", t.note);
-    j.field("frequency_hz", t.frequency_hz);
-    j.field("x_min", t.x_min);
-    j.field("x_max", t.x_max);
-    j.field("top_y", t.top_y);
-    j.field("length", t.length_m);
-    j.field("thickness", t.thickness_m);
-    j.end_object();
+    j["targets"].push_back({
+        {"id", t.id},
+        {"instrument", t.instrument},
+        {"material", scene.materials[t.material].name},
+        {"note", t.note},
+        {"frequency_hz", number(t.frequency_hz)},
+        {"x_min", number(t.x_min)},
+        {"x_max", number(t.x_max)},
+        {"top_y", number(t.top_y)},
+        {"length", number(t.length_m)},
+        {"thickness", number(t.thickness_m)},
+    });
   }
-  j.end_array();
   if (scene.kind == SceneKind::wall) {
-    j.key("wall_materials").begin_array();
-    for (int m : scene.wall_materials) j.value(scene.materials[static_cast<std::size_t>(m)].name);
-    j.end_array();
+    j["wall_materials"] = nlohmann::ordered_json::array();
+    for (int m : scene.wall_materials) j["wall_materials"].push_back(scene.materials[static_cast<std::size_t>(m)].name);
   }
-  j.key("materials").begin_object();
+  j["materials"] = nlohmann::ordered_json::object();
   for (const Material& m : scene.materials) {
-    j.key(m.name).begin_object();
-    for (auto [label, p] : {std::pair{"visual", &m.visual}, {"actuator", &m.actuator}}) {
-      j.key(label).begin_object();
-      j.field(label == std::string_view("visual") ? "amplitude_s" : "amplitude", p->amplitude);
-      j.field("decay_per_s", p->decay_per_s);
-      j.field("freq_hz", p->freq_hz);
-      j.end_object();
-    }
-    j.end_object();
+    j["materials"][m.name] = {
+        {"visual",
+         {{"amplitude_s", number(m.visual.amplitude)},
+          {"decay_per_s", number(m.visual.decay_per_s)},
+          {"freq_hz", number(m.visual.freq_hz)}}},
+        {"actuator",
+         {{"amplitude", number(m.actuator.amplitude)},
+          {"decay_per_s", number(m.actuator.decay_per_s)},
+          {"freq_hz", number(m.actuator.freq_hz)}}},
+    };
   }
-  j.end_object();
   const ScreenToWorld& s = scene.screen_to_world;
-  j.key("screen_to_world").begin_object();
-  j.field("left_m", s.left_m);
-  j.field("right_m", s.right_m);
-  j.field("top_m", s.top_m);
-  j.field("bottom_m", s.bottom_m);
-  j.field("world_x", "left_m + screen_x * (right_m - left_m)");
-  j.field("world_y", "top_m + screen_y * (bottom_m - top_m)");
-  j.end_object();
-  j.end_object();
-  return j.str() + "\n";
+  j["screen_to_world"] = {
+      {"left_m", number(s.left_m)},
+      {"right_m", number(s.right_m)},
+      {"top_m", number(s.top_m)},
+      {"bottom_m", number(s.bottom_m)},
+      {"world_x", "left_m + screen_x * (right_m - left_m)"},
+      {"world_y", "top_m + screen_y * (bottom_m - top_m)"},
+  };
+  // Names come from the scene's files: bytes that are not UTF-8 become U+FFFD, not an exception.
+  return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mallet::app

@@ -17,6 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
@@ -41,38 +44,28 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
 
-using Vec3 = std::array<double, 3>;
-using Mat4 = std::array<double, 16>;  // column-major, as glTF stores node matrices: m[col * 4 + row]
-
 // The largest texture side accepted: far above what the kiosk ships (512x128), and a
 // bound on what a hostile image header can make the loader allocate.
 constexpr int kMaxTextureSide = 8192;
 
-constexpr Mat4 kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-Mat4 operator*(const Mat4& a, const Mat4& b) {
-  Mat4 m{};
-  for (int col = 0; col < 4; ++col) {
-    for (int row = 0; row < 4; ++row) {
-      double sum = 0.0;
-      for (int k = 0; k < 4; ++k) sum += a[k * 4 + row] * b[col * 4 + k];
-      m[col * 4 + row] = sum;
-    }
-  }
-  return m;
-}
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-bool finite(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
-
-std::string str(const Vec3& v) {
+std::string str(const glm::dvec3& v) {
   char text[96];
-  std::snprintf(text, sizeof text, "(%g, %g, %g)", v[0], v[1], v[2]);
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x, v.y, v.z);
   return text;
+}
+
+// NaN for a zero vector, so the caller's finiteness check catches it (glm::normalize would
+// give a finite direction for a vector of length 1e-13).
+glm::dvec3 normalized(const glm::dvec3& v) {
+  const double length = glm::length(v);
+  if (!(length > 1e-12)) return {std::nan(""), 0, 0};
+  return v / length;
+}
+
+std::array<float, 3> to_float(const glm::dvec3& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
 }
 
 // "mesh 'bar'" when the element has a name, else "mesh 3".
@@ -191,7 +184,7 @@ struct AccessorView {
         return 0.0;
     }
   }
-  Vec3 vec3(std::size_t i) const { return {get(i, 0), get(i, 1), get(i, 2)}; }
+  glm::dvec3 vec3(std::size_t i) const { return {get(i, 0), get(i, 1), get(i, 2)}; }
 
   int component_size() const { return tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(component_type)); }
 
@@ -258,7 +251,7 @@ class Loader {
   // Depth first with an explicit stack: a deep hierarchy in a hostile file cannot
   // overflow the call stack.
   void add_node_tree(int root, std::vector<bool>& visited) {
-    std::vector<std::pair<int, Mat4>> pending{{root, kIdentity}};
+    std::vector<std::pair<int, glm::dmat4>> pending{{root, glm::dmat4(1.0)}};
     while (!pending.empty()) {
       const auto [index, parent] = pending.back();
       pending.pop_back();
@@ -271,7 +264,7 @@ class Loader {
       const std::string place = named("node", i, node.name);
       if (visited[i]) fail(place + ": reached twice (the node hierarchy has a cycle or a node with two parents)");
       visited[i] = true;
-      const Mat4 world = parent * local_transform(node, place);
+      const glm::dmat4 world = parent * local_transform(node, place);
       if (node.mesh >= 0) {
         if (node.skin >= 0) fail(place + ": skinned meshes are not supported");
         add_mesh(node.mesh, world, place);
@@ -282,7 +275,7 @@ class Loader {
     }
   }
 
-  Mat4 local_transform(const tinygltf::Node& node, const std::string& place) const {
+  glm::dmat4 local_transform(const tinygltf::Node& node, const std::string& place) const {
     const auto check = [&](const std::vector<double>& values, std::size_t size, const char* what) {
       if (!values.empty() && values.size() != size) {
         fail(place + ": " + what + " has " + std::to_string(values.size()) + " numbers, expected " +
@@ -297,9 +290,8 @@ class Loader {
     check(node.rotation, 4, "rotation");
     check(node.scale, 3, "scale");
     if (!node.matrix.empty()) {
-      Mat4 m{};
-      std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
-      if (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0) {
+      const glm::dmat4 m = glm::make_mat4(node.matrix.data());  // column-major, like glTF's
+      if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) {
         fail(place + ": matrix is not affine (its last row must be 0 0 0 1)");
       }
       return m;
@@ -315,25 +307,15 @@ class Loader {
       z = node.rotation[2] / norm;
       w = node.rotation[3] / norm;
     }
-    const Vec3 s = node.scale.empty() ? Vec3{1, 1, 1} : Vec3{node.scale[0], node.scale[1], node.scale[2]};
-    const Vec3 t =
-        node.translation.empty() ? Vec3{0, 0, 0} : Vec3{node.translation[0], node.translation[1], node.translation[2]};
-    const std::array<Vec3, 3> r{{
-        {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)},  // column 0
-        {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)},  // column 1
-        {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)},  // column 2
-    }};
-    Mat4 m = kIdentity;
-    for (std::size_t col = 0; col < 3; ++col) {
-      for (std::size_t row = 0; row < 3; ++row) m[col * 4 + row] = r[col][row] * s[col];
-      m[12 + col] = t[col];
-    }
-    return m;
+    const glm::dvec3 s = node.scale.empty() ? glm::dvec3(1.0) : glm::make_vec3(node.scale.data());
+    const glm::dvec3 t = node.translation.empty() ? glm::dvec3(0.0) : glm::make_vec3(node.translation.data());
+    const glm::dmat3 r = glm::mat3_cast(glm::dquat(w, x, y, z));
+    return {glm::dvec4(r[0] * s.x, 0.0), glm::dvec4(r[1] * s.y, 0.0), glm::dvec4(r[2] * s.z, 0.0), glm::dvec4(t, 1.0)};
   }
 
   // ---- meshes ----
 
-  void add_mesh(int mesh_index, const Mat4& world, const std::string& node_place) {
+  void add_mesh(int mesh_index, const glm::dmat4& world, const std::string& node_place) {
     if (static_cast<std::size_t>(mesh_index) >= gltf_.meshes.size()) {
       fail(node_place + ": mesh " + std::to_string(mesh_index) + " does not exist (the file has " +
            std::to_string(gltf_.meshes.size()) + ")");
@@ -346,7 +328,7 @@ class Loader {
     }
   }
 
-  void add_primitive(const tinygltf::Primitive& gltf_primitive, const std::string& place, const Mat4& world,
+  void add_primitive(const tinygltf::Primitive& gltf_primitive, const std::string& place, const glm::dmat4& world,
                      const std::string& node_place) {
     if (!gltf_primitive.targets.empty()) fail(place + ": morph targets are not supported");
     const auto position = gltf_primitive.attributes.find("POSITION");
@@ -381,11 +363,12 @@ class Loader {
 
     // The node's transform: positions by the affine matrix, normals by the inverse
     // transpose of its linear part; a mirroring transform (det < 0) turns the winding.
-    const double det = determinant3(world);
+    const glm::dmat3 linear(world);
+    const double det = glm::determinant(linear);
     if (!std::isfinite(det) || std::abs(det) < 1e-30) {
       fail(node_place + ": its transform is singular (a zero scale): " + place + " would collapse");
     }
-    const std::array<Vec3, 3> normal_matrix = inverse_transpose3(world, det);
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
     if (det < 0) {
       for (std::size_t t = 0; t < triangles.size(); t += 3) std::swap(triangles[t + 1], triangles[t + 2]);
     }
@@ -394,16 +377,16 @@ class Loader {
     out.material = gltf_primitive.material;
     out.vertices.resize(vertex_count);
     for (std::size_t i = 0; i < vertex_count; ++i) {
-      const Vec3 p = positions.vec3(i);
+      const glm::dvec3 p = positions.vec3(i);
       if (!finite(p)) fail(place + ": POSITION " + std::to_string(i) + " is not finite " + str(p));
-      const Vec3 moved = transform_point(world, p);
+      const glm::dvec3 moved = linear * p + glm::dvec3(world[3]);
       if (!finite(moved))
         fail(node_place + ": its transform takes " + place + " POSITION " + std::to_string(i) + " to infinity");
       Vertex& v = out.vertices[i];
       v.position = to_float(moved);
       if (normals.count > 0) {
-        const Vec3 n = normals.vec3(i);
-        const Vec3 turned = normalized(multiply3(normal_matrix, n));
+        const glm::dvec3 n = normals.vec3(i);
+        const glm::dvec3 turned = normalized(normal_matrix * n);
         if (!finite(n) || !finite(turned))
           fail(place + ": NORMAL " + std::to_string(i) + " is not a direction " + str(n));
         v.normal = to_float(turned);
@@ -483,12 +466,12 @@ class Loader {
     flat.reserve(primitive.indices.size());
     for (std::size_t t = 0; t < primitive.indices.size(); t += 3) {
       std::array<Vertex, 3> corner{};
-      std::array<Vec3, 3> p{};
+      std::array<glm::dvec3, 3> p{};
       for (std::size_t k = 0; k < 3; ++k) {
         corner[k] = primitive.vertices[primitive.indices[t + k]];
-        p[k] = {corner[k].position[0], corner[k].position[1], corner[k].position[2]};
+        p[k] = glm::dvec3(glm::make_vec3(corner[k].position.data()));
       }
-      Vec3 n = normalized(cross(minus(p[1], p[0]), minus(p[2], p[0])));
+      glm::dvec3 n = normalized(glm::cross(p[1] - p[0], p[2] - p[0]));
       if (!finite(n)) n = {0, 1, 0};
       for (auto& v : corner) {
         v.normal = to_float(n);
@@ -658,49 +641,6 @@ class Loader {
     out.rgba.assign(pixels.get(),
                     pixels.get() + static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
     return out;
-  }
-
-  // ---- geometry helpers ----
-
-  static double determinant3(const Mat4& m) {
-    return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
-           m[8] * (m[1] * m[6] - m[5] * m[2]);
-  }
-
-  // Rows of (M⁻¹)ᵀ for M the linear part: the cofactor matrix over the determinant.
-  static std::array<Vec3, 3> inverse_transpose3(const Mat4& m, double det) {
-    const Vec3 c0{m[0], m[1], m[2]};
-    const Vec3 c1{m[4], m[5], m[6]};
-    const Vec3 c2{m[8], m[9], m[10]};
-    // (M⁻¹)ᵀ has columns c1×c2, c2×c0, c0×c1 (over det); its rows are what multiply3 needs.
-    const Vec3 a = cross(c1, c2);
-    const Vec3 b = cross(c2, c0);
-    const Vec3 c = cross(c0, c1);
-    return {{{a[0] / det, b[0] / det, c[0] / det},
-             {a[1] / det, b[1] / det, c[1] / det},
-             {a[2] / det, b[2] / det, c[2] / det}}};
-  }
-
-  static Vec3 multiply3(const std::array<Vec3, 3>& rows, const Vec3& v) {
-    return {dot(rows[0], v), dot(rows[1], v), dot(rows[2], v)};
-  }
-
-  static Vec3 transform_point(const Mat4& m, const Vec3& p) {
-    Vec3 out{};
-    for (std::size_t row = 0; row < 3; ++row)
-      out[row] = m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] + m[12 + row];
-    return out;
-  }
-
-  // NaN for a zero vector, so the caller's finiteness check catches it.
-  static Vec3 normalized(const Vec3& v) {
-    const double length = std::sqrt(dot(v, v));
-    if (!(length > 1e-12)) return {std::nan(""), 0, 0};
-    return {v[0] / length, v[1] / length, v[2] / length};
-  }
-
-  static std::array<float, 3> to_float(const Vec3& v) {
-    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
   }
 
   void compute_bounds() {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/scene_describe.hpp"
 #include "run_cli.hpp"
 #include "test_paths.hpp"
 
@@ -23,9 +24,20 @@ TEST(SceneDescribeCli, PrintsValidJsonWithTheContractKeys) {
       "assert t[0]['instrument']=='xylophone' and t[15]['material']=='metal';"
       "assert abs(t[5]['frequency_hz']-880.0)<1e-9;"
       "assert all(x['x_min']<x['x_max'] for x in t);"
-      "assert set(['left_m','right_m','top_m','bottom_m'])<=set(d['screen_to_world'])\" " +
+      "assert set(['left_m','right_m','top_m','bottom_m'])<=set(d['screen_to_world']);"
+      "m=d['materials']; assert set(m)=={'wood','metal'} and m['metal']['actuator']['freq_hz']==300;"
+      "assert set(m['wood']['visual'])=={'amplitude_s','decay_per_s','freq_hz'}\" " +
       (dir / "scene.json").string();
   EXPECT_EQ(std::system(check.c_str()), 0);
+}
+
+// Numbers keep the contract's form: twelve significant digits, whole numbers without a
+// point (scripts that compare the text, or read 440 as an integer, keep working).
+TEST(SceneDescribe, NumbersHaveTwelveSignificantDigitsAndWholeOnesNoPoint) {
+  const std::string json = describe_scene_json(test::percussion());
+  for (const char* text : {"\"frequency_hz\": 523.251130601,", "\"tuning_a4_hz\": 440,", "\"note\": 72,",
+                           "\"decay_per_s\": 80,", "\"mallet_radius\": 0.015,"})
+    EXPECT_NE(json.find(text), std::string::npos) << text << " in\n" << json;
 }
 
 TEST(SceneDescribeCli, ABrokenSceneExitsTwoNamingTheLine) {

@@ -457,6 +457,33 @@ TEST(GltfModelErrors, NanPosition) {
   expect_error(gltf_in_scratch(f), "mesh 'tri' primitive 0: POSITION 1 is not finite");
 }
 
+// The node transform's own problems, each named with the node.
+TEST(GltfModelErrors, SingularTransform) {
+  GltfFile f;
+  f.nodes = R"([{"scale": [1, 0, 1], "mesh": 0}])";
+  expect_error(gltf_in_scratch(f),
+               "node 0: its transform is singular (a zero scale): mesh 'tri' primitive 0 would collapse");
+}
+
+TEST(GltfModelErrors, MatrixThatIsNotAffine) {
+  GltfFile f;
+  f.nodes = R"([{"matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0.5,  0, 0, 0, 1], "mesh": 0}])";
+  expect_error(gltf_in_scratch(f), "node 0: matrix is not affine (its last row must be 0 0 0 1)");
+}
+
+TEST(GltfModelErrors, TransformThatTakesAPositionToInfinity) {
+  GltfFile f;
+  f.positions[1] = {1e10f, 0, 0};
+  f.nodes = R"([{"scale": [1e300, 1, 1], "mesh": 0}])";
+  expect_error(gltf_in_scratch(f), "node 0: its transform takes mesh 'tri' primitive 0 POSITION 1 to infinity");
+}
+
+TEST(GltfModelErrors, ZeroNormal) {
+  GltfFile f;
+  f.normals = {{0, 0, 1}, {0, 0, 0}, {0, 0, 1}};
+  expect_error(gltf_in_scratch(f), "mesh 'tri' primitive 0: NORMAL 1 is not a direction (0, 0, 0)");
+}
+
 TEST(GltfModelErrors, NoPosition) {
   const fs::path file = test::scratch_dir() / "nothing.gltf";
   write_text(file, R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],
