@@ -89,7 +89,9 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
   write_plot(dir, "psychometric", dat, gp, plot, block);
 }
 
-void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
+//! False (nothing written) with no participant of one's own (only visitors' sessions).
+bool thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
+  if (r.participants.empty()) return false;
   std::ostringstream dat, gp;
   dat << "# per condition (blocks): participant_index threshold_pct ci_lo ci_hi participant\n";
   std::vector<std::string> conditions;
@@ -118,6 +120,7 @@ void thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
     ++block;
   }
   write_plot(dir, "thresholds", dat, gp, plot, block);
+  return true;
 }
 
 void response_time_plot(const StudyReport& r, const std::filesystem::path& dir) {
@@ -176,7 +179,7 @@ std::vector<std::string> write_study_plots(const StudyReport& report, const std:
   std::filesystem::create_directories(dir, ec);
   if (ec) throw FileError(dir.string(), 0, 0, "cannot make the folder: " + ec.message());
   psychometric_plot(report, dir);
-  thresholds_plot(report, dir);
+  const bool thresholds = thresholds_plot(report, dir);
   response_time_plot(report, dir);
   const bool tracks = tracks_plot(report, dir);
   std::vector<std::string> lines;
@@ -186,7 +189,8 @@ std::vector<std::string> write_study_plots(const StudyReport& report, const std:
     return lines;
   }
   for (const char* p : kPlots) {
-    if (std::string_view(p) == "tracks" && !tracks) continue;  // no adaptive rows
+    if (std::string_view(p) == "tracks" && !tracks) continue;          // no adaptive rows
+    if (std::string_view(p) == "thresholds" && !thresholds) continue;  // visitors only
     const std::string script = std::string(p) + ".gp";
     lines.push_back(run_gnuplot(dir, script) ? "wrote " + (dir / (std::string(p) + ".png")).string()
                                              : "study summary: gnuplot failed on " + (dir / script).string());

@@ -61,14 +61,17 @@ TEST(StudyStrike, TheSceneHasOneAnswerBarPerChoiceApartFromTheStimulusBar) {
       const Target& bar = scene.targets.at(static_cast<std::size_t>(bars[k].target));
       EXPECT_TRUE(bar.hand_strikes);
       EXPECT_GT(std::max(bar.x_min - stimulus.x_max, stimulus.x_min - bar.x_max), gap) << k;
-      if (k > 0) EXPECT_GT(bar.x_min - scene.targets.at(static_cast<std::size_t>(bars[k - 1].target)).x_max, gap);
+      if (k > 0) {
+        EXPECT_GT(bar.x_min - scene.targets.at(static_cast<std::size_t>(bars[k - 1].target)).x_max, gap);
+      }
       // On screen: within the scene's picture.
       EXPECT_GE(bar.x_min, std::min(plan.base.screen_to_world.left_m, plan.base.screen_to_world.right_m));
       EXPECT_LE(bar.x_max, std::max(plan.base.screen_to_world.left_m, plan.base.screen_to_world.right_m));
     }
     for (const Target& t : scene.targets)
-      if (std::none_of(bars.begin(), bars.end(), [&](const AnswerBar& b) { return b.target == t.id; }))
+      if (std::none_of(bars.begin(), bars.end(), [&](const AnswerBar& b) { return b.target == t.id; })) {
         EXPECT_FALSE(t.hand_strikes) << t.id;
+      }
     // sound = false: the stimuli's instrument is silent, the answer bars click.
     for (const Instrument& inst : scene.instruments) EXPECT_EQ(inst.speaker, inst.voice == "click") << inst.name;
   }
@@ -134,7 +137,7 @@ TEST(StudyStrike, ScriptedAnswersAreStruckAndTimedByTheirContact) {
     const bool after_a_contact = std::any_of(contacts.begin(), contacts.end(), [&](std::size_t c) {
       return n >= c && n < c + static_cast<std::size_t>(0.1 * rate);
     });
-    ASSERT_TRUE(after_a_contact) << "the speaker sounds at " << n / rate << " s";
+    ASSERT_TRUE(after_a_contact) << "the speaker sounds at " << static_cast<double>(n) / rate << " s";
   }
   EXPECT_GT(sounding, contacts.size() * static_cast<std::size_t>(0.005 * rate)) << "each answer clicks";
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -73,7 +73,7 @@ TEST(StudyTexture, WhichWasSteeperCrossesTwiceAndIsFitLikeA2afc) {
   }
 }
 
-TEST(StudyTexture, APercussionProtocolOnATextureSceneIsRefused) {
+TEST(StudyTexture, APercussionProtocolOnATextureSceneAndTheOtherWayRoundAreRefused) {
   const fs::path dir = test::scratch_dir();
   StudyOptions o = texture_options(dir, test::config_dir() / "study" / "example.toml");
   o.scene = test::texture_scene();
@@ -82,12 +82,21 @@ TEST(StudyTexture, APercussionProtocolOnATextureSceneIsRefused) {
         try {
           plan_study(o);
         } catch (const FileError& e) {
-          EXPECT_NE(std::string(e.what()).find("a percussion task needs a percussion scene"), std::string::npos)
+          EXPECT_NE(std::string(e.what()).find("task: \"2afc_harder\" strikes bars, and the scene has none"),
+                    std::string::npos)
               << e.what();
           throw;
         }
       },
       FileError);
+  o = texture_options(dir, test::config_dir() / "study" / "texture.toml");
+  o.scene = test::percussion_scene();
+  try {
+    plan_study(o);
+    ADD_FAILURE() << "no error";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("task texture_slope needs a texture scene"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

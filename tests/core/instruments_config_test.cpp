@@ -35,14 +35,17 @@ std::string with(const std::string& from, const std::string& to) {
   return text.replace(at, from.size(), to);
 }
 
-TEST(InstrumentsConfig, ShippedFileHasTheFourPresetsAndTheWallsKnock) {
+TEST(InstrumentsConfig, ShippedFileHasTheFourPresetsTheWallsKnockAndTheStudysClick) {
   const std::vector<ModalPreset> presets = config::load_instruments(test::config_dir() / "instruments.toml");
-  ASSERT_EQ(presets.size(), 5u);
+  ASSERT_EQ(presets.size(), 6u);
   EXPECT_EQ(presets[0].name, "xylophone");
   EXPECT_EQ(presets[1].name, "glockenspiel");
   EXPECT_EQ(presets[2].name, "marimba");
   EXPECT_EQ(presets[3].name, "vibraphone");
   EXPECT_EQ(presets[4].name, "wall");
+  // The study's answer bars: a click, every partial 60 dB down within 16 ms (6.9 / decay).
+  EXPECT_EQ(presets[5].name, "click");
+  for (const Mode& m : presets[5].modes) EXPECT_LT(6.9 / m.decay_per_s, 0.016);
   for (const ModalPreset& p : presets) {
     ASSERT_FALSE(p.modes.empty()) << p.name;
     EXPECT_EQ(p.modes[0].ratio, 1.0) << p.name;

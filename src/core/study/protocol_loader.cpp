@@ -243,6 +243,9 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   else if (task == "name_material") p.task = StudyTask::name_material;
   else if (task == "texture_slope") p.task = StudyTask::texture_slope;
   else top.fail("task", "expected \"2afc_harder\", \"name_material\" or \"texture_slope\", got \"" + task + "\"");
+  if (!p.texture() && bar_count == 0)
+    top.fail("task", "\"" + task + "\" strikes bars, and the scene has none (a texture scene? task = "
+                     "\"texture_slope\" crosses its disc)");
   if (p.texture()) {
     const std::string question = top.string("question");
     if (question == "steeper") p.question = TextureQuestion::steeper;

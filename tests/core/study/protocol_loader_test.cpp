@@ -51,8 +51,8 @@ TEST(StudyProtocol, MistakesNameFileLineColumnAndKey) {
   EXPECT_EQ(error_of(replaced(ok, "material = \"metal\"", "material = \"glass\"")),
             "bad.toml:16:12: stimulus[2].material: unknown material \"glass\" (the scene has: wood, metal)");
   EXPECT_EQ(error_of(replaced(ok, "repetitions = 4", "repetitions = 3")),
-            "bad.toml:5:15: repetitions: must be even for 2afc_harder, so each pair is shown in both orders "
-            "equally often");
+            "bad.toml:5:15: repetitions: must be even for 2afc_harder and steeper, so each pair is shown in both "
+            "orders equally often");
   EXPECT_EQ(error_of(replaced(ok, "\"none\"]", "\"smell\"]")),
             "bad.toml:4:14: conditions: unknown condition \"smell\" (visual_only, tactile_only, both, none)");
   EXPECT_EQ(error_of(replaced(ok, "seed = 42", "seed = 42\nrepetitons = 2")),
@@ -63,7 +63,7 @@ TEST(StudyProtocol, MistakesNameFileLineColumnAndKey) {
             "bad.toml:19:5: pair[0].b: \"harder\" is the stimulus with the larger decay_per_s (B), visual and "
             "actuator alike; these two are equal or ordered differently by the two triples");
   EXPECT_EQ(error_of(replaced(ok, "task = \"2afc_harder\"", "task = \"3afc\"")),
-            "bad.toml:3:8: task: expected \"2afc_harder\" or \"name_material\", got \"3afc\"");
+            "bad.toml:3:8: task: expected \"2afc_harder\", \"name_material\" or \"texture_slope\", got \"3afc\"");
   EXPECT_EQ(error_of(replaced(ok, "name = \"t\"", "name = \"a,b\"")),
             "bad.toml:2:8: name: \"a,b\" must be 1-64 letters, digits, '_', '-' or '.'");
   EXPECT_EQ(error_of("name = \"t\"\ntask = \n"), "bad.toml:2:8: Error while parsing key-value pair: expected value, saw '\\n'");
@@ -132,10 +132,10 @@ TEST(StudyProtocol, StrikeAnswerMistakesAreOneLineEach) {
             "bad.toml:7:12: response: expected \"keys\" or \"strike\", got \"voice\"");
   const std::string strike = replaced(ok, "seed = 42", "seed = 42\nresponse = \"strike\"");
   EXPECT_EQ(error_of(strike + "[answer_strike]\nfeel = \"glass\"\n"),
-            "bad.toml:26:8: answer_strike.feel: expected \"none\" or a material of the scene (wood, metal), got "
+            "bad.toml:25:8: answer_strike.feel: expected \"none\" or a material of the scene (wood, metal), got "
             "\"glass\"");
   EXPECT_EQ(error_of(ok + "[answer_strike]\nsound = \"click\"\n"),
-            "bad.toml:24:1: answer_strike: only response = \"strike\" uses it");
+            "bad.toml:23:1: answer_strike: only response = \"strike\" uses it");
 }
 
 TEST(StudyProtocol, ATextureProtocolAsksBumpOrHoleOrTheSteeper) {
@@ -162,9 +162,9 @@ TEST(StudyProtocol, ATextureProtocolAsksBumpOrHoleOrTheSteeper) {
   EXPECT_EQ(s.answer_choices(), (std::vector<std::string>{"1", "2"}));
 
   EXPECT_EQ(error_of(replaced(steeper, "height_m = 0.005", "height_m = 0.004")),
-            "bad.toml:16:5: pair[0].b: \"steeper\" is the higher relief; these two are as high");
+            "bad.toml:17:5: pair[0].b: \"steeper\" is the higher relief; these two are as high");
   EXPECT_EQ(error_of(replaced(steeper, "name = \"b5\"\nrelief = \"bump\"", "name = \"b5\"\nrelief = \"hole\"")),
-            "bad.toml:16:5: pair[0].b: \"which was steeper\" compares two bumps or two holes");
+            "bad.toml:17:5: pair[0].b: \"which was steeper\" compares two bumps or two holes");
   EXPECT_EQ(error_of(replaced(steeper, "question = \"steeper\"", "question = \"deeper\"")),
             "bad.toml:3:12: question: expected \"bump_or_hole\" or \"steeper\", got \"deeper\"");
   EXPECT_EQ(error_of(replaced(steeper, "seed = 1", "seed = 1\nresponse = \"strike\"")),
@@ -190,11 +190,11 @@ TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
   EXPECT_FALSE(load_shipped("strike.toml").visitor);
   const std::string keys = test::kTwoAfcProtocol;
   EXPECT_EQ(error_of(keys + "[visitor]\nconsent = \"ok\"\n"),
-            "bad.toml:24:1: visitor: a visitor answers by striking: it needs response = \"strike\"");
+            "bad.toml:23:1: visitor: a visitor answers by striking: it needs response = \"strike\"");
   const std::string strike = replaced(keys, "seed = 42", "seed = 42\nresponse = \"strike\"");
-  EXPECT_EQ(error_of(strike + "[visitor]\ntrials = 6\n"), "bad.toml:25:1: visitor.consent: missing (required)");
+  EXPECT_EQ(error_of(strike + "[visitor]\ntrials = 6\n"), "bad.toml:24:1: visitor.consent: missing (required)");
   EXPECT_EQ(error_of(strike + "[visitor]\nconsent = \"ok\"\ntrials = 0\n"),
-            "bad.toml:27:10: visitor.trials: must be in [1, 50], got 0");
+            "bad.toml:26:10: visitor.trials: must be in [1, 50], got 0");
 }
 
 }  // namespace
