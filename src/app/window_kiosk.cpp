@@ -251,8 +251,11 @@ bool WindowKiosk::visitor_offered(Nanos now) {
 
 bool WindowKiosk::visitor_accepted(Nanos now, const StrikeLoop::View& view) {
   if (!visitor_offered(now) || !states_->visitor_plays()) return false;
+  // A visitor's own strike: after the offer showed and after they took over from the ghost
+  // (whose last strike the main route's bounce may still hold).
   const std::optional<Nanos> struck = view.vibration.impact_time();
-  return struck && *struck >= offer_since_ && view.vibration.target() == visitor_yes_bar();
+  return struck && *struck >= std::max(offer_since_, states_->since()) &&
+         view.vibration.target() == visitor_yes_bar();
 }
 
 void WindowKiosk::run_visitor_session() {
