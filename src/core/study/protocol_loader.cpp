@@ -31,14 +31,15 @@ Nanos seconds_key(TableReader& t, std::string_view key, double fallback_s, doubl
   return static_cast<Nanos>(std::llround(s * 1e9));
 }
 
-StudyTiming read_timing(TableReader t) {
+//! `paired`: two stimuli a trial, so the second may start only once the first is over.
+StudyTiming read_timing(TableReader t, bool paired) {
   const StudyTiming d;
   StudyTiming timing;
   timing.lead = seconds_key(t, "lead_s", to_seconds(d.lead), 0, 60);
   timing.stimulus = seconds_key(t, "stimulus_s", to_seconds(d.stimulus), 0.05, 60);
   timing.stimulus_interval = seconds_key(t, "stimulus_interval_s", to_seconds(d.stimulus_interval), 0.05, 60);
   timing.inter_trial = seconds_key(t, "inter_trial_s", to_seconds(d.inter_trial), 0, 60);
-  if (timing.stimulus_interval < timing.stimulus)
+  if (paired && timing.stimulus_interval < timing.stimulus)
     t.fail("stimulus_interval_s", "must be >= stimulus_s, so the first stimulus is over before the second");
   t.finish();
   return timing;
@@ -298,7 +299,7 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
       top.fail("reference_bar", "must name a bar of the scene: 0 to " + std::to_string(bar_count - 1));
     p.reference_bar = static_cast<int>(bar);
   }
-  if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing);
+  if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing, p.paired());
   const std::string response = top.string_or("response", "keys");
   if (response == "strike" && p.texture())
     top.fail("response", "a texture_slope trial has no bars to strike: its answers are keys");
