@@ -62,12 +62,11 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
     }
   }
   if (protocol.response != study::StudyResponse::strike) return scene;
-  // The answer bars: one material for all (the protocol's feel, or none at all).
-  Material feel = protocol.answer_strike.feel.value_or(Material{});
-  if (!protocol.answer_strike.feel) {
-    feel = protocol.stimuli.front().material;
-    feel.visual.amplitude = feel.actuator.amplitude = 0;
-  }
+  // The answer bars: one material for all, the protocol's feel, or none at all (a stimulus's
+  // triples with A = 0, which the engine's checks accept as any material).
+  const std::optional<Material>& felt = protocol.answer_strike.feel;
+  Material feel = felt ? *felt : protocol.stimuli.front().material;
+  if (!felt) feel.visual.amplitude = feel.actuator.amplitude = 0;
   feel.name = "answer";
   const int material = static_cast<int>(scene.materials.size());
   scene.materials.push_back(feel);

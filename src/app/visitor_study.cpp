@@ -1,7 +1,6 @@
 #include "app/visitor_study.hpp"
 
 #include <ctime>
-#include <random>
 
 #include "app/data_paths.hpp"
 #include "app/settings_source.hpp"

@@ -858,11 +858,14 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
   else if (stage_->config.note_names)
     draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
-  if (visitor_offered(now)) {  // the visitor study's offer, and its "Yes" on the last bar
+  const KioskHint hint = states_->hint();
+  // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
+  // hint that something needs doing, a lost remote, comes first).
+  if ((hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now)) {
     draw_banner(o, stage_->visitor->visitor->offer + " " + tr("(strike Yes)"), w, h);
     draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
                     {{visitor_yes_bar(), tr("Yes")}});
-  } else if (const KioskHint hint = states_->hint(); hint != KioskHint::none)
+  } else if (hint != KioskHint::none)
     draw_banner(o, hint_text(hint, stage_->scene.kind), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) draw_banner(o, notice_, w, h);
   // Subdued but readable: half-white over the room's grey is 8.3:1 (WCAG 2.1's AAA asks
