@@ -299,6 +299,7 @@ void WindowKiosk::run_visitor_session() {
                  : r.abandoned ? "abandoned"
                                : "completed",
                  r.answered, r.planned, r.csv.c_str());
+    ++metrics_.visitor_study[r.abandoned ? "abandoned" : r.consented ? "completed" : "declined"];
   } catch (const std::exception& e) {  // the kiosk plays on
     std::fprintf(stderr, "<3>visitor study: %s\n", e.what());
   }

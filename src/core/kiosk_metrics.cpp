@@ -175,6 +175,10 @@ std::string render_prometheus_text(const KioskMetrics& m) {
   t.histogram("mallet_visitor_session_seconds",
               "How long visitors played: from the start of play to their last movement before the attract mode.",
               m.session_histogram());
+  t.family("mallet_visitor_study_sessions_total", "counter",
+           "Visitor micro-study sessions (a visitor accepted its offer), by how they ended.");
+  for (const auto& [outcome, n] : m.visitor_study)
+    t.sample("mallet_visitor_study_sessions_total", {{"outcome", outcome}}, format_count(n));
   t.family("mallet_frames_total", "counter", "Frames drawn.");
   t.sample("mallet_frames_total", format_count(m.frames()));
   t.histogram("mallet_frame_seconds", "Time from one drawn frame to the next.", m.frame_histogram());

@@ -69,6 +69,10 @@ class KioskMetrics {
   void observe_tracking(bool lost, Nanos now);
 
   StrikeCounts strikes;           //!< mallet_strikes_total{instrument, material}
+  //! mallet_visitor_study_sessions_total{outcome}: the visitor micro-study's sessions (a
+  //! visitor struck "Yes" on its offer) by how they ended: completed, abandoned (walked away),
+  //! declined (struck "No" at the consent). Each outcome is always there, from 0.
+  std::map<std::string, std::uint64_t> visitor_study{{"completed", 0}, {"abandoned", 0}, {"declined", 0}};
   std::uint64_t audio_xruns = 0;  //!< mallet_audio_xruns_total
   std::uint64_t render_devices_lost = 0;  //!< mallet_render_device_lost_total
   //! Gauges; NaN = unknown (no audio device, no remote, no battery report yet).

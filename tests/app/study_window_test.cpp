@@ -154,7 +154,7 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
                                 << "[visitor]\nconsent = \"Strike Yes to take part.\"\ntrials = 1\nanswer_timeout_s = 10\n";
   std::ofstream(dir / "mallet.toml") << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n"
                                      << "[study]\nvisitor_protocol = \"v.toml\"\noffer_every_s = 10\noffer_for_s = 60\n"
-                                     << "results_dir = \"visitors\"\n";
+                                     << "results_dir = \"visitors\"\n[metrics]\ntextfile = \"m.prom\"\n";
   Screen screen;
   screen.launch("run --windowed --size 640x360 --quit-after 90 --device llvmpipe --config " +
                     (dir / "mallet.toml").string(),
@@ -186,6 +186,10 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
   EXPECT_EQ(rows[0].session, study::utc_date(std::time(nullptr)));
   EXPECT_EQ(rows[0].answer, "1");
   EXPECT_EQ(rows[0].source, "strike");
+  // The operators' count of it (written at the stop).
+  const std::string prom = test::slurp(dir / "m.prom");
+  EXPECT_NE(prom.find("mallet_visitor_study_sessions_total{outcome=\"completed\"} 1\n"), std::string::npos) << prom;
+  EXPECT_NE(prom.find("mallet_visitor_study_sessions_total{outcome=\"declined\"} 0\n"), std::string::npos) << prom;
 }
 
 }  // namespace

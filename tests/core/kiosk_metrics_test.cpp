@@ -85,6 +85,7 @@ TEST(KioskMetrics, EveryFamilyHasHelpAndTypeAndUnitsInItsName) {
       {"mallet_strikes_total", "counter"},
       {"mallet_visitor_sessions_total", "counter"},
       {"mallet_visitor_session_seconds", "histogram"},
+      {"mallet_visitor_study_sessions_total", "counter"},
       {"mallet_frames_total", "counter"},
       {"mallet_frame_seconds", "histogram"},
       {"mallet_audio_xruns_total", "counter"},
@@ -104,6 +105,10 @@ TEST(KioskMetrics, EveryFamilyHasHelpAndTypeAndUnitsInItsName) {
     EXPECT_TRUE(has_line(text, std::string("# TYPE ") + name + " " + type)) << name << "\n" << text;
   }
   EXPECT_TRUE(has_line(text, "mallet_build_info{version=\"0.1.0\"} 1")) << text;
+  // The visitor study's outcomes are there from 0, so that an alert on one can fire.
+  for (const char* outcome : {"completed", "abandoned", "declined"})
+    EXPECT_TRUE(has_line(text, std::string("mallet_visitor_study_sessions_total{outcome=\"") + outcome + "\"} 0"))
+        << text;
   // Unknown gauges are NaN, not missing: a series that comes and goes breaks alerts.
   EXPECT_TRUE(has_line(text, "mallet_remote_battery_ratio NaN")) << text;
   EXPECT_TRUE(has_line(text, "mallet_audio_output_latency_seconds NaN")) << text;
