@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "audio/damped_oscillator.hpp"
@@ -140,7 +140,7 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
   for (int voices : {16, 64, 256, 512}) {
     AppConfig config;
     config.audio.max_voices = voices;
-    AudioRig rig = make_audio_rig(scene, config, fs);
+    audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
     std::vector<float> out(2 * 64);
     const int blocks = n / 64;
     const double ns_per_block = median_ns_per_unit(runs, blocks, [&] {
@@ -173,7 +173,7 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
     for (double ahead : {0.0, 5.0}) {
       AppConfig config;
       config.audio.schedule_ahead_ms = ahead;
-      AudioRig rig = make_audio_rig(scene, config, fs);
+      audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
       std::vector<float> out(static_cast<std::size_t>(2 * block));
       double worst = 0, best = 1e9;
       std::uniform_real_distribution<double> within(0.0, 1.0);

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/bench_report.hpp"
 #include "app/exact_reference.hpp"
 #include "audio/damped_oscillator.hpp"
@@ -274,7 +274,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     auto latency = [&](int block, double ahead_ms, double& worst, double& best) {
       AppConfig c;
       c.audio.schedule_ahead_ms = ahead_ms;
-      AudioRig rig = make_audio_rig(scene, c, kFs);
+      audio::AudioRig rig = audio::make_audio_rig(scene, c, kFs);
       std::vector<float> buf(static_cast<std::size_t>(2 * block));
       std::uniform_real_distribution<double> within(0.0, 1.0);
       worst = 0;
@@ -304,7 +304,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     };
     for (int block : {16, 32, 64, 128, 256, 512, 1024, 2048}) {
       AppConfig c;
-      AudioRig rig = make_audio_rig(scene, c, kFs);
+      audio::AudioRig rig = audio::make_audio_rig(scene, c, kFs);
       std::vector<float> buf(static_cast<std::size_t>(2 * block));
       const int frames = std::max(n, 4 * block);
       const double ns = median_ns_per_unit(runs, frames, [&] {

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/bench_report.hpp"
 #include "core/csv_file.hpp"
 #include "app/strike_route.hpp"
@@ -52,7 +52,7 @@ Measured measure(const Scene& scene, const AppConfig& config, int strikes) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < strikes; ++k) {
     input::wiimote::ReportTracker tracker(config.tracking);
-    AudioRig rig = make_audio_rig(scene, config, fs);
+    audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
     StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::input, false, false});
     std::vector<float> out(static_cast<std::size_t>(block * config.audio.routing.channels));
     const double phase_s = unit(rng) * 0.01;  // where between camera frames the contact falls

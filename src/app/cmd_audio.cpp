@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/settings_source.hpp"
@@ -58,7 +58,7 @@ void run_audio_test(const AudioTestOptions& o) {
 
   // The same engine the kiosk runs (presets from the scene's instruments_file, each
   // instrument's `voice`); the other channel is silenced so only the one under test sounds.
-  AudioRig rig = make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/acoustic);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/acoustic);
   if (acoustic) rig.engine->set_actuator_gain(0.0);
 
   audio::PortAudioOutput::Options output_options;

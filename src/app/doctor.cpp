@@ -18,7 +18,7 @@
 #include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/data_paths.hpp"
 #include "app/kiosk_setup.hpp"
 #include "app/remote_pointer.hpp"
@@ -125,7 +125,7 @@ DoctorCheck check_vulkan(const DoctorOptions& o, const AppConfig& config, const 
 DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
   try {
     // The output exactly as the kiosk opens it: the configured device, rate and routing.
-    AudioRig rig = make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/false);
+    audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/false);
     audio::PortAudioOutput output(*rig.engine, config.audio, {});
     const audio::DeviceInfo d = output.device();
     const AudioRouting& r = config.audio.routing;

@@ -23,7 +23,7 @@ HeadlessLoop::HeadlessLoop(const Scene& scene, const AppConfig& config, Nanos id
       rate_(config.audio.sample_rate_hz),
       channels_(config.audio.routing.channels),
       idle_after_(idle_after),
-      rig_(make_audio_rig(scene, config, config.audio.sample_rate_hz, acoustic_enabled)),
+      rig_(audio::make_audio_rig(scene, config, config.audio.sample_rate_hz, acoustic_enabled)),
       route_(scene, offline(config), rig_.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false}),
       last_visitor_(idle_after == kNoAttract ? 0 : -idle_after) {
   route_.on_strike = [this](const Strike& s) {

@@ -13,7 +13,7 @@
 #include <optional>
 #include <span>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/strike_loop.hpp"
 #include "app/strike_route.hpp"
 #include "core/app_config.hpp"
@@ -69,7 +69,7 @@ class HeadlessLoop {
   const Scene& scene_;
   int rate_, channels_;
   Nanos idle_after_;
-  AudioRig rig_;
+  audio::AudioRig rig_;
   StrikeRoute route_;
   std::optional<AttractLoop> ghost_;
   bool feeding_ghost_ = false;

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/settings_source.hpp"
 #include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"
@@ -187,7 +187,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
                     0, what);
   }
   result.sample_rate_hz = rate;
-  AudioRig rig = make_audio_rig(scene, config, rate);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, rate);
 
   // --- the contact solver, fed exactly as the kiosk feeds it
   std::optional<CausalTiming> causal;

@@ -15,7 +15,7 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/headless_loop.hpp"
 #include "app/kiosk_text.hpp"
 #include "app/render_setup.hpp"
@@ -84,9 +84,9 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     }
     for (const AnswerBar& b : bars_) labels_.push_back({b.target, b.answer});
     make_renderer();
-    rig_ = make_audio_rig(scene_, c, c.audio.sample_rate_hz);  // the speaker per instrument (study_stimuli.hpp)
+    rig_ = audio::make_audio_rig(scene_, c, c.audio.sample_rate_hz);  // the speaker per instrument (study_stimuli.hpp)
     route_ = std::make_unique<StrikeRoute>(scene_, c, rig_.engine.get(), &win_.window->present_clock());
-    output_ = start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
+    output_ = audio::start_output(*rig_.engine, c.audio, audio_status_);  // null: the study shows its taps silently
     rig_.engine->set_acoustic_volume(c.audio.volume);
     rig_.engine->set_actuator_gain(c.actuator.gain);
     rest();
@@ -152,11 +152,11 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     // closed meanwhile, as a device may take only one stream.
     const bool sound = output_ != nullptr;
     output_.reset();
-    Crossing crossing{make_audio_rig(trial_scene, c, c.audio.sample_rate_hz), {}, {}};
+    Crossing crossing{audio::make_audio_rig(trial_scene, c, c.audio.sample_rate_hz), {}, {}};
     crossing.route = std::make_unique<StrikeRoute>(trial_scene, c, crossing.rig.engine.get(),
                                                    &win_.window->present_clock());
     std::string status;
-    std::unique_ptr<audio::PortAudioOutput> out = sound ? start_output(*crossing.rig.engine, c.audio, status) : nullptr;
+    std::unique_ptr<audio::PortAudioOutput> out = sound ? audio::start_output(*crossing.rig.engine, c.audio, status) : nullptr;
     crossing.rig.engine->set_actuator_gain(c.actuator.gain);
     crossing.route->feed(monotonic_now(), route_->view().shown);  // the cursor starts where it rests
     crossing_ = &crossing;
@@ -166,7 +166,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     hand_live_ = false;
     crossing_ = nullptr;
     out.reset();
-    if (sound) output_ = start_output(*rig_.engine, c.audio, audio_status_);
+    if (sound) output_ = audio::start_output(*rig_.engine, c.audio, audio_status_);
     banner_.clear();
     const Exploration e = measure_crossing(trial_scene, c, crossing.hand);
     std::fprintf(stderr, "<6>crossed: %zu samples, the cursor up to %.2f mm off the hand, the stripes up to %.3f\n",
@@ -349,7 +349,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   ProductWindow& win_;
   StudyWindowRun run_;
   std::unique_ptr<render::SceneRenderer> renderer_;
-  AudioRig rig_;
+  audio::AudioRig rig_;
   std::unique_ptr<StrikeRoute> route_;  //!< the stimuli's: actuator, note, bounce and log line
   std::unique_ptr<audio::PortAudioOutput> output_;
   std::string audio_status_, banner_, status_;
@@ -361,7 +361,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   bool hand_live_ = false;  //!< the mouse moves the mallet (an answer is being struck, a disc crossed)
   //! A texture_slope crossing in progress: its engine, route and the hand's samples (world).
   struct Crossing {
-    AudioRig rig;
+    audio::AudioRig rig;
     std::unique_ptr<StrikeRoute> route;
     std::vector<PointerSample> hand;
   };

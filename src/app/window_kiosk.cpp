@@ -17,7 +17,7 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/calibration_screen.hpp"
 #include "app/data_paths.hpp"
 #include "app/doctor.hpp"
@@ -84,7 +84,7 @@ struct Stage {
   std::string settings_line;                          //!< where the settings came from
   std::vector<std::filesystem::path> scene_choices;  //!< the usable [scenes] choices (S)
   std::vector<std::string> problems;                  //!< drop-ins and scene choices refused
-  AudioRig rig;
+  audio::AudioRig rig;
   std::unique_ptr<audio::PortAudioOutput> output;
   std::string audio_status;
   std::unique_ptr<render::SceneRenderer> renderer;
@@ -308,7 +308,7 @@ void WindowKiosk::run_visitor_session() {
   // The swapchain's images hold the study's frames: a new renderer draws them whole.
   stage_->renderer = make_renderer(*stage_);
   stage_->route->reset();
-  if (sound) stage_->output = start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status);
+  if (sound) stage_->output = audio::start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status);
   callbacks_at_beat_ = 0;  // the new output's callbacks count from 0
   offer_->session_ended(monotonic_now());
   offer_since_ = 0;
@@ -324,7 +324,7 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->problems = std::move(setup.problems);
   const AppConfig& c = stage->config;
   stage->renderer = make_renderer(*stage);
-  stage->rig = make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
+  stage->rig = audio::make_audio_rig(stage->scene, c, c.audio.sample_rate_hz);
   stage->route = std::make_unique<StrikeRoute>(stage->scene, c, stage->rig.engine.get(), &win_.window->present_clock(),
                                                RouteOptions{audio::Producer::main, false, true});
   stage->route->on_strike = [t = stage->tally.get()](const Strike& s) { t->record(s.impact); };
@@ -341,7 +341,7 @@ void WindowKiosk::build(KioskSetup setup) {
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
   if (stage_ && stage_->evdev) stage_->evdev->stop();
-  stage->output = start_output(*stage->rig.engine, c.audio, stage->audio_status);  // null: the scene plays silently
+  stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);  // null: the scene plays silently
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <linux/input.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/mouse_pointer.hpp"
 #include "input/evdev/evdev_decoder.hpp"
 #include "test_paths.hpp"
@@ -33,7 +33,7 @@ input_event event(Nanos t, std::uint16_t type, std::uint16_t code, std::int32_t 
 TEST(MousePointer, AThousandHertzMouseStrikesWithinAMillisecondOfItsKernelStamps) {
   const Scene& scene = test::percussion();
   const AppConfig config;
-  AudioRig rig = make_audio_rig(scene, config, 48000);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, 48000);
   MousePointer mouse(scene, config, *rig.engine, nullptr);
   std::vector<Strike> struck;
   mouse.on_strike = [&](const Strike& s) { struck.push_back(s); };

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/exact_reference.hpp"
 #include "app/strike_loop.hpp"
 #include "audio/damped_oscillator.hpp"
@@ -89,7 +89,7 @@ std::vector<Strike> run_preset(Quality q, const std::vector<std::vector<PointerS
   const Scene& scene = test::percussion();
   const AppConfig config = preset(q);
   app::StrikeLoop loop(scene, config);
-  app::AudioRig rig = app::make_audio_rig(scene, config, kRate);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, kRate);
   rig.engine->set_origin(origin);
   const int block = config.audio.frames_per_buffer;
   std::vector<float> out(static_cast<std::size_t>(2 * block));
@@ -233,7 +233,7 @@ TEST(QualityExtremes, BlockSizesFromSixteenToTwoThousandFortyEightFrames) {
   for (Quality q : kPresets) {
     AppConfig config = preset(q);
     for (int block : {16, 17, 64, 128, 1000, 2048}) {
-      app::AudioRig rig = app::make_audio_rig(scene, config, kRate);
+      audio::AudioRig rig = audio::make_audio_rig(scene, config, kRate);
       std::vector<float> out(static_cast<std::size_t>(2 * block));
       // A strike 0.3 ms into the stream, posted before the first block.
       const Nanos t = 300'000;

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "app/calibration_screen.hpp"
 #include "app/data_paths.hpp"
 #include "app/remote_pointer.hpp"
@@ -57,7 +57,7 @@ struct Rig {
   fake::FakeFinder finder{clock};
   std::shared_ptr<fake::FakeRemote> remote = finder.add("/dev/hidraw3", "00:1f:32:aa:bb:cc");
   AppConfig config;
-  AudioRig audio = make_audio_rig(test::percussion(), config, 48000);
+  audio::AudioRig audio = audio::make_audio_rig(test::percussion(), config, 48000);
   RemotePointer pointer{test::percussion(), config, *audio.engine};
   WiimoteDevice device;
 

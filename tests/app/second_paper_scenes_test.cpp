@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "core/csv_file.hpp"
 #include "app/headless_loop.hpp"
 #include "app/scene_describe.hpp"
@@ -252,7 +252,7 @@ TEST(SecondPaperScenes, WallImpactsDriveTheActuatorWithTheMaterialsEq1) {
   const Scene& wall = test::wall();
   AppConfig config;
   for (const std::string name : {"rubber", "aluminium"}) {
-    AudioRig rig = make_audio_rig(wall, config, config.audio.sample_rate_hz);
+    audio::AudioRig rig = audio::make_audio_rig(wall, config, config.audio.sample_rate_hz);
     int material = -1;
     for (std::size_t m = 0; m < wall.materials.size(); ++m)
       if (wall.materials[m].name == name) material = static_cast<int>(m);

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "core/csv_file.hpp"
 #include "app/headless_loop.hpp"
 #include "app/simulate.hpp"
@@ -56,7 +56,7 @@ TEST(StrikeRoute, HeadlessRunSimulateAndTheRouteDeliverAStrikeIdentically) {
   const std::vector<PointerSample> stroke = downswing(200 * kMs);
 
   // The route as the kiosk's threads drive it, offline (known at the contact).
-  AudioRig rig = make_audio_rig(scene, config, config.audio.sample_rate_hz);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz);
   StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::input, false, false});
   std::vector<Strike> by_route;
   route.on_strike = [&](const Strike& s) { by_route.push_back(s); };
@@ -119,7 +119,7 @@ TEST(StrikeRoute, HeadlessRunSimulateAndTheRouteDeliverAStrikeIdentically) {
 TEST(StrikeRoute, AsapSoundsWhenTheStrikeIsKnownNeverBeforeItsContact) {
   const Scene& scene = test::percussion();
   const AppConfig config;
-  AudioRig rig = make_audio_rig(scene, config, 48000);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, 48000);
   StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false});
   std::vector<Strike> got;
   route.on_strike = [&](const Strike& s) { got.push_back(s); };
@@ -158,7 +158,7 @@ TEST(StrikeRoute, PictureAlignmentHearsTheStrikeWithTheFirstFrameThatShowsIt) {
   PresentClock picture(60.0, PresentPacing::fifo);
   picture.frame_started(0);
   const Nanos period = picture.period_ns();
-  AudioRig rig = make_audio_rig(scene, config, 48000);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, 48000);
   StrikeRoute route(scene, config, rig.engine.get(), &picture, RouteOptions{audio::Producer::main, false, false});
   std::optional<Strike> s;
   for (const PointerSample& p : downswing(100 * kMs))
@@ -177,7 +177,7 @@ TEST(StrikeRoute, PictureAlignmentHearsTheStrikeWithTheFirstFrameThatShowsIt) {
 TEST(StrikeRoute, AStimulusGetsTheSameThreeCuesAsAHandsStrike) {
   const Scene& scene = test::percussion();
   const AppConfig config;
-  AudioRig rig = make_audio_rig(scene, config, 48000);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, 48000);
   StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false});
   const Impact stimulus = test::strike(11, 50 * kMs, 0.8);
   const Strike s = route.present(stimulus, 40 * kMs);
@@ -196,7 +196,7 @@ TEST(StrikeRoute, TheHeadlessStudysStimulusIsTheRoutesStimulus) {
   const Scene& scene = test::percussion();
   const AppConfig config;
   const Impact stimulus = test::strike(11, 120 * kMs, 0.8);
-  AudioRig rig = make_audio_rig(scene, config, config.audio.sample_rate_hz);
+  audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz);
   StrikeRoute route(scene, config, rig.engine.get(), nullptr, RouteOptions{audio::Producer::main, false, false});
   route.present(stimulus, stimulus.t_ns);
   const std::vector<float> by_route = actuator_of(*rig.engine, config, 48000 / 2);

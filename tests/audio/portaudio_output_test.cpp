@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 #include "audio/actuator_track.hpp"
 #include "audio/portaudio_output.hpp"
 #include "audio/wav_file.hpp"
@@ -91,7 +91,7 @@ class PortAudioOutputTest : public ::testing::Test {
   // Plays one strike (posted before the start, so it begins on frame 0) for kFrames
   // frames and returns what the device received.
   WavData play(const AppConfig& c, bool acoustic, const fs::path& file) {
-    app::AudioRig rig = app::make_audio_rig(percussion(), c, kRate, acoustic);
+    AudioRig rig = make_audio_rig(percussion(), c, kRate, acoustic);
     if (acoustic) rig.engine->set_actuator_gain(0.0);
     EXPECT_TRUE(rig.engine->post(strike(3, 0, 1.0)));
     {
@@ -177,7 +177,7 @@ TEST_F(PortAudioOutputTest, SelectsADeviceByIndex) {
   ASSERT_NE(probe, devices.end());
   AppConfig c = config();
   c.audio.device = std::to_string(probe->index);
-  app::AudioRig rig = app::make_audio_rig(percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(percussion(), c, kRate, false);
   PortAudioOutput out(*rig.engine, c.audio, int16());
   EXPECT_EQ(out.device().name, "mallet_probe");
   EXPECT_EQ(out.device().index, probe->index);
@@ -189,7 +189,7 @@ TEST_F(PortAudioOutputTest, AnUnknownDeviceIsAClearErrorListingWhatExists) {
   for (const std::string spec : {"no-such-card", "9999"}) {
     AppConfig c = config();
     c.audio.device = spec;
-    app::AudioRig rig = app::make_audio_rig(percussion(), c, kRate, false);
+    AudioRig rig = make_audio_rig(percussion(), c, kRate, false);
     try {
       PortAudioOutput out(*rig.engine, c.audio, int16());
       ADD_FAILURE() << spec << " opened " << out.device().name;
@@ -204,7 +204,7 @@ TEST_F(PortAudioOutputTest, AnUnknownDeviceIsAClearErrorListingWhatExists) {
 
 TEST_F(PortAudioOutputTest, Float32StreamRunsTheEngine) {
   AppConfig c = config();
-  app::AudioRig rig = app::make_audio_rig(percussion(), c, kRate, true);
+  AudioRig rig = make_audio_rig(percussion(), c, kRate, true);
   PortAudioOutput out(*rig.engine, c.audio);  // float32: the file's header is wrong, its frame count is not
   out.start();
   EXPECT_TRUE(wait_until([&] { return out.counters().frames >= static_cast<std::uint64_t>(kFrames); }));
@@ -220,7 +220,7 @@ TEST_F(PortAudioOutputTest, Float32StreamRunsTheEngine) {
 
 TEST_F(PortAudioOutputTest, ALostDeviceIsReopenedAndPlaysAgain) {
   AppConfig c = config();
-  app::AudioRig rig = app::make_audio_rig(percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(percussion(), c, kRate, false);
   PortAudioOutput::Options options = int16();
   options.first_retry = std::chrono::milliseconds(5);
   options.poll_interval = std::chrono::milliseconds(2);

@@ -1,4 +1,4 @@
-#include "app/audio_setup.hpp"
+#include "audio/audio_setup.hpp"
 
 #include <cstdio>
 #include <exception>
@@ -7,7 +7,7 @@
 #include "core/config/instruments_config.hpp"
 #include "core/file_error.hpp"
 
-namespace mallet::app {
+namespace mallet::audio {
 
 AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz, bool acoustic_enabled) {
   // A scene without instruments (the texture) needs no acoustic presets at all.
@@ -29,7 +29,7 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
     presets.back().max_sounding_modes = config.audio.max_modes;
     programs.push_back(inst.midi_program);
   }
-  audio::EngineSettings s;
+  EngineSettings s;
   s.sample_rate_hz = sample_rate_hz;
   s.routing = config.audio.routing;
   s.actuator = config.actuator;
@@ -39,9 +39,9 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   s.acoustic_enabled = acoustic_enabled;
   AudioRig rig;
   if (config.audio.acoustic == AcousticRoute::midi)
-    rig.midi = std::make_unique<audio::FluidSynthRoute>(config.audio.soundfont, sample_rate_hz, programs);
+    rig.midi = std::make_unique<FluidSynthRoute>(config.audio.soundfont, sample_rate_hz, programs);
   try {
-    rig.engine = std::make_unique<audio::AudioEngine>(scene, std::move(presets), s);
+    rig.engine = std::make_unique<AudioEngine>(scene, std::move(presets), s);
   } catch (const std::invalid_argument& e) {
     throw FileError(scene.file, 0, 0, e.what());
   }
@@ -49,10 +49,10 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   return rig;
 }
 
-std::unique_ptr<audio::PortAudioOutput> start_output(audio::AudioEngine& engine, const AudioConfig& config,
+std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioConfig& config,
                                                      std::string& status) {
   try {
-    auto output = std::make_unique<audio::PortAudioOutput>(engine, config);
+    auto output = std::make_unique<PortAudioOutput>(engine, config);
     output->start();
     char buf[200];
     std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", output->device().name.c_str(), output->output_latency_s() * 1e3);
@@ -65,4 +65,4 @@ std::unique_ptr<audio::PortAudioOutput> start_output(audio::AudioEngine& engine,
   }
 }
 
-}  // namespace mallet::app
+}  // namespace mallet::audio

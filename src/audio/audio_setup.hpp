@@ -10,14 +10,12 @@
 #include "core/scene.hpp"
 
 namespace mallet::audio {
-class PortAudioOutput;
-}
 
-namespace mallet::app {
+class PortAudioOutput;
 
 struct AudioRig {
-  std::unique_ptr<audio::FluidSynthRoute> midi;  //!< only for the midi route
-  std::unique_ptr<audio::AudioEngine> engine;
+  std::unique_ptr<FluidSynthRoute> midi;  //!< only for the midi route
+  std::unique_ptr<AudioEngine> engine;
 };
 
 //! Loads the scene's acoustic presets (Scene::instruments_file; each instrument's
@@ -29,7 +27,6 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
 //! Opens and starts the configured audio device for `engine`. Without one (no sound card,
 //! a device that fails to open) it logs why on stderr and returns null: the caller runs
 //! silent. `status` becomes "audio: NAME, LATENCY ms" or "audio: none (running silent)".
-std::unique_ptr<audio::PortAudioOutput> start_output(audio::AudioEngine& engine, const AudioConfig& config,
-                                                     std::string& status);
+std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioConfig& config, std::string& status);
 
-}  // namespace mallet::app
+}  // namespace mallet::audio
