@@ -345,6 +345,9 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
       if (!bump || !hole) top.fail("stimulus", "\"bump or hole\" needs at least one of each");
     }
   }
+  if (p.visitor && p.answer_choices().size() < 2)
+    top.fail("visitor", "a visitor's consent is struck on the first two answer bars (Yes, No): the protocol "
+                        "needs at least two answers");
   top.finish();
   return p;
 }

@@ -195,6 +195,12 @@ TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
   EXPECT_EQ(error_of(strike + "[visitor]\ntrials = 6\n"), "bad.toml:24:1: visitor.consent: missing (required)");
   EXPECT_EQ(error_of(strike + "[visitor]\nconsent = \"ok\"\ntrials = 0\n"),
             "bad.toml:26:10: visitor.trials: must be in [1, 50], got 0");
+  const std::string one_material =
+      "name = \"n\"\ntask = \"name_material\"\nconditions = [\"both\"]\nrepetitions = 1\nseed = 1\n"
+      "response = \"strike\"\n[visitor]\nconsent = \"ok\"\n[[stimulus]]\nname = \"w\"\nmaterial = \"wood\"\n";
+  EXPECT_NE(error_of(one_material).find("visitor: a visitor's consent is struck on the first two answer bars"),
+            std::string::npos)
+      << error_of(one_material);
 }
 
 }  // namespace
