@@ -11,7 +11,7 @@
 #include "app/wiimote_monitor.hpp"
 #include "input/wiimote/reports.hpp"
 #include "test_paths.hpp"
-#include "wiimote_test_support.hpp"
+#include "input/wiimote/wiimote_test_support.hpp"
 
 namespace mallet::app {
 namespace {
