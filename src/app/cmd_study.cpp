@@ -100,15 +100,17 @@ void add_summary(CLI::App& study) {
     report.pooled_text = study::format_summary(report.pooled);
     // Each participant's own fit, but not a visitor's: a visitor's few trials are pooled only.
     std::vector<study::ResultRow> own;
+    std::set<std::string> participants;
     for (const study::ResultRow& r : rows)
-      if (!study::is_visitor_session(r.participant) && (o->participant.empty() || r.participant == o->participant))
+      if (!study::is_visitor_session(r.participant) && (o->participant.empty() || r.participant == o->participant)) {
         own.push_back(r);
-    const study::StudySummary participants = study::summarize(own, {}, {});
-    if (participants.participants.size() > 1) {
+        participants.insert(r.participant);
+      }
+    if (participants.size() > 1) {
       report.participants = study::summarize_participants(own, options);
       report.participants_text = study::format_participant_fits(report.participants);
-    } else if (participants.participants.size() == 1) {
-      report.participants = {{participants.participants.front(),
+    } else if (participants.size() == 1) {  // the pooled summary is theirs, unless visitors' rows were pooled too
+      report.participants = {{*participants.begin(),
                               own.size() == rows.size() ? report.pooled : study::summarize(own, {}, options)}};
     }
     std::printf("%s: ", files.size() == 1 ? files.front().c_str()

@@ -153,12 +153,10 @@ StudyPlan plan_session(AppConfig config, Scene base, StudyProtocol protocol, con
   if (p.protocol.response == StudyResponse::strike && !p.protocol.answer_strike.voice.empty()) {
     const std::vector<ModalPreset> voices = config::load_instruments(p.base.instruments_file);
     const std::string& voice = p.protocol.answer_strike.voice;
-    if (std::none_of(voices.begin(), voices.end(), [&](const ModalPreset& v) { return v.name == voice; })) {
-      std::string known;
-      for (const ModalPreset& v : voices) known += (known.empty() ? "" : ", ") + v.name;
+    if (!config::find_preset(voices, voice))
       throw FileError(p.protocol.answer_strike.voice_at, "answer_strike.sound: no voice \"" + voice + "\" in " +
-                                                          p.base.instruments_file + " (known: " + known + ", none)");
-    }
+                                                          p.base.instruments_file +
+                                                          " (known: " + config::preset_names(voices) + ", none)");
   }
   p.schedule = balanced_schedule(p.protocol, participant);
   p.csv = csv;

@@ -16,15 +16,10 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   std::vector<ModalPreset> presets;
   std::vector<int> programs;
   for (const Instrument& inst : scene.instruments) {
-    const ModalPreset* found = nullptr;
-    for (const ModalPreset& p : library)
-      if (p.name == inst.voice) found = &p;
-    if (!found) {
-      std::string known;
-      for (const ModalPreset& p : library) known += (known.empty() ? "" : ", ") + p.name;
+    const ModalPreset* found = config::find_preset(library, inst.voice);
+    if (!found)
       throw FileError(scene.file, 0, 0, "instrument " + inst.name + ": no voice \"" + inst.voice + "\" in " +
-                                            scene.instruments_file + " (known: " + known + ")");
-    }
+                                            scene.instruments_file + " (known: " + config::preset_names(library) + ")");
     presets.push_back(*found);
     presets.back().max_sounding_modes = config.audio.max_modes;
     programs.push_back(inst.midi_program);

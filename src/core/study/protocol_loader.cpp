@@ -45,19 +45,26 @@ StudyTiming read_timing(TableReader t, bool paired) {
   return timing;
 }
 
+//! The scene's material named `name`, or null; and the names, "wood, metal", for a message.
+const Material* material_named(const std::vector<Material>& materials, std::string_view name) {
+  for (const Material& m : materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+std::string material_names(const std::vector<Material>& materials) {
+  std::string names;
+  for (const Material& m : materials) names += (names.empty() ? "" : ", ") + m.name;
+  return names;
+}
+
 Stimulus read_stimulus(TableReader t, const std::vector<Material>& materials) {
   Stimulus s;
   s.name = t.string("name");
   if (!is_plain_name(s.name)) t.fail("name", "\"" + s.name + "\" " + kPlain);
   const std::string material = t.string("material");
-  const Material* found = nullptr;
-  for (const Material& m : materials)
-    if (m.name == material) found = &m;
-  if (!found) {
-    std::string known;
-    for (const Material& m : materials) known += (known.empty() ? "" : ", ") + m.name;
-    t.fail("material", "unknown material \"" + material + "\" (the scene has: " + known + ")");
-  }
+  const Material* found = material_named(materials, material);
+  if (!found)
+    t.fail("material", "unknown material \"" + material + "\" (the scene has: " + material_names(materials) + ")");
   s.decay_scale = 1.0;
   t.read("decay_scale", s.decay_scale, 0.01, 100);
   s.material = *found;
@@ -131,13 +138,11 @@ AnswerStrike read_answer_strike(TableReader t, const std::vector<Material>& mate
   a.voice_at = t.place("sound");
   const std::string feel = t.string_or("feel", "none");
   if (feel != "none") {
-    for (const Material& m : materials)
-      if (m.name == feel) a.feel = m;
-    if (!a.feel) {
-      std::string known;
-      for (const Material& m : materials) known += ", " + m.name;
-      t.fail("feel", "expected \"none\" or a material of the scene (" + known.substr(2) + "), got \"" + feel + "\"");
-    }
+    const Material* found = material_named(materials, feel);
+    if (!found)
+      t.fail("feel", "expected \"none\" or a material of the scene (" + material_names(materials) + "), got \"" +
+                         feel + "\"");
+    a.feel = *found;
   }
   t.finish();
   return a;

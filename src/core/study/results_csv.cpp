@@ -170,7 +170,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& path, const ResultsFil
   const auto keep = existing.has_header ? static_cast<off_t>(existing.complete_bytes) : 0;
   if (::ftruncate(fd_, keep) != 0) fail_io(path, "cannot cut off the incomplete last line", errno);
   if (::lseek(fd_, 0, SEEK_END) < 0) fail_io(path, "cannot seek", errno);
-  if (existing.has_header && results_columns(existing.header) > 0) columns_ = results_columns(existing.header);
+  if (const std::size_t columns = existing.has_header ? results_columns(existing.header) : 0; columns > 0)
+    columns_ = columns;
   if (!existing.has_header) {
     write_durably(std::string(kResultsHeader) + "\n");
     // A new file: its folder entry must reach the disk too.
