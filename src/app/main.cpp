@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands.hpp"
+#include "app/cli/commands.hpp"
 #include "core/file_error.hpp"
 
 int main(int argc, char** argv) {

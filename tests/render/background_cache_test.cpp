@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench_detailed_model.hpp"
-#include "app/render_setup.hpp"
+#include "render/detailed_model.hpp"
+#include "render/render_setup.hpp"
 #include "render/font_atlas.hpp"
 #include "render/image.hpp"
 #include "render/overlay.hpp"
@@ -24,11 +24,11 @@
 namespace mallet::render {
 namespace {
 
-std::unique_ptr<app::HeadlessRenderer> renderer(const Scene& scene, bool cache,
+std::unique_ptr<render::HeadlessRenderer> renderer(const Scene& scene, bool cache,
                                                 VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
                                                 VkSampleCountFlagBits background_samples = VK_SAMPLE_COUNT_1_BIT,
                                                 const std::filesystem::path& models = {}) {
-  app::HeadlessOptions o;
+  render::HeadlessOptions o;
   o.models = models;
   o.size = {480, 270};
   o.settings.background_cache = cache;
@@ -37,7 +37,7 @@ std::unique_ptr<app::HeadlessRenderer> renderer(const Scene& scene, bool cache,
   o.validation = Validation::required;
   o.cache_dir = "";
   o.device = "llvmpipe";
-  return std::make_unique<app::HeadlessRenderer>(scene, o);
+  return std::make_unique<render::HeadlessRenderer>(scene, o);
 }
 
 //! Mallet centres that visit every kind of place: high above, resting on and straddling
@@ -129,10 +129,10 @@ TEST(BackgroundCache, MultisampledFramesRedrawOnlyTheBarsTheShadowsScreenBoxMeet
 //! more than a lit bar is redrawn with, so their glow is shaded on the screen too.
 std::filesystem::path detailed_models() {
   const std::filesystem::path dir = test::scratch_dir();
-  for (const auto& entry : std::filesystem::directory_iterator(app::models_dir()))
+  for (const auto& entry : std::filesystem::directory_iterator(render::models_dir()))
     if (entry.path().extension() == ".glb") std::filesystem::copy_file(entry.path(), dir / entry.path().filename());
-  EXPECT_EQ(app::write_detailed_bar(dir / "wood_bar.glb", 10, {0.30, 0.10, 0.045, 1.0}, 0.0, 0.55), 1200u);
-  app::write_detailed_bar(dir / "metal_bar.glb", 10, {0.85, 0.85, 0.88, 1.0}, 1.0, 0.25);
+  EXPECT_EQ(render::write_detailed_bar(dir / "wood_bar.glb", 10, {0.30, 0.10, 0.045, 1.0}, 0.0, 0.55), 1200u);
+  render::write_detailed_bar(dir / "metal_bar.glb", 10, {0.85, 0.85, 0.88, 1.0}, 1.0, 0.25);
   return dir;
 }
 
@@ -199,9 +199,9 @@ TEST(BackgroundCache, IsRedrawnWhenTheImageSizeChanges) {
   PipelineCache cache(ctx, "");
   RenderSettings cached_settings, whole_settings;
   whole_settings.background_cache = false;
-  SceneRenderer cached(ctx, test::percussion(), app::models_dir(), OffscreenTarget::kFormat, cached_settings,
+  SceneRenderer cached(ctx, test::percussion(), render::models_dir(), OffscreenTarget::kFormat, cached_settings,
                        cache.get());
-  SceneRenderer whole(ctx, test::percussion(), app::models_dir(), OffscreenTarget::kFormat, whole_settings,
+  SceneRenderer whole(ctx, test::percussion(), render::models_dir(), OffscreenTarget::kFormat, whole_settings,
                       cache.get());
   const Target& bar = test::percussion().targets.at(5);
   FrameState s;

@@ -3,26 +3,26 @@
 // allocated, and freeing them brings it back to where it was, byte for byte.
 #include <gtest/gtest.h>
 
-#include "app/render_setup.hpp"
+#include "render/render_setup.hpp"
 #include "render/vk_handle.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
 namespace {
 
-HeadlessRenderer make(std::uint32_t width, std::uint32_t height) {
-  HeadlessOptions o;
+render::HeadlessRenderer make(std::uint32_t width, std::uint32_t height) {
+  render::HeadlessOptions o;
   o.size = {width, height};
   o.cache_dir = "";
   o.device = "llvmpipe";
-  return HeadlessRenderer(test::percussion(), o);
+  return render::HeadlessRenderer(test::percussion(), o);
 }
 
 TEST(DeviceMemory, ARendererIsCountedWhileItLivesAndGivesEverythingBack) {
   const std::uint64_t before = render::device_memory_bytes();
   std::uint64_t small = 0, large = 0;
   {
-    HeadlessRenderer r = make(160, 90);
+    render::HeadlessRenderer r = make(160, 90);
     r.render(render::FrameState{});  // the first frame makes what it needs (the read-back buffer)
     small = render::device_memory_bytes() - before;
     for (int i = 0; i < 3; ++i) r.render(render::FrameState{});
@@ -30,7 +30,7 @@ TEST(DeviceMemory, ARendererIsCountedWhileItLivesAndGivesEverythingBack) {
   }
   EXPECT_EQ(render::device_memory_bytes(), before);
   {
-    HeadlessRenderer r = make(1280, 720);
+    render::HeadlessRenderer r = make(1280, 720);
     large = render::device_memory_bytes() - before;
   }
   EXPECT_EQ(render::device_memory_bytes(), before);

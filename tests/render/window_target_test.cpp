@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/render_setup.hpp"
+#include "render/render_setup.hpp"
 #include "render/image.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/scene_renderer.hpp"
@@ -45,7 +45,7 @@ struct OpenWindow {
     RenderSettings rs;
     rs.samples = samples;
     rs.background_samples = VK_SAMPLE_COUNT_4_BIT;  // with 1 sample per frame: what the kiosk does on lavapipe
-    renderer = std::make_unique<SceneRenderer>(*ctx, test::percussion(), app::models_dir(), target->format(), rs,
+    renderer = std::make_unique<SceneRenderer>(*ctx, test::percussion(), render::models_dir(), target->format(), rs,
                                                cache->get());
   }
   ~OpenWindow() { vkDeviceWaitIdle(ctx->device()); }
@@ -60,14 +60,14 @@ FrameState mallet_over_a_bar() {
 
 //! The same state rendered offscreen at `size`, the way the goldens are.
 Image offscreen(VkExtent2D size, VkSampleCountFlagBits samples, const FrameState& state = mallet_over_a_bar()) {
-  app::HeadlessOptions o;
+  render::HeadlessOptions o;
   o.size = size;
   o.settings.samples = samples;
   o.settings.background_samples = VK_SAMPLE_COUNT_4_BIT;
   o.device = "llvmpipe";
   o.validation = Validation::required;
   o.cache_dir = "";
-  app::HeadlessRenderer r(test::percussion(), o);
+  render::HeadlessRenderer r(test::percussion(), o);
   return r.render(state);
 }
 

@@ -11,6 +11,7 @@
 // (UTC, no time of day); their rows go to one file a day, visitors-YYYY-MM-DD.csv.
 #include <cstdint>
 #include <ctime>
+#include <filesystem>
 #include <string>
 
 #include "core/time.hpp"
@@ -38,5 +39,15 @@ std::string visitor_session_id(std::uint64_t random);
 std::string utc_date(std::time_t t);
 //! "visitors-YYYY-MM-DD.csv".
 std::string visitor_results_file(const std::string& date);
+
+//! How one visitor's session ended, as the kiosk counts it and the log says it.
+struct VisitorSessionResult {
+  std::string id;
+  bool consented = false;
+  bool abandoned = false;  //!< walked away: at the consent, or before the last trial
+  int planned = 0;
+  int answered = 0;
+  std::filesystem::path csv;
+};
 
 }  // namespace mallet::study

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/run_cli.hpp"
+#include "run_cli.hpp"
 #include "fake_hidapi.hpp"
 #include "input/wiimote/replay_source.hpp"
 #include "input/wiimote/wiimote_device.hpp"

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/run_cli.hpp"
+#include "run_cli.hpp"
 #include "fake_remote.hpp"
 #include "input/wiimote/wiimote_device.hpp"
 #include "test_paths.hpp"

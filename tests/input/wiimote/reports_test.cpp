@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/run_cli.hpp"
+#include "run_cli.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::input::wiimote {

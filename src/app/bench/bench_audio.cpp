@@ -1,0 +1,222 @@
+// `mallet bench audio`: what one voice costs, what the engine costs with many voices,
+// and how late an impact reaches the output — measured in one run on this machine, with
+// the peers (STK's ModalBar, FluidSynth) side by side. A program that prints a table;
+// no test times anything.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "audio/audio_setup.hpp"
+#include "app/bench/bench_commands.hpp"
+#include "core/data_paths.hpp"
+#include "audio/damped_oscillator.hpp"
+#include "audio/fluidsynth_route.hpp"
+#include "audio/modal_bar.hpp"
+#include "core/config/instruments_config.hpp"
+#include "core/config/scene_config.hpp"
+#include "core/vibration.hpp"
+
+#ifdef MALLET_HAVE_STK
+#include <stk/ModalBar.h>
+#include <stk/Stk.h>
+#endif
+
+namespace mallet::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+//! Median over `runs` of the nanoseconds per unit of `body(units)`.
+double median_ns_per_unit(int runs, double units, const std::function<void()>& body) {
+  std::vector<double> t;
+  for (int r = 0; r < runs; ++r) {
+    const auto a = Clock::now();
+    body();
+    const auto b = Clock::now();
+    t.push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count()) / units);
+  }
+  std::nth_element(t.begin(), t.begin() + static_cast<long>(t.size() / 2), t.end());
+  return t[t.size() / 2];
+}
+
+volatile double g_sink;  // keeps the optimiser from removing the measured work
+
+struct Row {
+  std::string what;
+  double ns = 0;
+  std::string note;
+};
+
+void print_rows(const char* title, const char* unit, const std::vector<Row>& rows) {
+  std::printf("\n%s\n", title);
+  std::printf("| %-44s | %12s | %s\n", "", unit, "note");
+  std::printf("|%s|%s|%s\n", std::string(46, '-').c_str(), std::string(14, '-').c_str(), "------");
+  for (const Row& r : rows) std::printf("| %-44s | %12.2f | %s\n", r.what.c_str(), r.ns, r.note.c_str());
+}
+
+}  // namespace
+
+void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_audio) {
+  const Scene scene = config::load_scene(scene_path);
+  const std::vector<ModalPreset> presets = config::load_instruments(scene.instruments_file);
+  const int fs = 48000;
+  const int n = fs * seconds_of_audio;
+  const int runs = 7;
+  std::vector<Row> voice;
+
+  // Eq. 1 evaluated directly (exp + sin per sample): the exact reference.
+  const VibrationParams metal{2.0, 90.0, 300.0};
+  voice.push_back({"Eq. 1 direct (exp+sin per sample, reference)",
+                   median_ns_per_unit(runs, n, [&] {
+                     double acc = 0;
+                     for (int i = 0; i < n; ++i) acc += decaying_sine_unit_seconds(metal, i / double(fs));
+                     g_sink = acc;
+                   }),
+                   "exact"});
+  audio::DampedOscillator osc;
+  double osc_error = 0;
+  osc.start(2.0, 90.0, 300.0, 0.0, fs);
+  for (int i = 0; i < fs; ++i)
+    osc_error = std::max(osc_error, std::fabs(osc.tick() - 2.0 * decaying_sine_unit_seconds(metal, i / double(fs))));
+  voice.push_back({"actuator voice (re-seeded double rotator)",
+                   median_ns_per_unit(runs, n, [&] {
+                     osc.start(2.0, 0.0, 300.0, 0.0, fs);  // undamped: never goes quiet
+                     std::vector<double> buf(64);
+                     for (int i = 0; i < n; i += 64) osc.add_to(buf.data(), 64);
+                     g_sink = buf[7];
+                   }),
+                   "max |error| vs exact over 1 s: " + std::to_string(osc_error)});
+
+  for (const ModalPreset& p : presets) {
+    audio::ModalBarVoice bar;
+    voice.push_back({"modal bar voice: " + p.name + " (" + std::to_string(p.modes.size()) + " modes)",
+                     median_ns_per_unit(runs, n, [&] {
+                       bar.strike(p, 523.25, 1.5, 0.0, fs);
+                       std::vector<double> buf(64);
+                       for (int i = 0; i < n; i += 64) bar.add_to(buf.data(), 64);
+                       g_sink = buf[7];
+                     }),
+                     ""});
+  }
+#ifdef MALLET_HAVE_STK
+  {
+    stk::Stk::setSampleRate(fs);
+    stk::Stk::setRawwavePath("/usr/share/stk/rawwaves/");
+    stk::ModalBar stk_bar;
+    stk_bar.setPreset(1);  // STK's "Vibraphone"-style presets: 0 marimba, 1 vibraphone, ...
+    voice.push_back({"peer: STK ModalBar (4 modes + strike sample)",
+                     median_ns_per_unit(runs, n, [&] {
+                       stk_bar.noteOn(523.25, 0.8);
+                       double acc = 0;
+                       for (int i = 0; i < n; ++i) acc += stk_bar.tick();
+                       g_sink = acc;
+                     }),
+                     "libstk " });
+  }
+#else
+  voice.push_back({"peer: STK ModalBar", 0, "not built (install libstk-dev and stk)"});
+#endif
+  {
+    const int notes = 16;
+    audio::FluidSynthRoute route(AppConfig{}.audio.soundfont, fs, {13, 9});
+    std::vector<double> buf(64);
+    const double per_voice_frame = median_ns_per_unit(runs, double(n) * notes, [&] {
+      for (int k = 0; k < notes; ++k) route.note_on(k % 2, 72 + k, 1.5);
+      for (int i = 0; i < n; i += 64) route.render(buf.data(), 64);
+      g_sink = buf[0];
+    });
+    voice.push_back({"peer: FluidSynth (16 notes, per voice-frame)", per_voice_frame, "TimGM6mb"});
+  }
+  print_rows("Cost of one voice at 48 kHz (median of 7 runs)", "ns/sample", voice);
+
+  // The engine with many voices: the share of one core a 64-frame callback takes.
+  std::vector<Row> engine_rows;
+  for (int voices : {16, 64, 256, 512}) {
+    AppConfig config;
+    config.audio.max_voices = voices;
+    audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
+    std::vector<float> out(2 * 64);
+    const int blocks = n / 64;
+    const double ns_per_block = median_ns_per_unit(runs, blocks, [&] {
+      for (int b = 0; b < blocks; ++b) {
+        if (b % 8 == 0)  // keep the pool full: a new strike every 8 blocks steals the quietest
+          for (int k = 0; k < voices; ++k) {
+            Impact i;
+            i.t_ns = 0;
+            i.target = k % static_cast<int>(scene.targets.size());
+            i.material = scene.targets[static_cast<std::size_t>(i.target)].material;
+            i.note = scene.targets[static_cast<std::size_t>(i.target)].note;
+            i.speed_m_per_s = 1.0;
+            if (b == 0 || k == b % voices) rig.engine->post(i);
+          }
+        rig.engine->process(out.data(), 64);
+      }
+    });
+    const double block_ns = 64.0 / fs * 1e9;
+    engine_rows.push_back({std::to_string(voices) + " voices, 64-frame blocks", 100.0 * ns_per_block / block_ns,
+                           std::to_string(ns_per_block / (64.0 * voices)) + " ns per voice-sample; active " +
+                               std::to_string(rig.engine->counters().active_voices)});
+  }
+  print_rows("Engine load (modal route): share of one core at 48 kHz", "% of core", engine_rows);
+
+  // Impact → first sample: where in the output stream an impact lands, relative to its
+  // own time, for random impact times (sample arithmetic: exact, not wall time).
+  std::vector<Row> latency_rows;
+  std::mt19937 rng(1);
+  for (int block : {16, 64, 256}) {
+    for (double ahead : {0.0, 5.0}) {
+      AppConfig config;
+      config.audio.schedule_ahead_ms = ahead;
+      audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
+      std::vector<float> out(static_cast<std::size_t>(2 * block));
+      double worst = 0, best = 1e9;
+      std::uniform_real_distribution<double> within(0.0, 1.0);
+      for (int k = 0; k < 200; ++k) {
+        // The impact happened somewhere in the previous block and is posted now.
+        const std::int64_t start = rig.engine->position();
+        const Nanos t = static_cast<Nanos>((static_cast<double>(start) - within(rng) * block) / fs * 1e9);
+        Impact i;
+        i.t_ns = t;
+        i.target = 3;
+        i.material = scene.targets[3].material;
+        i.note = scene.targets[3].note;
+        i.speed_m_per_s = 1.0;
+        rig.engine->post(i);
+        std::int64_t first = -1;
+        for (int b = 0; b < 40 && first < 0; ++b) {
+          const std::int64_t base = rig.engine->position();
+          rig.engine->process(out.data(), block);
+          for (int f = 0; f < block && first < 0; ++f)
+            if (out[static_cast<std::size_t>(2 * f + 1)] != 0.0f) first = base + f;
+        }
+        const double ms = (static_cast<double>(first) / fs - static_cast<double>(t) * 1e-9) * 1e3;
+        worst = std::max(worst, ms);
+        best = std::min(best, ms);
+        // Let every voice retire (bounded), so the next impact's first sample is its own.
+        for (int b = 0; b < 100000 && rig.engine->counters().active_voices > 0; ++b)
+          rig.engine->process(out.data(), block);
+      }
+      latency_rows.push_back({std::to_string(block) + "-frame blocks, schedule_ahead_ms = " + std::to_string(int(ahead)),
+                              worst, "min " + std::to_string(best) + " ms, jitter " + std::to_string(worst - best) +
+                                         " ms (+ the device's output latency)"});
+    }
+  }
+  print_rows("Impact → first output sample, 200 random impact times", "max ms", latency_rows);
+}
+
+void add_bench_audio(CLI::App& bench) {
+  auto scene = std::make_shared<std::filesystem::path>(default_scene());
+  auto seconds = std::make_shared<int>(2);
+  CLI::App* audio_cmd = bench.add_subcommand("audio", "Cost per voice, engine load and impact-to-sample latency");
+  audio_cmd->add_option("--scene", *scene, "Scene file")->capture_default_str();
+  audio_cmd->add_option("--seconds", *seconds, "Seconds of audio rendered per measurement")->capture_default_str();
+  audio_cmd->callback([scene, seconds] { run_bench_audio(*scene, std::max(1, *seconds)); });
+}
+
+}  // namespace mallet::app

@@ -1,0 +1,49 @@
+// `mallet doctor [--json]`: one line per check of what a kiosk needs.
+#include <cstdio>
+#include <memory>
+
+#include "app/cli/commands.hpp"
+#include "core/data_paths.hpp"
+#include "app/kiosk/doctor.hpp"
+#include "app/common/settings_source.hpp"
+
+namespace mallet::app {
+
+void register_doctor(CLI::App& app) {
+  auto o = std::make_shared<DoctorOptions>();
+  auto json = std::make_shared<bool>(false);
+  o->config = default_settings();
+  CLI::App* cmd = app.add_subcommand("doctor", "Check everything a kiosk needs, one line per check, with the fix");
+  cmd->footer(
+      "Checks, in this order, each printed as `ok`, `warn` or `fail`, what was found and how to fix it:\n"
+      "  vulkan       the device and driver; a 1080p (or the display's size) frame is drawn and timed:\n"
+      "               a software renderer on a large display warns, slower than 60 Hz fails\n"
+      "  audio        the output the kiosk opens ([audio] device): name, sample rate, output latency,\n"
+      "               the channel routing against the device's channels\n"
+      "  wiimote      paired and connected, its IR camera's start-up answered, the battery\n"
+      "               (no remote: fail with [input] source = \"wiimote\", warn with \"auto\")\n"
+      "  settings     mallet.toml and its drop-ins, the start scene and [scenes] choices\n"
+      "  models       every glTF model the scenes draw\n"
+      "  soundfont    when [audio] acoustic = \"midi\"\n"
+      "  hidraw       the udev rule, the mallet user's groups, hidraw nodes that cannot be opened\n"
+      "  calibration  present, its age, its largest error, made with the remote connected now\n"
+      "  disk         free space where the kiosk writes its state and results\n"
+      "  service      mallet.service enabled, running, restarts in the last 24 h (the journal)\n"
+      "  watchdog     the last time the systemd watchdog stopped the kiosk, and why\n"
+      "The operator page shows the same checks (Ctrl+Alt+O, then D).\n"
+      "Exit status: 0 when no check fails, 1 otherwise.");
+  add_settings_options(*cmd, o->config, o->config_dir);
+  cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render] device)");
+  cmd->add_flag("--json", *json, "The same checks as JSON: {\"checks\": [{name, status, found, fix}...], ok, warn, fail}");
+  cmd->callback([o, json] {
+    const std::vector<DoctorCheck> checks = run_doctor(*o);
+    if (*json) {
+      std::fputs(doctor_json(checks).c_str(), stdout);
+    } else {
+      for (const DoctorCheck& c : checks) std::printf("%s\n", format_check(c).c_str());
+    }
+    set_exit_status(doctor_exit_status(checks));
+  });
+}
+
+}  // namespace mallet::app

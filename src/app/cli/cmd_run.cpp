@@ -1,0 +1,75 @@
+#include <memory>
+#include <string>
+
+#include "app/cli/commands.hpp"
+#include "core/data_paths.hpp"
+#include "app/kiosk/kiosk.hpp"
+#include "app/common/settings_source.hpp"
+#include "app/study/study_window.hpp"
+#include "app/study/visitor_study.hpp"
+
+namespace mallet::app {
+
+namespace {
+
+//! The kiosk's visitor micro-study, from the study product: its protocol loader, and a
+//! session planned for one visitor and run in the kiosk's window.
+VisitorSessions visitor_sessions() {
+  VisitorSessions v;
+  v.load = load_visitor_protocol;
+  v.run = [](render::ProductWindow& window, const AppConfig& config, const Scene& scene,
+             const study::StudyProtocol& protocol, const std::string& id, const std::string& date,
+             std::function<std::vector<PointerSample>()> pointer, std::function<bool()> each_frame) {
+    const StudyPlan plan = plan_visitor(config, scene, protocol, visitor_results_dir(config.study), id, date);
+    return run_visitor_window(window, plan, std::move(pointer), std::move(each_frame));
+  };
+  return v;
+}
+
+}  // namespace
+
+void register_run(CLI::App& app) {
+  auto o = std::make_shared<KioskOptions>();
+  o->config = default_settings();
+  o->visitor_sessions = visitor_sessions();  // the operator's mallet.toml (/etc/mallet when installed)
+  CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
+  cmd->footer(
+      "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
+      "sound and the actuator signal play on the configured audio device, and the attract mode's\n"
+      "ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close\n"
+      "it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, R\n"
+      "recalibrate, S next scene of [scenes] choices, M the wall's next material, L next language,\n"
+      "Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the\n"
+      "settings and the scene (a bad file is refused, the old ones stay). Each strike and a\n"
+      "heartbeat a minute are logged on stderr (journald priorities);\n"
+      "under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.\n"
+      "Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs\n"
+      "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
+      "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
+      "and DIR/log.txt (one line per strike), then exits 0.");
+  cmd->add_option("--scene", o->scene,
+                  "Scene file (default: [scenes] start of the settings, a file in the scenes/ folder next to "
+                  "them: percussion.toml)")
+      ->check(CLI::ExistingFile);
+  add_settings_options(*cmd, o->config, o->config_dir);
+  cmd->add_flag("--headless", o->headless, "Run offscreen even if there is a display");
+  cmd->add_flag("--windowed", o->windowed, "A window instead of fullscreen (its close button quits)");
+  cmd->add_option("--seconds", o->seconds, "Headless: seconds of the loop to run")
+      ->capture_default_str()
+      ->check(positive_at_most(86400.0));
+  cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
+  cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
+      ->capture_default_str();
+  cmd->add_option("--idle-after", o->idle_after_s,
+                  "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)")
+      ->check(positive_at_most(86400.0));
+  cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render].device)");
+  cmd->add_flag("--no-frame-cap", o->no_frame_cap,
+                "With a display: draw frames as fast as they come, ignoring [render] max_fps (to measure what the "
+                "frame budget saves; never on a kiosk)");
+  cmd->add_option("--quit-after", o->quit_after_s, "With a display: quit after this many seconds (0 = never)")
+      ->capture_default_str();
+  cmd->callback([o] { set_exit_status(run_kiosk(*o)); });
+}
+
+}  // namespace mallet::app

@@ -1,0 +1,109 @@
+#include <cstdio>
+#include <string>
+
+#include "app/cli/commands.hpp"
+#include "core/data_paths.hpp"
+#include "app/common/settings_source.hpp"
+#include "app/offline/simulate.hpp"
+
+namespace mallet::app {
+
+void register_simulate(CLI::App& app) {
+  auto options = std::make_shared<SimulateOptions>();
+  auto rate = std::make_shared<int>(0);
+  options->scene = default_scene();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate", "Replay a trajectory through the contact solver; write events, cursor trace and audio");
+  cmd->footer(
+      "Writes the exact stimuli of a session:\n"
+      "  DIR/events.csv  t,target,instrument,material,note,velocity\n"
+      "                  one row per impact; t = exact contact time (s), velocity = normal\n"
+      "                  impact speed (m/s)\n"
+      "  DIR/cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset  at --trace-rate, world metres;\n"
+      "                  cursor = the displayed mallet head (held on the surface while the hand\n"
+      "                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement\n"
+      "                  texture scenes add gain,stripe_phase: cursor = the cursor after the Speed\n"
+      "                  technique, gain = its gain, stripe_phase = the stripes' phase (rad)\n"
+      "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
+      "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample\n"
+      "                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.\n"
+      "With --causal the strikes are decided as the live kiosk decides them: each sample is\n"
+      "known only from its own time plus --input-delay-ms, contact prediction and [timing]\n"
+      "align follow the settings, and the frames are paced by --display-hz and --present-mode.\n"
+      "events.csv then adds after its columns  contact_t,sound_t,shown_t,predicted:\n"
+      "  contact_t  the contact as the kiosk estimated it (seen, or predicted) (s)\n"
+      "  sound_t    when both channels start in audio.wav (s)\n"
+      "  shown_t    the present time of the first frame that shows the bounce (s)\n"
+      "  predicted  1 when the strike was scheduled from a prediction, else 0\n"
+      "Without --causal every output is the exact stimulus, as before.\n"
+      "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
+      "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
+      "A t past one hour is refused (FILE:LINE, exit 2) unless --allow-long: the outputs grow\n"
+      "with it (1.4 GB of audio.wav per hour at 48 kHz), and a t in milliseconds looks like that.\n"
+      "Bad input prints FILE:LINE: problem and exits 2 with nothing written.\n"
+      "SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and exits\n"
+      "130 or 143.");
+  cmd->add_option("--scene", options->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
+  cmd->add_option("--input", options->input, "Trajectory CSV (t,x,y)")->required();
+  cmd->add_option("--out", options->out_dir, "Output directory (created if needed)")->required();
+  options->config = default_settings();  // the operator's, as the kiosk reads them
+  add_settings_options(*cmd, options->config, options->config_dir);
+  auto space = std::make_shared<std::string>("screen");
+  cmd->add_option("--input-space", *space, "screen: x,y normalised 0..1; world: sphere centre in metres")
+      ->check(CLI::IsMember({"screen", "world"}))
+      ->capture_default_str();
+  cmd->add_option("--sample-rate", *rate, "Audio sample rate in Hz (default: [audio].sample_rate_hz, 48000)")
+      ->check(CLI::Range(1000, 384000));
+  cmd->add_option("--trace-rate", options->trace_rate_hz, "Rows per second in cursor.csv")
+      ->capture_default_str()
+      ->check(positive_at_most(1e6));
+  cmd->add_option("--tail", options->tail_s, "Seconds rendered after the last trajectory sample")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
+  cmd->add_flag("--allow-long", options->allow_long,
+                "Simulate a trajectory whose t goes past 3600 s (one hour) instead of refusing it");
+  cmd->add_flag("--causal", options->causal, "Decide strikes as the live kiosk does (see below)");
+  cmd->add_option("--input-delay-ms", options->input_delay_ms,
+                  "With --causal: from a sample's time to the kiosk knowing it (ms)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--display-hz", options->display_hz, "With --causal: the display's refresh rate (Hz)")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--present-mode", options->present_mode, "With --causal: fifo, mailbox or immediate")
+      ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}))
+      ->capture_default_str();
+  cmd->callback([options, rate, space] {
+    if (*rate != 0) options->sample_rate_hz = *rate;
+    options->input_space = *space == "world" ? InputSpace::world : InputSpace::screen;
+    SimulateResult r;
+    try {
+      r = run_simulate(*options);
+    } catch (const SimulateInterrupted& e) {
+      // Stopped on request, nothing left behind: the shell's convention, 128 + the signal.
+      std::fprintf(stderr, "mallet: %s\n", e.what());
+      set_exit_status(128 + e.signal());
+      return;
+    }
+    const auto& c = r.counters;
+    std::printf("%zu impact%s from %llu samples", r.impacts.size(), r.impacts.size() == 1 ? "" : "s",
+                static_cast<unsigned long long>(c.accepted));
+    if (c.ignored_non_finite || c.ignored_not_after_previous)
+      std::printf(" (ignored: %llu non-finite, %llu not after the previous sample)",
+                  static_cast<unsigned long long>(c.ignored_non_finite),
+                  static_cast<unsigned long long>(c.ignored_not_after_previous));
+    std::printf("\n");
+    if (c.clamped_speed)
+      std::printf("note: %llu strike(s) faster than max_impact_speed_m_per_s were clamped\n",
+                  static_cast<unsigned long long>(c.clamped_speed));
+    if (c.touches_below_min_speed)
+      std::printf("note: %llu touch(es) slower than min_impact_speed_m_per_s made no impact\n",
+                  static_cast<unsigned long long>(c.touches_below_min_speed));
+    if (r.clipped_samples)
+      std::printf("note: %llu actuator samples passed the soft-clip knee (lower [actuator].gain)\n",
+                  static_cast<unsigned long long>(r.clipped_samples));
+    for (const auto& p : r.written) std::printf("wrote %s\n", p.string().c_str());
+  });
+}
+
+}  // namespace mallet::app

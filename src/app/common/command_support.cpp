@@ -1,0 +1,30 @@
+#include "app/common/command_support.hpp"
+
+#include <cstdio>
+
+namespace mallet::app {
+
+namespace {
+int g_exit_status = 0;
+std::vector<std::string> g_when_done;
+}  // namespace
+
+int exit_status() { return g_exit_status; }
+void set_exit_status(int status) { g_exit_status = status; }
+CLI::Validator positive_at_most(double most) {
+  char hi[32] = "";
+  if (most > 0) std::snprintf(hi, sizeof hi, "%g", most);
+  const std::string want = most > 0 ? std::string("must be > 0 and at most ") + hi : "must be > 0";
+  return CLI::Validator(
+      [most, want](std::string& value) {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(value, v) || !(v > 0) || (most > 0 && v > most)) return want + ", got " + value;
+        return std::string();
+      },
+      most > 0 ? std::string("in (0, ") + hi + "]" : "> 0");
+}
+
+void say_when_done(std::string line) { g_when_done.push_back(std::move(line)); }
+const std::vector<std::string>& lines_when_done() { return g_when_done; }
+
+}  // namespace mallet::app

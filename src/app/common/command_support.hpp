@@ -1,0 +1,26 @@
+#pragma once
+// What every command of `mallet` shares, whichever product it runs: its exit status, the
+// line said once it has succeeded, and the flags' own checks beyond CLI11's.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace mallet::app {
+
+//! A flag's check for a number in (0, `most`] (no upper bound when `most` is 0), worded
+//! "must be > 0 and at most 60, got 0". CLI11's own PositiveNumber would quote the largest
+//! double as its bound.
+CLI::Validator positive_at_most(double most = 0);
+
+//! The status the last command asked to exit with (0 unless it said otherwise).
+int exit_status();
+void set_exit_status(int status);
+
+//! A line for stderr once the command has succeeded (which settings it used): said after
+//! its work, so that a command refusing bad input still says exactly one line.
+void say_when_done(std::string line);
+//! The lines said so far (main prints them when the command ends with status 0).
+const std::vector<std::string>& lines_when_done();
+
+}  // namespace mallet::app

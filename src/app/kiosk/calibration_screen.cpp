@@ -1,0 +1,173 @@
+#include "app/kiosk/calibration_screen.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <system_error>
+
+#include "core/visitor_language.hpp"
+#include "render/text_wrap.hpp"
+
+namespace mallet::app {
+
+CalibrationScreen::CalibrationScreen(CalibrationSessionConfig config, std::optional<std::filesystem::path> save_to,
+                                     std::string remote)
+    : session_(config), save_to_(std::move(save_to)), remote_(std::move(remote)) {}
+
+void CalibrationScreen::tune_sensitivity(SensitivityTunerConfig config, std::string configured) {
+  tuner_.emplace(config);
+  configured_ = std::move(configured);
+  request_ = std::string(tuner_->preset());
+}
+
+std::optional<std::string> CalibrationScreen::sensitivity_request() {
+  std::optional<std::string> r;
+  r.swap(request_);
+  return r;
+}
+
+void CalibrationScreen::frame(const IrFrame& f) {
+  if (!tuning()) return;
+  switch (tuner_->observe(f)) {
+    case TunerStep::observing: return;
+    case TunerStep::next_preset: request_ = std::string(tuner_->preset()); return;
+    case TunerStep::chosen:
+      sensitivity_ = std::string(*tuner_->chosen());
+      sensitivity_chosen_ = true;
+      tuner_note_ = "IR sensitivity: " + sensitivity_;
+      break;
+    case TunerStep::failed: {
+      sensitivity_ = configured_;
+      const auto& v = tuner_->verdicts();
+      tuner_note_ = "IR sensitivity: none gave one clean dot (" +
+                    (v.empty() ? std::string("?") : std::string(v.back().preset) + ": " + v.back().verdict.reason) +
+                    "); kept " + configured_;
+      break;
+    }
+  }
+  request_ = sensitivity_;
+  std::fprintf(stderr, "<6>calibration: %s\n", tuner_note_.c_str());
+}
+
+CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
+  dot_seen_ = true;
+  if (outcome_ != Outcome::measuring || tuning()) return CalibrationStep::ignored;
+  const CalibrationStep step = session_.feed(t_ns, camera_px);
+  if (step == CalibrationStep::target_measured || step == CalibrationStep::unstable ||
+      step == CalibrationStep::round_rejected)
+    std::fprintf(stderr, "<6>calibration: %s at camera %.0f,%.0f\n", to_string(step), camera_px.x, camera_px.y);
+  if (step == CalibrationStep::round_rejected || step == CalibrationStep::failed) {
+    char buf[200];
+    if (const auto& fit = session_.last_fit())
+      std::snprintf(buf, sizeof buf, tr("Round %d: largest error %.1f px (limit %.1f px): measuring again"),
+                    session_.round(), fit->max_px, session_.config().max_error_screen_px);
+    else
+      std::snprintf(buf, sizeof buf, tr("Round %d refused: %s"), session_.round(), session_.failure().c_str());
+    last_round_ = buf;
+  }
+  if (step == CalibrationStep::accepted) accept();
+  if (step == CalibrationStep::failed) {
+    outcome_ = Outcome::failed;
+    char buf[240];
+    std::snprintf(buf, sizeof buf, tr("Calibration failed (%s); the previous calibration stays"),
+                  session_.failure().c_str());
+    message_ = buf;
+  }
+  return step;
+}
+
+void CalibrationScreen::accept() {
+  result_ = session_.calibration(remote_, utc_timestamp_now());
+  if (sensitivity_chosen_) result_->ir_sensitivity = sensitivity_;  // kept with it: restored at start-up
+  const auto& fit = session_.last_fit();
+  char buf[160];
+  std::snprintf(buf, sizeof buf, tr("Calibrated: reprojection error %.1f px rms, %.1f px max"), fit ? fit->rms_px : 0.0,
+                fit ? fit->max_px : 0.0);
+  message_ = buf;
+  if (!save_to_) {
+    outcome_ = Outcome::accepted;
+    message_ += remote_ == "mouse" ? tr(" (mouse: not saved)") : tr(" (not saved)");
+    return;
+  }
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(save_to_->parent_path(), ec);  // a failure shows in the write
+    write_calibration_file(*save_to_, *result_);
+    outcome_ = Outcome::accepted;
+    message_ += tr(", saved");
+  } catch (const std::exception& e) {
+    // Not written: the kiosk keeps its previous calibration, and the operator sees why.
+    outcome_ = Outcome::failed;
+    result_.reset();
+    message_ = std::string(tr("Calibration not saved: ")) + e.what();
+  }
+}
+
+std::string CalibrationScreen::status_line() const {
+  if (outcome_ != Outcome::measuring) return message_;
+  // The target on the screen now, by its place in reading order: a round that asks one
+  // target again (the fifth, say) must not read as the ninth, as a count of the measured
+  // ones would.
+  const std::size_t count = session_.targets().size();
+  const int target = session_.current_target().value_or(static_cast<int>(count) - 1);
+  char status[200];
+  std::snprintf(status, sizeof status, tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1,
+                dot_seen_ ? tr("light seen") : tr("no light seen"));
+  return status;
+}
+
+void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
+  const float px = o.atlas().pixel_height();
+  const std::array<float, 4> white{1.0f, 1.0f, 1.0f, 1.0f}, dim{1.0f, 1.0f, 1.0f, 0.35f},
+      done{0.35f, 0.85f, 0.45f, 1.0f}, ring{1.0f, 0.78f, 0.2f, 1.0f};
+  o.fill_rect(0, 0, w, h, {0.02f, 0.02f, 0.04f, 0.86f});
+  // The words sit between the target rows (0.1, 0.5, 0.9 of the height by default).
+  // Each instruction on as many centred lines as the screen's width needs (a long language,
+  // a portrait screen); the next one below it.
+  float pen = h * 0.27f;
+  auto say = [&](std::string_view text, std::array<float, 4> colour) {
+    for (const std::string& line : render::wrap_text(o.atlas(), text, w - 4 * px)) {
+      o.text(w / 2, pen, line, colour, render::TextAlign::center);
+      pen += px * 1.3f;
+    }
+    pen += px * 0.2f;
+  };
+  say(tr("Calibration"), white);
+  say(tr("Hold the mallet's light still on the ring until it fills"), {1, 1, 1, 0.8f});
+
+  if (tuning()) {
+    const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
+    const auto& verdicts = tuner_->verdicts();
+    say(tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f});
+    o.progress_ring(cx, cy, r, 8.0f,
+                    static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
+    const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) +
+                             std::string(tuner_->preset()) + "   " + (dot_seen_ ? tr("light seen") : tr("no light seen"));
+    o.text(w / 2, h * 0.70f, line, white, render::TextAlign::center);
+    return;
+  }
+  const std::vector<Vec2>& targets = session_.targets();
+  const std::optional<int> current = session_.current_target();
+  const float r = std::max(10.0f, std::min(w, h) * 0.035f);
+  for (int i = 0; i < static_cast<int>(targets.size()); ++i) {
+    const float x = static_cast<float>(targets[static_cast<std::size_t>(i)].x) * w;
+    const float y = static_cast<float>(targets[static_cast<std::size_t>(i)].y) * h;
+    if (current && *current == i) {
+      o.stroke_circle(x, y, r, 2.0f, white);
+      o.fill_circle(x, y, r * 0.18f, white);
+      o.progress_ring(x, y, r + 6.0f, 6.0f, static_cast<float>(session_.progress()), ring);
+    } else if (session_.measured(i)) {
+      o.fill_circle(x, y, r * 0.3f, done);
+    } else {
+      o.stroke_circle(x, y, r * 0.5f, 1.5f, dim);
+    }
+  }
+
+  o.text(w / 2, h * 0.70f, status_line(), outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
+         render::TextAlign::center);
+  if (outcome_ == Outcome::measuring && !last_round_.empty())
+    o.text(w / 2, h * 0.70f + px * 1.5f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
+  else if (outcome_ == Outcome::measuring && !tuner_note_.empty())
+    o.text(w / 2, h * 0.70f + px * 1.5f, tuner_note_, {1, 1, 1, 0.7f}, render::TextAlign::center);
+}
+
+}  // namespace mallet::app

@@ -1,0 +1,484 @@
+#include "app/kiosk/doctor.hpp"
+
+#include <grp.h>
+#include <pwd.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <system_error>
+#include <thread>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
+
+#include "audio/audio_setup.hpp"
+#include "core/data_paths.hpp"
+#include "app/kiosk/kiosk_setup.hpp"
+#include "app/strike/remote_pointer.hpp"
+#include "app/common/settings_source.hpp"
+#include "core/visitor_catalogues.hpp"
+#include "render/render_setup.hpp"
+#include "audio/portaudio_output.hpp"
+#include "core/calibration_file.hpp"
+#include "core/config/scene_config.hpp"
+#include "core/visitor_language.hpp"
+#include "input/clock.hpp"
+#include "input/wiimote/hid_transport.hpp"
+#include "input/wiimote/wiimote_device.hpp"
+#include "render/font_atlas.hpp"
+#include "render/gltf_model.hpp"
+#include "render/window_target.hpp"
+
+namespace mallet::app {
+namespace fs = std::filesystem;
+namespace wm = input::wiimote;
+
+namespace {
+
+constexpr const char* kUnit = "mallet.service";
+
+DoctorCheck fail(std::string name, std::string found, std::string fix) {
+  return {std::move(name), CheckLevel::fail, std::move(found), std::move(fix)};
+}
+
+//! A command's first line of output and its exit status (-1: it could not be run). The
+//! commands are fixed strings: nothing from a file or a person reaches the shell.
+struct Ran {
+  int status = -1;
+  std::string out;
+};
+Ran run(const std::string& command) {
+  Ran r;
+  FILE* p = ::popen((command + " 2>/dev/null").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 512> buf{};
+  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int st = ::pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  while (!r.out.empty() && (r.out.back() == '\n' || r.out.back() == ' ')) r.out.pop_back();
+  return r;
+}
+
+std::size_t count_lines(const std::string& s) {
+  return s.empty() ? 0 : static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')) + 1;
+}
+
+std::string ms_text(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f ms", s * 1e3);
+  return buf;
+}
+
+// ---- the devices (the command only) ----
+
+VkExtent2D display_size(std::string& said) {
+  if (render::WindowSystem::display_available()) {
+    render::WindowSystem ws;
+    if (GLFWmonitor* m = glfwGetPrimaryMonitor())
+      if (const GLFWvidmode* mode = glfwGetVideoMode(m)) {
+        said = "the display";
+        return {static_cast<std::uint32_t>(mode->width), static_cast<std::uint32_t>(mode->height)};
+      }
+  }
+  said = "no display here: a 1080p screen assumed";
+  return {1920, 1080};
+}
+
+DoctorCheck check_vulkan(const DoctorOptions& o, const AppConfig& config, const Scene& scene) {
+  try {
+    std::string said;
+    const render::HeadlessOptions ho = render::kiosk_headless_options(config.render, display_size(said), o.device);
+    render::HeadlessRenderer renderer(scene, ho);
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(renderer.context().physical_device(), &props);
+    // The kiosk's own frame: the mallet over the cached background, with its shadow; the
+    // first frames build the background and warm the pipelines, so they are not counted.
+    render::FrameState state;
+    state.mallet_centre = {0.0, 0.05};
+    for (int i = 0; i < 3; ++i) renderer.draw(state);
+    constexpr int kFrames = 20;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < kFrames; ++i) {
+      state.mallet_centre = {0.002 * i, 0.05};
+      renderer.draw(state);
+    }
+    renderer.read_back();  // waits for the last frame
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / kFrames;
+    DoctorCheck c = judge_renderer(renderer.context().device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
+                                   ho.size.width, ho.size.height, ms);
+    c.found += " (" + said + ")";
+    return c;
+  } catch (const std::exception& e) {
+    return fail("vulkan", std::string("no usable Vulkan 1.3 device: ") + e.what(),
+                "install the GPU's Vulkan driver (mesa-vulkan-drivers; lavapipe draws on the CPU) and check "
+                "`vulkaninfo --summary`");
+  }
+}
+
+DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
+  try {
+    // The output exactly as the kiosk opens it: the configured device, rate and routing.
+    audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/false);
+    audio::PortAudioOutput output(*rig.engine, config.audio, {});
+    const audio::DeviceInfo d = output.device();
+    const AudioRouting& r = config.audio.routing;
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "\"%s\" (%s), %.0f Hz, output latency %s, %d channels: note on %d, actuator on %d (device has %d)",
+                  d.name.c_str(), d.host_api.c_str(), output.sample_rate_hz(), ms_text(output.output_latency_s()).c_str(),
+                  r.channels, r.acoustic, r.actuator, d.max_output_channels);
+    DoctorCheck c{"audio", CheckLevel::ok, buf, ""};
+    if (r.channels > d.max_output_channels) {
+      c.level = CheckLevel::fail;
+      c.fix = "[audio.routing] channels is more than the device has: lower it, or choose another [audio] device "
+              "(`mallet audio devices`)";
+    } else if (r.acoustic == r.actuator) {
+      c.level = CheckLevel::warn;
+      c.fix = "the note and the actuator share a channel: set [audio.routing] acoustic and actuator apart, then "
+              "check the wiring with `mallet audio test --channel actuator`";
+    } else if (static_cast<int>(output.sample_rate_hz()) != config.audio.sample_rate_hz) {
+      c.level = CheckLevel::warn;
+      c.fix = "the device runs at another rate than [audio] sample_rate_hz: set it to the device's";
+    } else if (output.output_latency_s() > 0.030) {
+      c.level = CheckLevel::warn;
+      c.fix = "over 30 ms: the actuator is felt late; lower [audio] suggested_latency_ms or frames_per_buffer";
+    }
+    return c;
+  } catch (const std::exception& e) {
+    return fail("audio", e.what(),
+                "connect the sound card and check that ALSA sees it (`aplay -l`), then choose it with [audio] device "
+                "(`mallet audio devices` lists them)");
+  }
+}
+
+std::string remote_identity(const wm::HidDeviceInfo& d) { return d.serial.empty() ? d.path : d.serial; }
+
+DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
+  const std::string& source = config.input.source;
+  if (source == "mouse" || source == "replay")
+    return {"wiimote", CheckLevel::ok, "not used: [input] source = \"" + source + "\"", ""};
+  wm::HidDeviceFinder finder;
+  std::optional<wm::HidDeviceInfo> found;
+  try {
+    for (const wm::HidDeviceInfo& d : finder.enumerate())
+      if (wm::matches_device(d, config.wiimote.device)) {
+        found = d;
+        break;
+      }
+  } catch (const std::exception& e) {
+    return fail("wiimote", std::string("cannot list HID devices: ") + e.what(), "see the hidraw check");
+  }
+  if (!found) {
+    DoctorCheck c{"wiimote", source == "wiimote" ? CheckLevel::fail : CheckLevel::warn,
+                  "no Wii Remote connected" +
+                      std::string(source == "auto" ? " (the kiosk plays with the mouse instead)" : ""),
+                  "pair and connect it (bluetoothctl: scan on, the red sync button under the battery cover, then "
+                  "pair, trust and connect its address); if it is connected, see the hidraw check"};
+    return c;
+  }
+  identity = remote_identity(*found);
+  input::SteadyClock clock;
+  wm::WiimoteDeviceConfig dc = wm::device_config(config);
+  dc.device = found->path;
+  wm::WiimoteDevice device(finder, clock, dc);
+  device.start();
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.remote_wait_s);
+  wm::WiimoteState s = device.state();
+  while (std::chrono::steady_clock::now() < until) {
+    s = device.state();
+    if (s.link == wm::LinkState::running && s.remote.battery) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  device.stop();
+  std::string found_text = "Wii Remote " + *identity + " (" + found->path + "), " + to_string(s.link);
+  if (s.link != wm::LinkState::running)
+    return fail("wiimote", found_text + (s.problem.empty() ? "" : ": " + s.problem),
+                "the IR camera's start-up was not answered: press 1+2 to reconnect it, change its batteries");
+  char buf[120];
+  const double battery = s.remote.battery ? *s.remote.battery / 200.0 : -1.0;
+  std::snprintf(buf, sizeof buf, ", IR camera answered, %.0f reports/s, battery %s", s.remote.ir_rate_hz,
+                battery >= 0 ? (std::to_string(static_cast<int>(std::min(1.0, battery) * 100)) + " %").c_str() : "unknown");
+  DoctorCheck c{"wiimote", CheckLevel::ok, found_text + buf, ""};
+  if (s.remote.battery_low) {
+    c.level = CheckLevel::warn;
+    c.fix = "the batteries are low: change them";
+  }
+  return c;
+}
+
+// ---- what opens no device ----
+
+DoctorCheck check_models(const std::vector<fs::path>& scenes) {
+  std::size_t models = 0;
+  for (const fs::path& file : scenes) {
+    try {
+      const Scene scene = config::load_scene(file);
+      std::vector<std::string> seen;
+      for (const Scene::ModelRef& ref : scene.model_refs) {
+        if (std::find(seen.begin(), seen.end(), ref.model) != seen.end()) continue;
+        seen.push_back(ref.model);
+        try {
+          render::load_gltf(render::models_dir() / ref.model);
+          ++models;
+        } catch (const std::exception& e) {
+          return fail("models", (ref.at.file.empty() ? "" : FileError(ref.at, ref.key + ": ").what()) + std::string(e.what()),
+                      "replace the model, or name a shipped one (" + render::models_dir().string() + ")");
+        }
+      }
+    } catch (const std::exception& e) {
+      return fail("models", e.what(), "fix the scene file");
+    }
+  }
+  return {"models", CheckLevel::ok, std::to_string(models) + " glTF models of " + std::to_string(scenes.size()) +
+                                        " scenes load (" + render::models_dir().string() + ")", ""};
+}
+
+DoctorCheck check_soundfont(const AppConfig& config) {
+  if (config.audio.acoustic != AcousticRoute::midi)
+    return {"soundfont", CheckLevel::ok, "not needed ([audio] acoustic = \"modal\")", ""};
+  std::error_code ec;
+  const fs::path sf = config.audio.soundfont;
+  if (!fs::is_regular_file(sf, ec) || ::access(sf.c_str(), R_OK) != 0)
+    return fail("soundfont", "[audio] soundfont " + sf.string() + " cannot be read",
+                "install Debian's timgm6mb-soundfont (or another GM soundfont) and name its .sf2 in [audio] soundfont");
+  return {"soundfont", CheckLevel::ok, sf.string() + " (" + std::to_string(fs::file_size(sf, ec) >> 20) + " MiB)", ""};
+}
+
+//! The visitor languages: every shipped catalogue readable (the page's L reaches them all),
+//! the ones the settings show, and the Japanese font its texts need.
+DoctorCheck check_languages(const AppConfig& config) {
+  std::vector<std::string> problems;
+  catalogue_texts(locale_dir(), problems);
+  std::string shown = config.language;
+  if (!config.attract.languages.empty()) {
+    shown += " (attract:";
+    for (const std::string& l : config.attract.languages) shown += " " + l;
+    shown += ")";
+  }
+  const std::size_t catalogues = visitor_languages().size() - 1;
+  std::string found = visitor_languages_text() + ": " + std::to_string(catalogues - problems.size()) + " of " +
+                      std::to_string(catalogues) + " catalogues in " + locale_dir().string() + "; shown: " + shown;
+  if (!problems.empty())
+    return {"languages", CheckLevel::warn, found + "; " + problems.front(),
+            "reinstall the package (its catalogues are /usr/share/locale/*/LC_MESSAGES/mallet.mo); meanwhile those "
+            "languages show in English"};
+  std::error_code ec;
+  const fs::path cjk = render::FontAtlas::default_cjk_font();
+  if (!fs::is_regular_file(cjk, ec) || ::access(cjk.c_str(), R_OK) != 0)
+    return {"languages", CheckLevel::warn, found + "; no Japanese font (" + cjk.string() + "): Japanese shows as '?'",
+            "apt install fonts-ipafont-gothic"};
+  return {"languages", CheckLevel::ok, found + "; Japanese font " + cjk.string(), ""};
+}
+
+//! The user the service runs as (mallet), else whoever runs the doctor.
+std::string kiosk_user(bool& service_user) {
+  service_user = ::getpwnam("mallet") != nullptr;
+  if (service_user) return "mallet";
+  const passwd* me = ::getpwuid(::getuid());
+  return me ? me->pw_name : "?";
+}
+
+DoctorCheck check_hidraw() {
+  std::error_code ec;
+  std::string rule;
+  const fs::path shipped(wm::kUdevRulePath);
+  for (const fs::path& p : {fs::path(wm::kLocalUdevRulePath), shipped, "/lib/udev/rules.d" / shipped.filename()})
+    if (fs::exists(p, ec)) {
+      rule = p.string();
+      break;
+    }
+  bool service_user = false;
+  const std::string user = kiosk_user(service_user);
+  std::vector<std::string> missing;
+  if (const passwd* pw = service_user ? ::getpwnam(user.c_str()) : nullptr) {
+    std::vector<gid_t> groups(64);
+    int n = static_cast<int>(groups.size());
+    if (::getgrouplist(pw->pw_name, pw->pw_gid, groups.data(), &n) < 0) {
+      groups.resize(static_cast<std::size_t>(n));
+      ::getgrouplist(pw->pw_name, pw->pw_gid, groups.data(), &n);
+    }
+    groups.resize(static_cast<std::size_t>(std::max(n, 0)));
+    for (const char* want : {"input", "audio", "video", "render"}) {
+      const group* g = ::getgrnam(want);
+      if (g && std::find(groups.begin(), groups.end(), g->gr_gid) == groups.end()) missing.emplace_back(want);
+    }
+  }
+  // Remotes present whose node this process cannot open.
+  std::vector<std::string> closed;
+  for (const fs::directory_entry& e : fs::directory_iterator("/dev", ec))
+    if (e.path().filename().string().rfind("hidraw", 0) == 0 && ::access(e.path().c_str(), R_OK | W_OK) != 0)
+      closed.push_back(e.path().string());
+  std::string found = (rule.empty() ? "udev rule " + shipped.filename().string() + " not installed" : "udev rule " + rule) +
+                      "; user " + user + (service_user ? " (the service's)" : " (no mallet user: not installed)");
+  if (!missing.empty()) {
+    found += " is not in";
+    for (const std::string& g : missing) found += " " + g;
+  }
+  if (!closed.empty()) found += "; " + std::to_string(closed.size()) + " hidraw node(s) this user cannot open";
+  DoctorCheck c{"hidraw", CheckLevel::ok, found, ""};
+  if (rule.empty()) {
+    c.level = CheckLevel::fail;
+    c.fix = "install the mallet package (it ships the rule), or create " + std::string(wm::kLocalUdevRulePath) +
+            " containing " + std::string(wm::kUdevRule) + " and run `udevadm control --reload && udevadm trigger`";
+  } else if (!missing.empty() && service_user) {
+    c.level = CheckLevel::warn;
+    c.fix = "`adduser mallet GROUP` for each group named (the package's postinst does this)";
+  } else if (!closed.empty()) {
+    c.level = CheckLevel::warn;
+    c.fix = "the seat session gives the kiosk its remote (TAG uaccess); from a shell, run as the mallet user, or "
+            "reconnect the remote after installing the rule";
+  }
+  return c;
+}
+
+DoctorCheck check_calibration(const std::optional<std::string>& remote) {
+  const fs::path path = calibration_path();
+  std::error_code ec;
+  std::optional<Calibration> cal;
+  std::string problem;
+  if (fs::exists(path, ec)) {
+    try {
+      cal = load_calibration(path);
+    } catch (const std::exception& e) {
+      problem = e.what();
+    }
+  }
+  return judge_calibration(path.string(), cal, problem, static_cast<std::int64_t>(std::time(nullptr)), remote);
+}
+
+DoctorCheck check_disk() {
+  // Where the kiosk writes: its state (calibration) and, by default, the study results.
+  fs::path where = state_dir();
+  std::error_code ec;
+  while (!where.empty() && !fs::exists(where, ec) && where != where.parent_path()) where = where.parent_path();
+  struct statvfs st {};
+  if (where.empty() || ::statvfs(where.c_str(), &st) != 0)
+    return fail("disk", "cannot read the free space of " + state_dir().string(), "check that the disk is mounted");
+  return judge_free_space(where.string(), static_cast<std::uint64_t>(st.f_bavail) * st.f_frsize);
+}
+
+bool systemd_running() {
+  std::error_code ec;
+  return fs::is_directory("/run/systemd/system", ec);
+}
+
+DoctorCheck check_service() {
+  if (!systemd_running())
+    return {"service", CheckLevel::warn, "systemd is not running on this machine (a container, or CI)",
+            "on the kiosk itself: `systemctl enable --now mallet`"};
+  const Ran enabled = run(std::string("systemctl is-enabled ") + kUnit);
+  const Ran active = run(std::string("systemctl is-active ") + kUnit);
+  const Ran restarts = run(std::string("journalctl --no-pager -q -o cat --since=-24h -u ") + kUnit +
+                           " -g 'Scheduled restart job'");
+  const std::size_t n = restarts.status == 0 ? count_lines(restarts.out) : 0;
+  std::string found = kUnit + std::string(" ") + (enabled.out.empty() ? "not installed" : enabled.out) + ", " +
+                      (active.out.empty() ? "unknown" : active.out) + ", " + std::to_string(n) +
+                      " restart(s) in the last 24 h";
+  DoctorCheck c{"service", CheckLevel::ok, found, ""};
+  if (enabled.out != "enabled") {
+    c.level = CheckLevel::warn;
+    c.fix = "`systemctl enable mallet` so that the kiosk starts at boot";
+  } else if (active.out != "active") {
+    c.level = CheckLevel::warn;
+    c.fix = "`systemctl start mallet`; `journalctl -u mallet -b` says why it stopped";
+  } else if (n > 0) {
+    c.level = CheckLevel::warn;
+    c.fix = "`journalctl -u mallet --since=-24h` shows each crash's last lines";
+  }
+  return c;
+}
+
+DoctorCheck check_watchdog() {
+  if (!systemd_running()) return {"watchdog", CheckLevel::ok, "no journal to read here (systemd is not running)", ""};
+  const Ran last = run(std::string("journalctl --no-pager -q -o short-iso -n 1 -u ") + kUnit + " -g 'Watchdog timeout'");
+  if (last.status != 0 || last.out.empty())
+    return {"watchdog", CheckLevel::ok, "the watchdog has not stopped the kiosk (journal)", ""};
+  // The kiosk says which of input, audio or render stalled when it stops feeding the watchdog.
+  const Ran why = run(std::string("journalctl --no-pager -q -o cat -n 1 -u ") + kUnit + " -g 'watchdog not fed'");
+  return {"watchdog", CheckLevel::warn, "last stop: " + last.out + (why.out.empty() ? "" : "; the kiosk said: " + why.out),
+          "the kiosk stopped feeding the watchdog (input, audio or render stalled): `journalctl -u mallet` around "
+          "that time"};
+}
+
+}  // namespace
+
+std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDeviceFacts& facts) {
+  std::vector<DoctorCheck> checks{facts.vulkan, facts.audio, facts.wiimote};
+  KioskOptions ko;
+  ko.config = o.config;
+  ko.config_dir = o.config_dir;
+  try {
+    const KioskSetup setup = load_kiosk_setup(ko);
+    DoctorCheck c{"settings", CheckLevel::ok,
+                  operator_settings(o.config, o.config_dir).describe() + "; scene " + setup.scene.file + "; " +
+                      std::to_string(setup.scene_choices.size()) + " scene choices",
+                  ""};
+    if (!setup.problems.empty()) {
+      c.level = CheckLevel::warn;
+      c.found += "; " + std::to_string(setup.problems.size()) + " refused: " + setup.problems.front();
+      c.fix = "fix or remove the file named (`mallet config show` shows what is in force)";
+    }
+    checks.push_back(c);
+    std::vector<fs::path> scenes = setup.scene_choices;
+    if (std::find(scenes.begin(), scenes.end(), fs::path(setup.scene.file)) == scenes.end())
+      scenes.insert(scenes.begin(), setup.scene.file);
+    checks.push_back(check_models(scenes));
+    checks.push_back(check_soundfont(setup.config));
+    checks.push_back(check_languages(setup.config));
+  } catch (const std::exception& e) {
+    checks.push_back(fail("settings", e.what(), "fix the line named; `mallet config show` shows what is in force"));
+  }
+  checks.push_back(check_hidraw());
+  checks.push_back(check_calibration(facts.connected_remote));
+  checks.push_back(check_disk());
+  checks.push_back(check_service());
+  checks.push_back(check_watchdog());
+  return checks;
+}
+
+std::vector<DoctorCheck> run_doctor(const DoctorOptions& o) {
+  KioskDeviceFacts facts;
+  AppConfig config;
+  Scene scene;
+  try {
+    KioskOptions ko;
+    ko.config = o.config;
+    ko.config_dir = o.config_dir;
+    KioskSetup setup = load_kiosk_setup(ko);
+    config = std::move(setup.config);
+    scene = std::move(setup.scene);
+  } catch (const std::exception& e) {  // the settings check says why; the devices need them
+    const DoctorCheck skipped = fail("", "not checked: the settings or the scene cannot be read", "see `settings`");
+    facts.vulkan = skipped, facts.audio = skipped, facts.wiimote = skipped;
+    facts.vulkan.name = "vulkan", facts.audio.name = "audio", facts.wiimote.name = "wiimote";
+    return run_doctor_with(o, facts);
+  }
+  facts.vulkan = check_vulkan(o, config, scene);
+  facts.audio = check_audio(config, scene);
+  facts.wiimote = check_wiimote(o, config, facts.connected_remote);
+  return run_doctor_with(o, facts);
+}
+
+std::string doctor_json(const std::vector<DoctorCheck>& checks) {
+  nlohmann::ordered_json j;
+  int counts[3] = {0, 0, 0};
+  j["checks"] = nlohmann::ordered_json::array();
+  for (const DoctorCheck& c : checks) {
+    ++counts[static_cast<int>(c.level)];
+    j["checks"].push_back({{"name", c.name}, {"status", to_string(c.level)}, {"found", c.found}, {"fix", c.fix}});
+  }
+  j["ok"] = counts[0];
+  j["warn"] = counts[1];
+  j["fail"] = counts[2];
+  // What a check found can quote a device's bytes: any that are not UTF-8 become U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace mallet::app

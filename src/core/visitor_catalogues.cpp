@@ -1,0 +1,60 @@
+#include "core/visitor_catalogues.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <system_error>
+
+#include "core/data_paths.hpp"
+#include "core/visitor_language.hpp"
+
+#ifndef MALLET_BUILD_LOCALE_DIR
+#define MALLET_BUILD_LOCALE_DIR ""
+#endif
+
+namespace mallet {
+
+std::filesystem::path locale_dir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (const char* env = std::getenv("MALLET_LOCALE_DIR"); env && *env) return env;
+  if (const fs::path prefix = executable_prefix();
+      !prefix.empty() && fs::exists(prefix / "share" / "mallet" / "config" / "materials.toml", ec))
+    return prefix / "share" / "locale";
+  if (const fs::path built = MALLET_BUILD_LOCALE_DIR; !built.empty() && fs::is_directory(built, ec)) return built;
+  return "/usr/share/locale";
+}
+
+namespace {
+
+struct Texts {
+  std::string texts;
+  std::vector<std::string> problems;
+};
+
+const Texts& texts() {
+  static const Texts t = [] {
+    Texts read;
+    read.texts = catalogue_texts(locale_dir(), read.problems);
+    return read;
+  }();
+  return t;
+}
+
+}  // namespace
+
+void start_visitor_language(const std::string& language, std::vector<std::string>& problems) {
+  if (std::string why = bind_visitor_catalogues(locale_dir()); !why.empty()) problems.push_back(std::move(why));
+  for (const std::string& p : texts().problems) problems.push_back("language: " + p);
+  use_visitor_language(language);
+}
+
+const std::string& visitor_texts() {
+  static const bool said = [] {
+    for (const std::string& p : texts().problems) std::fprintf(stderr, "<4>language: %s\n", p.c_str());
+    return true;
+  }();
+  (void)said;
+  return texts().texts;
+}
+
+}  // namespace mallet

@@ -1,0 +1,34 @@
+#pragma once
+// What the product shows in words over the scene, shared by the kiosk's window, its headless
+// run and the study: the one-line banner (the invitation, the hints) and the bars' labels.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/impact.hpp"
+#include "core/scene.hpp"
+#include <glm/glm.hpp>
+
+#include "render/overlay.hpp"
+
+namespace mallet::render {
+
+//! The text centred near the top of a width×height screen, on a translucent band; wrapped
+//! onto more lines where one would not fit the screen's width (render/text_wrap.hpp).
+void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
+
+//! A label on a bar: its near end, as `view_proj` shows the bar on a width×height image, on
+//! a small translucent band so it reads on wood and metal alike.
+struct BarLabel {
+  int target = 0;
+  std::string text;
+};
+void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height, const std::vector<BarLabel>& labels);
+
+//! Each bar's note name ([visual] note_names) on its near end, as `view_proj` shows the bar
+//! on a width×height image, on a small translucent band so it reads on wood and metal alike.
+void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                     float height);
+
+}  // namespace mallet::render

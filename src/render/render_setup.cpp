@@ -1,0 +1,245 @@
+#include "render/render_setup.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include "core/data_paths.hpp"
+#include "core/visitor_catalogues.hpp"
+#include "core/file_error.hpp"
+#include "render/vk_error.hpp"
+
+namespace mallet::render {
+
+render::Validation validation_from_env() {
+  const char* v = std::getenv("MALLET_VK_VALIDATION");
+  if (v && std::string(v) == "required") return render::Validation::required;
+  if (v && *v) return std::string(v) == "0" ? render::Validation::off : render::Validation::if_available;
+#ifdef NDEBUG
+  return render::Validation::off;
+#else
+  return render::Validation::if_available;
+#endif
+}
+
+VkExtent2D parse_size(const std::string& text, const std::string& option) {
+  // WIDTHxHEIGHT, digits only (no std::regex: GCC 12 -O2 warns inside it).
+  const auto x = text.find('x');
+  const auto digits = [](const std::string& d) {
+    return !d.empty() && d.size() <= 5 && d.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
+    throw FileError(option, 0, 0, "expected WIDTHxHEIGHT such as 1280x720, got \"" + text + "\"");
+  const unsigned long w = std::stoul(text.substr(0, x)), h = std::stoul(text.substr(x + 1));
+  if (w < 16 || h < 16 || w > 8192 || h > 8192)
+    throw FileError(option, 0, 0, "width and height must be 16..8192, got " + text);
+  return {static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)};
+}
+
+std::filesystem::path models_dir() { return data_dir() / "models"; }
+
+std::unique_ptr<render::Context> make_window_context(const std::string& device) {
+  render::ContextOptions co;
+  co.validation = validation_from_env();
+  co.device_name = device;
+  co.instance_extensions = render::WindowSystem::instance_extensions();
+  co.swapchain = true;
+  return std::make_unique<render::Context>(co);
+}
+
+render::WindowOptions window_options(const RenderConfig& r, const std::string& size, bool windowed) {
+  render::WindowOptions wo;
+  const VkExtent2D extent = parse_size(size, "--size");
+  wo.width = static_cast<int>(extent.width);
+  wo.height = static_cast<int>(extent.height);
+  wo.fullscreen = !windowed;
+  wo.hide_cursor = !windowed;
+  wo.monitor = r.monitor;
+  parse_present_pacing(r.present_mode, wo.present_mode);  // the loader refused any other name
+  return wo;
+}
+
+render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r) {
+  render::RenderSettings rs;
+  // An explicit count is everything's: the background's own samples stay 1, the default.
+  if (r.msaa == "auto")
+    render::use_recommended_antialiasing(ctx, rs);
+  else
+    rs.samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  rs.shadow = r.shadow;
+  return rs;
+}
+
+std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
+  const float shorter = static_cast<float>(std::min(extent.width, extent.height));
+  const float px = std::max(14.0f, shorter / 24.0f);
+  try {  // every visitor language's glyphs, Japanese's from the CJK font
+    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
+                                               render::FontAtlas::default_cjk_font());
+  } catch (const FileError& e) {
+    if (e.file() == render::FontAtlas::default_font().string()) throw;
+    std::fprintf(stderr, "<4>font: %s: Japanese shows as '?'\n", e.what());
+    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
+                                               std::filesystem::path{});
+  }
+}
+
+ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
+                             const std::string& title)
+    : device_name(device.empty() ? r.device : device),
+      options(window_options(r, size, windowed)),
+      ctx(make_window_context(device_name)),
+      cache(std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir())) {
+  options.title = title;
+  max_fps_ = r.max_fps;
+  window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
+  aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
+  font = overlay_font(window->extent());
+  overlay = std::make_unique<render::Overlay>(*font);
+  if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
+    std::stringstream in(lose);
+    for (std::string n; std::getline(in, n, ',');)
+      if (!n.empty()) inject_lost_at_.push_back(std::strtoull(n.c_str(), nullptr, 10));
+    std::sort(inject_lost_at_.begin(), inject_lost_at_.end());
+  }
+}
+
+void ProductWindow::set_max_fps(double max_fps) {
+  if (max_fps == max_fps_) return;
+  max_fps_ = max_fps;
+  pace_said_ = false;
+  pacer_.set_max_fps(0);
+}
+
+void ProductWindow::pace() {
+  held_ns_ = 0;
+  // A still scene: the last frame was not drawn, so no acquire held this loop back. It waits
+  // for the grid's next frame start instead, in step with the display (or the budget's own
+  // grid, below), so that nothing moving costs nothing but the wake-ups.
+  auto wait_for_next_start = [this] {
+    const Nanos now = monotonic_now();
+    sleep_until_monotonic(clock.next_start(now + 1));
+    held_ns_ = monotonic_now() - now;
+  };
+  if (max_fps_ < 0) {  // mallet run --no-frame-cap
+    if (!std::exchange(pace_said_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
+    if (window->still()) wait_for_next_start();
+    return;
+  }
+  // Decided before every frame from the present model, which judges the display by the
+  // frames' own pace (the budget's waits left out), so a cap never hides an unpaced display.
+  const double refresh = window->refresh_hz();
+  const double cap = max_fps_ > 0 ? std::min(max_fps_, refresh) : refresh;
+  const bool fifo = clock.pacing() == PresentPacing::fifo;
+  const bool display_paces = fifo && !clock.unpaced();
+  const bool pace = !display_paces || cap < refresh * 0.98;
+  if (pace != (pacer_.max_fps() > 0)) pacer_.set_max_fps(pace ? cap : 0);
+  constexpr std::uint64_t kSettledFrames = 120;  // the present model's estimate settles in ~60
+  if (frames_ >= kSettledFrames && !std::exchange(pace_said_, true)) {
+    if (pace)
+      std::fprintf(stderr, "<6>render: frames paced at %.0f a second (%s)\n", cap,
+                   display_paces ? "[render] max_fps, below the display's refresh"
+                   : fifo        ? "the display does not hold them back"
+                                 : "mailbox or immediate presenting");
+    else
+      std::fprintf(stderr, "<6>render: frames paced by the display at its %.0f Hz refresh\n", refresh);
+  }
+  if (!pace) {
+    if (window->still()) wait_for_next_start();
+    return;
+  }
+  const Nanos now = monotonic_now();
+  const Nanos wake = pacer_.begin(now);
+  if (wake <= now) return;
+  sleep_until_monotonic(wake);
+  held_ns_ = monotonic_now() - now;
+}
+
+bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,
+                                    const std::function<void()>& drop, const std::function<void()>& make) {
+  if (!inject_lost_at_.empty() && frames_ == inject_lost_at_.front()) {
+    inject_lost_at_.erase(inject_lost_at_.begin());
+    window->fail_next_draw(VK_ERROR_DEVICE_LOST);
+  }
+  try {
+    const bool drawn = window->draw(renderer, state);
+    frames_ += drawn;
+    aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
+    return drawn;
+  } catch (const render::RenderError& lost) {
+    if (lost.result() != VK_ERROR_DEVICE_LOST) throw;
+    const Nanos at = monotonic_now();
+    ++devices_lost_;
+    std::fprintf(stderr,
+                 "<3>render: the Vulkan device was lost (%s); rebuilding the device, the pipelines and the "
+                 "background (the sound and the remote's strikes go on)\n",
+                 lost.what());
+    constexpr int kTries = 5;
+    for (int attempt = 1;; ++attempt) {
+      try {
+        drop();  // before the device it was made on
+        rebuild();
+        make();
+        break;
+      } catch (const render::RenderError& e) {
+        if (attempt == kTries) throw;
+        std::fprintf(stderr, "<3>render: rebuilding failed (%s); trying again in 1 s (%d of %d)\n", e.what(),
+                     attempt, kTries);
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+      }
+    }
+    std::fprintf(stderr, "<5>render: rebuilt on %s in %.0f ms; drawing again (device lost %llu time(s))\n",
+                 ctx->device_name().c_str(), to_seconds(monotonic_now() - at) * 1e3,
+                 static_cast<unsigned long long>(devices_lost_));
+    return false;
+  }
+}
+
+void ProductWindow::rebuild() {
+  if (window) kept_window = window->release_window();
+  window.reset();  // its surface and swapchain, on the old instance and device
+  cache.reset();
+  ctx.reset();
+  ctx = make_window_context(device_name);
+  cache = std::make_unique<render::PipelineCache>(*ctx, render::PipelineCache::default_dir());
+  window = std::make_unique<render::WindowTarget>(*ctx, options, &clock, kept_window);
+  kept_window = nullptr;
+}
+
+HeadlessOptions kiosk_headless_options(const RenderConfig& r, VkExtent2D size, const std::string& device) {
+  HeadlessOptions ho;
+  ho.size = size;
+  ho.auto_samples = r.msaa == "auto";
+  if (!ho.auto_samples) ho.settings.samples = static_cast<VkSampleCountFlagBits>(std::stoi(r.msaa));
+  ho.settings.shadow = r.shadow;
+  ho.device = device.empty() ? r.device : device;
+  return ho;
+}
+
+HeadlessRenderer::HeadlessRenderer(const Scene& scene, const HeadlessOptions& options) {
+  render::ContextOptions co;
+  co.validation = options.validation;
+  co.device_name = options.device;
+  ctx_ = std::make_unique<render::Context>(co);
+  cache_ = std::make_unique<render::PipelineCache>(*ctx_, options.cache_dir);
+  render::RenderSettings settings = options.settings;
+  if (options.auto_samples) render::use_recommended_antialiasing(*ctx_, settings);
+  const std::filesystem::path models = options.models.empty() ? models_dir() : options.models;
+  renderer_ = std::make_unique<render::SceneRenderer>(*ctx_, scene, models, render::OffscreenTarget::kFormat, settings,
+                                                      cache_->get());
+  target_ = std::make_unique<render::OffscreenTarget>(*ctx_, options.size);
+}
+
+HeadlessRenderer::~HeadlessRenderer() {
+  target_.reset();
+  renderer_.reset();
+  cache_.reset();  // saves the cache
+  ctx_.reset();
+}
+
+}  // namespace mallet::render
