@@ -21,38 +21,29 @@
 #include "app/kiosk/calibration_screen.hpp"
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
-#include "app/kiosk/doctor.hpp"
 #include "render/overlay_text.hpp"
-#include "app/kiosk/metrics_file.hpp"
+#include "app/kiosk/input_choice.hpp"
+#include "app/kiosk/kiosk_health.hpp"
+#include "app/kiosk/kiosk_stage.hpp"
+#include "app/kiosk/latency_test.hpp"
+#include "app/kiosk/operator_page.hpp"
 #include "app/strike/mouse_pointer.hpp"
 #include "app/strike/remote_pointer.hpp"
 #include "render/render_setup.hpp"
-#include "core/saved_calibration.hpp"
 #include "core/strike_loop.hpp"
 #include "app/strike/strike_route.hpp"
-#include "app/kiosk/systemd_notify.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/bar_lights.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
-#include "core/file_error.hpp"
-#include "core/kiosk_metrics.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/language_choice.hpp"
 #include "core/operator_knobs.hpp"
 #include "input/clock.hpp"
-#include "input/evdev/evdev_mouse.hpp"
-#include "input/wiimote/hid_transport.hpp"
-#include "input/wiimote/replay_transport.hpp"
-#include "input/wiimote/wiimote_device.hpp"
 #include "core/quality.hpp"
 #include "core/study/visitor_offer.hpp"
 #include "core/visitor_language.hpp"
-#include "render/font_atlas.hpp"
 #include "render/overlay.hpp"
-#include "render/pipeline_cache.hpp"
-#include "render/text_wrap.hpp"
-#include "render/vk_handle.hpp"
 #include "render/window_target.hpp"
 
 namespace mallet::app {
@@ -73,46 +64,7 @@ KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   return k;
 }
 
-//! Everything that depends on the scene and the settings, rebuilt on a reload.
-struct Stage {
-  AppConfig config;
-  Scene scene;
-  //! Strikes by target and material, recorded by every route of this stage (any thread).
-  std::unique_ptr<StrikeTally> tally;
-  std::string settings_line;                          //!< where the settings came from
-  std::vector<std::filesystem::path> scene_choices;  //!< the usable [scenes] choices (S)
-  std::vector<std::string> problems;                  //!< drop-ins and scene choices refused
-  audio::AudioRig rig;
-  std::unique_ptr<audio::PortAudioOutput> output;
-  std::string audio_status;
-  std::unique_ptr<render::SceneRenderer> renderer;
-  //! The main thread's strike route: the ghost, and the mouse when the window system reads it.
-  std::unique_ptr<StrikeRoute> route;
-  InputSource source = InputSource::mouse;
-  std::string input_why;             //!< how the source was chosen, for the operator page
-  std::optional<Calibration> calibration;  //!< the remote's camera → screen map in use
-  std::string calibration_status;
-  std::string calibration_status_sensitivity;  //!< what the last calibration's tuner chose
-  // The Wii Remote (or a recording played as one): its reading thread feeds `remote`,
-  // which posts strikes to the engine. The device is declared last so that it (and its
-  // thread) goes first.
-  std::unique_ptr<input::wiimote::ReplayFinder> replay;
-  std::unique_ptr<RemotePointer> remote;
-  std::unique_ptr<input::wiimote::WiimoteDevice> device;
-  bool link_up = false;
-  bool checked_calibration = false;  //!< against the first connected remote's identity
-  // The mouse read at its source (input.mouse = auto | evdev): its reading thread feeds
-  // `mouse`, which posts strikes itself. Without it the window system's cursor events
-  // feed the main thread's route. The source is declared last so that its thread goes first.
-  std::string mouse_line;  //!< how the mouse is read, for the log and the operator page
-  std::unique_ptr<MousePointer> mouse;
-  std::unique_ptr<input::evdev::EvdevMouse> evdev;
-  //! [study] visitor_protocol, loaded against this scene (none: off, or it did not load).
-  std::optional<study::StudyProtocol> visitor;
-};
 
-//! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
-std::string remote_identity(const input::wiimote::HidDeviceInfo& d) { return d.serial.empty() ? d.path : d.serial; }
 
 class WindowKiosk {
  public:
@@ -126,33 +78,14 @@ class WindowKiosk {
   void reload();
   void next_wall_material();  //!< operator page M: the wall's next material
   void next_scene();          //!< operator page S: the next of [scenes] choices
-  //! Operator page T: kLatencyTestPulses times, one a second, a white square in the top-left
-  //! corner, a strike's note on the speaker and its pulse on the actuator, all scheduled for
-  //! the same instant; a photodiode and a microphone (or a 240 fps video) show the offsets
-  //! the operator then enters as [timing] display_latency_ms and audio_output_latency_ms.
-  void start_latency_test(Nanos now);
-  void latency_test_frame(Nanos present);  //!< posts the pulses due, draws the square
   void on_cursor(double x, double y);  //!< the window system's cursor event, stamped as it is read
   void draw_overlay(Nanos now, double frame_ms);
   void apply_volume();
-  void heartbeat(Nanos now);
-  void choose_input(Stage& stage);
-  void choose_mouse(Stage& stage);  //!< evdev when it can be opened, else the window system's events
   void poll_remote(Nanos now);
   void calibration_frame(Nanos now, std::optional<Vec2> mouse_screen);
-  std::string input_line() const;
-  //! Operator page D: `mallet doctor`'s checks, with what the kiosk knows of the devices it
-  //! holds (its renderer, audio output and remote) instead of opening them again.
-  void run_doctor_checks(double frame_ms);
   std::string timing_line() const;  //!< the strike route's policy and the figures it uses
-  //! Strikes delivered since start, over every route and every reload.
-  std::uint64_t strikes() const;
-  //! Once a frame: the frame, the state and the tracking into metrics_; the file when due.
-  void feed_metrics(Nanos now);
-  void write_metrics(Nanos now);  //!< the gauges and totals read now, then the file
-  void retire_metrics(const Stage& old);  //!< a reload: keep the replaced stage's counts
   //! The stage's scene renderer on the window's current device.
-  std::unique_ptr<render::SceneRenderer> make_renderer(const Stage& stage);
+  std::unique_ptr<render::SceneRenderer> make_renderer(const KioskStage& stage);
   void install_callbacks();  //!< the window's key and cursor events to this kiosk
   //! The visitor micro-study: whether it is offered now (on the percussion scene, in the
   //! attract mode or play); and a visitor's strike on the "Yes" bar while it is.
@@ -169,7 +102,7 @@ class WindowKiosk {
   //! What a frame costs from its start to its present (input, logic, drawing), smoothed: the
   //! frame interval less the frame budget's wait.
   double work_ms_ = 0;
-  std::unique_ptr<Stage> stage_;
+  std::unique_ptr<KioskStage> stage_;
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
   LanguageChoice language_;  //!< [kiosk] language, [attract] languages, the page's L
@@ -178,30 +111,15 @@ class WindowKiosk {
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
   std::string notice_;                             //!< the last calibration's outcome ...
   Nanos notice_until_ = 0;                         //!< ... shown until then
-  static constexpr int kLatencyTestPulses = 10;
-  std::vector<Nanos> latency_test_;  //!< the test's instants still to come or on screen
+  LatencyTest latency_test_;  //!< the operator page's T
   std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
   std::vector<std::string> doctor_;        //!< the page's doctor lines (D); empty: the page's own
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
-  Nanos started_ = 0;
-  // Liveness: the watchdog is fed only while input, audio and render all make progress.
-  SystemdNotifier notifier_ = SystemdNotifier::from_environment();
-  Nanos next_watchdog_ = 0, next_log_ = 0;
-  bool starving_ = false;  //!< the watchdog was not fed at the last beat
-  std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
-  std::uint64_t still_frames_ = 0;  //!< frames not drawn: nothing on the screen would have changed
-  std::uint64_t callbacks_at_beat_ = 0;
-  std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
-  // [metrics]: what the kiosk counts, and the file it writes them to.
-  KioskMetrics metrics_;
-  MetricsFile metrics_file_{state_dir(), [](const std::string& line) { std::fprintf(stderr, "<4>%s\n", line.c_str()); },
-                            [](const std::string& line) { std::fprintf(stderr, "<5>%s\n", line.c_str()); }};
-  StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
-  std::uint64_t xruns_retired_ = 0;   //!< by the audio outputs a reload replaced
-  Nanos metrics_frame_at_ = 0;        //!< the last drawn frame's time
+  //! Liveness (systemd's watchdog, the heartbeat) and [metrics].
+  KioskHealth health_{monotonic_now()};
   std::optional<study::VisitorOffer> offer_;  //!< [study]: when the visitor study is offered
   Nanos offer_since_ = 0;             //!< the current offer's start: strikes before it do not accept
 };
@@ -209,7 +127,6 @@ class WindowKiosk {
 WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
     : options_(o), win_(setup.config.render, o.device, o.size, o.windowed, "Mallet") {
   install_callbacks();
-  started_ = monotonic_now();
   volume_ = setup.config.audio.volume;
   gain_ = setup.config.actuator.gain;
   build(std::move(setup));
@@ -217,7 +134,7 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
                win_.window->extent().width, win_.window->extent().height, stage_->audio_status.c_str());
 }
 
-std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const Stage& stage) {
+std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const KioskStage& stage) {
   return std::make_unique<render::SceneRenderer>(*win_.ctx, stage.scene, render::models_dir(), win_.window->format(),
                                                  render::render_settings(*win_.ctx, stage.config.render), win_.cache->get());
 }
@@ -262,7 +179,7 @@ void WindowKiosk::run_visitor_session() {
   // device may take only one stream), and its pointers' threads strike nothing (they still
   // hand their samples over).
   const bool sound = stage_->output != nullptr;
-  if (sound) xruns_retired_ += stage_->output->counters().xruns;
+  health_.output_closed(*stage_);
   stage_->output.reset();
   if (stage_->remote) stage_->remote->set_playing(false);
   if (stage_->mouse) stage_->mouse->set_playing(false);
@@ -284,19 +201,15 @@ void WindowKiosk::run_visitor_session() {
     const study::VisitorSessionResult r = options_.visitor_sessions.run(
         win_, stage_->config, stage_->scene, *stage_->visitor, study::visitor_session_id(id),
         study::utc_date(std::time(nullptr)), pointer, [this] {
-      const Nanos now = monotonic_now(), interval = notifier_.watchdog_interval().value_or(0);
-      if (interval > 0 && now >= next_watchdog_) {
-        notifier_.watchdog();
-        next_watchdog_ = now + interval;
-      }
-      return !g_stop.load();
-    });
+          health_.feed_watchdog(monotonic_now());
+          return !g_stop.load();
+        });
     std::fprintf(stderr, "<6>visitor study: %s %s, %d of %d trials, %s\n", r.id.c_str(),
                  !r.consented ? (r.abandoned ? "walked away at the consent" : "declined")
                  : r.abandoned ? "abandoned"
                                : "completed",
                  r.answered, r.planned, r.csv.c_str());
-    ++metrics_.visitor_study[r.abandoned ? "abandoned" : r.consented ? "completed" : "declined"];
+    ++health_.metrics().visitor_study[r.abandoned ? "abandoned" : r.consented ? "completed" : "declined"];
   } catch (const std::exception& e) {  // the kiosk plays on
     std::fprintf(stderr, "<3>visitor study: %s\n", e.what());
   }
@@ -306,13 +219,12 @@ void WindowKiosk::run_visitor_session() {
   stage_->renderer = make_renderer(*stage_);
   stage_->route->reset();
   if (sound) stage_->output = audio::start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status);
-  callbacks_at_beat_ = 0;  // the new output's callbacks count from 0
   offer_->session_ended(monotonic_now());
   offer_since_ = 0;
 }
 
 void WindowKiosk::build(KioskSetup setup) {
-  auto stage = std::make_unique<Stage>();
+  auto stage = std::make_unique<KioskStage>();
   stage->config = std::move(setup.config);
   stage->scene = std::move(setup.scene);
   stage->tally = std::make_unique<StrikeTally>(stage->scene);
@@ -325,7 +237,8 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->route = std::make_unique<StrikeRoute>(stage->scene, c, stage->rig.engine.get(), &win_.window->present_clock(),
                                                RouteOptions{audio::Producer::main, false, true});
   stage->route->on_strike = [t = stage->tally.get()](const Strike& s) { t->record(s.impact); };
-  choose_input(*stage);  // a bad replay file throws here, before anything running is touched
+  // A bad replay file throws here, before anything running is touched.
+  choose_input(*stage, {finder_, clock_, win_, last_cursor_});
   if (!c.study.visitor_protocol.empty() && stage->scene.kind == SceneKind::percussion) {
     try {  // a protocol that does not load: one line, and no offer
       if (!options_.visitor_sessions) throw std::runtime_error("this kiosk was started without the study");
@@ -343,8 +256,7 @@ void WindowKiosk::build(KioskSetup setup) {
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();
-  if (stage_) strikes_before_ = strikes();
-  if (stage_) retire_metrics(*stage_);
+  if (stage_) health_.retire(*stage_);
   const bool languages_changed = !stage_ || stage_->config.language != c.language ||
                                  stage_->config.attract.languages != c.attract.languages ||
                                  stage_->config.attract.language_every_s != c.attract.language_every_s;
@@ -354,8 +266,7 @@ void WindowKiosk::build(KioskSetup setup) {
   if (stage_->visitor)
     offer_.emplace(static_cast<Nanos>(std::llround(c.study.offer_every_s * 1e9)),
                    static_cast<Nanos>(std::llround(c.study.offer_for_s * 1e9)), now);
-  seed_strike_labels(stage_->scene, strikes_retired_);
-  metrics_file_.configure(stage_->config.metrics);
+  health_.stage_built(*stage_);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
   // The languages as set: a reload that changes them starts them afresh; one that does not
   // (the page's S, a SIGHUP for another key) keeps the operator's L.
@@ -376,73 +287,11 @@ void WindowKiosk::build(KioskSetup setup) {
     MousePointer* m = stage_->mouse.get();
     stage_->evdev->start([m](std::span<const PointerSample> samples) { m->on_samples(samples); });
   }
-  std::fprintf(stderr, "<6>%s\n", input_line().c_str());
+  std::fprintf(stderr, "<6>%s\n", input_line(*stage_).c_str());
   std::fprintf(stderr, "<6>%s\n", timing_line().c_str());
   apply_volume();
 }
 
-void WindowKiosk::choose_input(Stage& stage) {
-  const std::string& want = stage.config.input.source;
-  stage.source = InputSource::mouse;
-  if (want == "mouse") {
-    stage.input_why = "the settings say mouse";
-    choose_mouse(stage);
-    return;
-  }
-  if (want == "replay") {
-    stage.replay = std::make_unique<input::wiimote::ReplayFinder>(
-        input::wiimote::ReplayFinder::open_file(stage.config.input.replay_file, clock_));
-    stage.source = InputSource::replay;
-    stage.input_why = "replay of " + stage.config.input.replay_file;
-  } else if (want == "auto") {
-    std::optional<input::wiimote::HidDeviceInfo> found;
-    for (const auto& d : finder_.enumerate())
-      if (input::wiimote::matches_device(d, stage.config.wiimote.device)) {
-        found = d;
-        break;
-      }
-    if (!found) {
-      stage.input_why = "no Wii Remote found at start-up";
-      choose_mouse(stage);
-      return;
-    }
-    stage.input_why = "found " + remote_identity(*found);
-  } else {
-    stage.input_why = "the settings say wiimote";
-  }
-  if (want != "replay") stage.source = InputSource::wiimote;
-  SavedCalibration saved = load_saved_calibration(calibration_path());
-  stage.calibration = std::move(saved.calibration);
-  stage.calibration_status = std::move(saved.status);
-  if (!saved.warning.empty()) std::fprintf(stderr, "<4>%s\n", saved.warning.c_str());
-  if (stage.source == InputSource::replay && !stage.calibration) {
-    // A recording without a calibration: the camera's view mirrored onto the whole screen
-    // (the camera faces the visitor), so a demo plays at once.
-    Calibration c;
-    c.camera_to_screen.h = {-1.0 / 1023.0, 0, 1, 0, 1.0 / 767.0, 0, 0, 0, 1};
-    stage.calibration = c;
-    stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
-  }
-  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine,
-                                                 &win_.window->present_clock(), &win_.aspect);
-  stage.remote->set_calibration(stage.calibration);
-  input::wiimote::WiimoteDeviceConfig dc = kiosk_device_config(stage.config, stage.calibration);
-  if (stage.calibration && !stage.calibration->ir_sensitivity.empty())
-    stage.calibration_status_sensitivity = "IR sensitivity " + stage.calibration->ir_sensitivity + " (saved with it)";
-  dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
-  if (stage.replay) dc.device.clear();  // the recording is the only device
-  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
-      stage.replay ? static_cast<input::wiimote::DeviceFinder&>(*stage.replay) : finder_, clock_, dc);
-  Stage* s = &stage;
-  // The reading thread: strikes go from there through the strike route (RemotePointer);
-  // this only pulses the rumble when configured.
-  stage.remote->on_strike = [s](const Impact& i) {
-    s->tally->record(i);
-    s->device->on_impact();
-  };
-  stage.device->set_sample_sink(
-      [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
-}
 
 //! "off", or "10 ms ahead".
 std::string predict_text(const PredictionConfig& p) {
@@ -463,101 +312,14 @@ std::string WindowKiosk::timing_line() const {
   return buf;
 }
 
-void WindowKiosk::choose_mouse(Stage& stage) {
-  const InputConfig& in = stage.config.input;
-  if (in.mouse == "window") {
-    stage.mouse_line = "mouse: the window system's events, once a frame (the settings say window)";
-    return;
-  }
-  input::evdev::EvdevMouseConfig mc;
-  mc.screen_width_px = static_cast<int>(win_.window->extent().width);
-  mc.screen_height_px = static_cast<int>(win_.window->extent().height);
-  input::evdev::EvdevOpenResult opened =
-      input::evdev::EvdevMouse::open(in.mouse_device.empty() ? input::evdev::kAutoDevice : in.mouse_device, mc);
-  if (!opened.mouse) {
-    stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
-    // Asked for by name: said as a warning; the window system's events keep the kiosk playable.
-    if (in.mouse == "evdev")
-      std::fprintf(stderr, "<4>[input] mouse = \"evdev\" could not be opened: %s\n", opened.error.c_str());
-    return;
-  }
-  stage.evdev = std::move(opened.mouse);
-  stage.mouse = std::make_unique<MousePointer>(stage.scene, stage.config, *stage.rig.engine,
-                                               &win_.window->present_clock(), &win_.aspect);
-  stage.mouse->on_strike = [t = stage.tally.get()](const Strike& s) { t->record(s.impact); };
-  if (last_cursor_) stage.evdev->warp(last_cursor_->x, last_cursor_->y);
-  stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
-}
 
-std::uint64_t WindowKiosk::strikes() const {
-  return strikes_before_ + stage_->route->strikes() + (stage_->remote ? stage_->remote->strikes() : 0) +
-         (stage_->mouse ? stage_->mouse->strikes() : 0);
-}
 
-void WindowKiosk::feed_metrics(Nanos now) {
-  if (frames_ > metrics_.frames()) {  // this iteration drew a frame (at most one)
-    metrics_.count_frame(now - metrics_frame_at_);
-    metrics_frame_at_ = now;
-  } else if (win_.window->still()) {
-    metrics_frame_at_ = now;  // a still scene's gap between drawn frames is not a slow frame
-  }
-  metrics_.observe_state(states_->state(), states_->since(), states_->last_movement());
-  // Lost only where it matters: a visitor plays, the remote runs, its camera sees no LED.
-  metrics_.observe_tracking(stage_->device && stage_->link_up && states_->visitor_plays() && !states_->tracking(), now);
-  if (metrics_file_.due(now)) write_metrics(now);
-}
 
-void WindowKiosk::write_metrics(Nanos now) {
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-  metrics_.strikes = strikes_retired_;
-  stage_->tally->add_to(metrics_.strikes);
-  metrics_.audio_xruns = xruns_retired_ + (stage_->output ? stage_->output->counters().xruns : 0);
-  metrics_.audio_output_latency_s = stage_->output ? stage_->output->output_latency_s() : kUnknown;
-  metrics_.vulkan_device_memory_bytes = static_cast<double>(render::device_memory_bytes());
-  metrics_.render_devices_lost = win_.devices_lost();
-  metrics_.remote_connected = stage_->device && stage_->link_up;
-  metrics_.remote_battery_ratio = kUnknown;
-  if (stage_->device)
-    if (const std::optional<std::uint8_t> b = stage_->device->state().remote.battery)
-      metrics_.remote_battery_ratio = std::min(1.0, *b / 200.0);  // 0xC8 on fresh cells (reports.hpp)
-  metrics_.uptime_ns = now - started_;
-  metrics_.version = mallet_version();
-  metrics_file_.write(metrics_, now);
-}
 
-void WindowKiosk::retire_metrics(const Stage& old) {
-  old.tally->add_to(strikes_retired_);  // its input threads have stopped: the counts are final
-  if (old.output) xruns_retired_ += old.output->counters().xruns;
-}
 
-std::string WindowKiosk::input_line() const {
-  const Stage& s = *stage_;
-  if (s.source == InputSource::mouse) {
-    std::string line = "input: mouse (" + s.input_why + "); " + s.mouse_line;
-    if (s.evdev) {
-      const input::evdev::EvdevMouseStatus m = s.evdev->status();
-      char buf[120];
-      if (m.connected) std::snprintf(buf, sizeof buf, ", %.0f reports/s", m.rate_hz);
-      else std::snprintf(buf, sizeof buf, ", lost: %s", m.problem.c_str());
-      line += buf;
-    }
-    return line;
-  }
-  const input::wiimote::WiimoteState w = s.device->state();
-  std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
-                             : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
-  if (w.link == input::wiimote::LinkState::running) {
-    char buf[120];
-    std::snprintf(buf, sizeof buf, ", %.0f reports/s%s", w.remote.ir_rate_hz, w.tracking ? ", LED seen" : ", no LED");
-    line += buf;
-  } else if (!w.problem.empty()) {
-    line += " (" + w.problem + ")";
-  }
-  return line;
-}
 
 void WindowKiosk::poll_remote(Nanos now) {
-  Stage& s = *stage_;
+  KioskStage& s = *stage_;
   const input::wiimote::WiimoteState w = s.device->state();
   const bool up = w.link == input::wiimote::LinkState::running;
   if (up != s.link_up) {
@@ -642,38 +404,6 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   calibration_.reset();
 }
 
-void WindowKiosk::run_doctor_checks(double frame_ms) {
-  KioskDeviceFacts facts;
-  VkPhysicalDeviceProperties props{};
-  vkGetPhysicalDeviceProperties(win_.ctx->physical_device(), &props);
-  facts.vulkan = judge_renderer(win_.ctx->device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
-                                win_.window->extent().width, win_.window->extent().height, frame_ms);
-  facts.vulkan.found += " (the kiosk's frames)";
-  facts.audio = stage_->output ? DoctorCheck{"audio", CheckLevel::ok, stage_->audio_status, ""}
-                               : DoctorCheck{"audio", CheckLevel::fail, stage_->audio_status,
-                                             "connect the sound card and check `aplay -l`; `mallet audio devices`"};
-  facts.wiimote = {"wiimote", CheckLevel::ok, input_line(), ""};
-  if (stage_->device) {
-    const input::wiimote::WiimoteState w = stage_->device->state();
-    if (w.link == input::wiimote::LinkState::running) facts.connected_remote = remote_identity(w.device);
-    else facts.wiimote = {"wiimote", CheckLevel::fail, input_line(), "press 1+2 on the remote; change its batteries"};
-  } else if (stage_->config.input.source == "wiimote") {
-    facts.wiimote.level = CheckLevel::fail;
-  }
-  DoctorOptions o;
-  o.config = options_.config;
-  o.config_dir = options_.config_dir;
-  const std::vector<DoctorCheck> checks = run_doctor_with(o, facts);
-  doctor_.clear();
-  int failing = 0;
-  for (const DoctorCheck& c : checks) {
-    // On the page what was found; in the journal the whole line with its fix.
-    doctor_.push_back(format_check({c.name, c.level, c.found, ""}));
-    std::fprintf(stderr, "<5>doctor: %s\n", format_check(c).c_str());
-    failing += c.level == CheckLevel::fail;
-  }
-  std::fprintf(stderr, "<5>operator: doctor, %d check(s) failing\n", failing);
-}
 
 void WindowKiosk::apply_volume() {
   const double attract = states_ && states_->attract_volume() ? stage_->config.attract.volume : 1.0;
@@ -685,44 +415,40 @@ void WindowKiosk::on_key(int key, int mods) { keys_.emplace_back(key, mods); }
 
 void WindowKiosk::handle_keys(Nanos now) {
   for (const auto& [key, mods] : keys_) {
-    const bool chord = key == GLFW_KEY_O && (mods & GLFW_MOD_CONTROL) && (mods & GLFW_MOD_ALT);
-    if (chord) {
-      states_->operator_chord(now);
-      continue;
-    }
-    if (states_->state() != KioskState::operator_page) continue;  // visitors' keys do nothing
-    switch (key) {
-      case GLFW_KEY_ESCAPE: states_->operator_page_closed(now); break;
-      case GLFW_KEY_Q:
+    const OperatorAction action = operator_action(key, mods, states_->state() == KioskState::operator_page);
+    switch (action) {
+      case OperatorAction::none: break;  // visitors' keys do nothing
+      case OperatorAction::open: states_->operator_chord(now); break;
+      case OperatorAction::close: states_->operator_page_closed(now); break;
+      case OperatorAction::quit:
         std::fprintf(stderr, "<5>operator: quit\n");
         states_->quit_requested(now);
         break;
-      case GLFW_KEY_R:  // the screen itself starts in the frame
+      case OperatorAction::recalibrate:  // the screen itself starts in the frame
         std::fprintf(stderr, "<5>operator: recalibrate\n");
         states_->recalibrate(now);
         break;
-      case GLFW_KEY_UP:
-      case GLFW_KEY_DOWN:
-        volume_ = knob_step(volume_, kVolumeKnob, key == GLFW_KEY_UP);
+      case OperatorAction::volume_up:
+      case OperatorAction::volume_down:
+        volume_ = knob_step(volume_, kVolumeKnob, action == OperatorAction::volume_up);
         std::fprintf(stderr, "<5>operator: volume %.0f %%\n", volume_ * 100);
         break;
-      case GLFW_KEY_RIGHT:
-      case GLFW_KEY_LEFT:
-        gain_ = knob_step(gain_, kGainKnob, key == GLFW_KEY_RIGHT);
+      case OperatorAction::gain_up:
+      case OperatorAction::gain_down:
+        gain_ = knob_step(gain_, kGainKnob, action == OperatorAction::gain_up);
         std::fprintf(stderr, "<5>operator: actuator gain %.2f\n", gain_);
         break;
-      case GLFW_KEY_M: next_wall_material(); break;
-      case GLFW_KEY_S: next_scene(); break;
-      case GLFW_KEY_L:
+      case OperatorAction::next_material: next_wall_material(); break;
+      case OperatorAction::next_scene: next_scene(); break;
+      case OperatorAction::next_language:
         use_visitor_language(language_.next());
         std::fprintf(stderr, "<5>operator: language %s\n", visitor_language().c_str());
         break;
-      case GLFW_KEY_T: start_latency_test(now); break;
-      case GLFW_KEY_D:
+      case OperatorAction::latency_test: latency_test_.start(now, stage_->scene, *stage_->rig.engine); break;
+      case OperatorAction::doctor:
         if (doctor_.empty()) doctor_asked_ = true;
         else doctor_.clear();  // D again: back to the page
         break;
-      default: break;
     }
   }
   keys_.clear();
@@ -738,34 +464,7 @@ void WindowKiosk::next_wall_material() {
                stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
 }
 
-void WindowKiosk::start_latency_test(Nanos now) {
-  latency_test_.clear();
-  // The first instant far enough ahead that its sound can still be scheduled on time.
-  for (int i = 0; i < kLatencyTestPulses; ++i) latency_test_.push_back(now + (i + 1) * kNanosPerSecond);
-  for (Nanos t : latency_test_) {
-    Impact pulse;  // a firm strike on the first bar: a sharp onset on both channels
-    pulse.t_ns = t;
-    pulse.target = 0;
-    pulse.material = stage_->scene.targets.empty() ? -1 : stage_->scene.targets[0].material;
-    pulse.note = stage_->scene.targets.empty() ? 0 : stage_->scene.targets[0].note;
-    pulse.speed_m_per_s = 1.0;
-    if (!stage_->scene.targets.empty()) stage_->rig.engine->post(pulse);  // heard at t: the engine's clock
-  }
-  std::fprintf(stderr, "<5>latency test: %d pulses, one a second, from %s (square, note and actuator at each)\n",
-               kLatencyTestPulses, format_seconds(latency_test_.front()).c_str());
-}
 
-void WindowKiosk::latency_test_frame(Nanos present) {
-  // The square is in the frame presented at or after each instant, for 100 ms.
-  constexpr Nanos kShown = 100'000'000;
-  std::erase_if(latency_test_, [present](Nanos t) { return present >= t + kShown; });
-  for (Nanos t : latency_test_)
-    if (present >= t) {
-      const float side = win_.font->pixel_height() * 4;
-      win_.overlay->fill_rect(0, 0, side, side, {1.0f, 1.0f, 1.0f, 1.0f});
-      return;
-    }
-}
 
 void WindowKiosk::next_scene() {
   // Only the choices that loaded (the others are listed on the page with their reasons).
@@ -809,44 +508,6 @@ void WindowKiosk::reload() {
   }
 }
 
-void WindowKiosk::heartbeat(Nanos now) {
-  const Nanos interval = notifier_.watchdog_interval().value_or(0);
-  const bool beat_due = interval > 0 && now >= next_watchdog_;
-  const bool log_due = now >= next_log_;
-  if (!beat_due && !log_due) return;
-  const audio::OutputCounters a = stage_->output ? stage_->output->counters() : audio::OutputCounters{};
-  // Audio is alive when its callbacks advance, or when its supervisor is retrying a lost
-  // device (that is survived, silently), or when the kiosk runs without a device at all.
-  const bool audio_alive =
-      !stage_->output || a.callbacks > callbacks_at_beat_ || !stage_->output->device_ok();
-  // A still scene draws no frames; its loop still decides each one.
-  const bool render_alive = frames_ + still_frames_ > frames_at_beat_;
-  // A remote that is gone is survived (attract, hint, reconnect): the main loop's polls
-  // stand for input; the reading thread never blocks for long by design.
-  const bool input_alive = polls_ > polls_at_beat_;
-  if (beat_due) {
-    const bool alive = audio_alive && render_alive && input_alive;
-    if (alive) notifier_.watchdog();
-    // Why the watchdog goes hungry, said once per stall: systemd's own line only says that it
-    // fired (`mallet doctor` shows this line as the watchdog's last reason).
-    if (!alive && !starving_)
-      std::fprintf(stderr, "<4>watchdog not fed: %s%s%s stalled\n", render_alive ? "" : "render ",
-                   audio_alive ? "" : "audio ", input_alive ? "" : "input");
-    starving_ = !alive;
-    next_watchdog_ = now + interval;
-  }
-  if (log_due) {
-    std::fprintf(stderr, "<6>heartbeat: %s, frames %llu, strikes %llu, audio callbacks %llu, xruns %llu%s\n",
-                 to_string(states_->state()), static_cast<unsigned long long>(frames_),
-                 static_cast<unsigned long long>(strikes()), static_cast<unsigned long long>(a.callbacks),
-                 static_cast<unsigned long long>(a.xruns), stage_->output && !stage_->output->device_ok()
-                                                               ? ", audio device lost (retrying)" : "");
-    next_log_ = now + 60 * kNanosPerSecond;
-  }
-  frames_at_beat_ = frames_ + still_frames_;
-  polls_at_beat_ = polls_;
-  callbacks_at_beat_ = a.callbacks;
-}
 
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   render::Overlay& o = *win_.overlay;
@@ -878,17 +539,17 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   }
   if (doctor_asked_) {
     doctor_asked_ = false;
-    run_doctor_checks(work_ms_);  // what a frame costs, not the frame budget's interval
+    doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_);  // what a frame costs, not the budget's interval
   }
   char buf[240];
   std::vector<std::string> lines;
-  const double uptime = to_seconds(now - started_);
+  const double uptime = to_seconds(now - health_.started());
   // The page's words are the operator's language; its status lines (input, audio, timing,
   // settings, the doctor's checks) stay as the journal and `mallet doctor` write them.
   std::snprintf(buf, sizeof buf, tr("Mallet: operator page   quality: %s   language: %s"),
                 to_string(stage_->config.quality), visitor_language().c_str());
   lines.emplace_back(buf);
-  lines.push_back(input_line());
+  lines.push_back(input_line(*stage_));
   lines.push_back(stage_->audio_status);
   std::snprintf(buf, sizeof buf, "frame: %.1f ms (its work %.1f ms)   uptime: %.0f h %02.0f min", frame_ms, work_ms_,
                 std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
@@ -917,62 +578,12 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.emplace_back(tr("Each check with its fix: journalctl -u mallet -g doctor"));
     lines.emplace_back(tr("D back to the page    Esc close"));
   }
-  const float pw = std::min(w - 2 * px, px * 40);
-  // Long lines (how the input is read and why, the timing figures, the key legend) wrap at
-  // a semicolon, a comma, before a parenthesis or between two keys' entries onto indented
-  // continuation lines, else at a space; the widths are the font's own, in every language.
-  struct Break {
-    const char* separator;
-    std::size_t kept;    //!< its characters that end the line ("," stays, " (" goes on)
-    std::size_t resume;  //!< where the continuation starts, from the separator
-  };
-  static constexpr Break kBreaks[] = {{"; ", 1, 2}, {", ", 1, 2}, {" (", 0, 1}, {"    ", 0, 4}};
-  const render::FontAtlas& font = o.atlas();
-  const float room = pw - 2 * px;
-  std::vector<std::string> page;
-  for (std::string text : lines) {
-    if (!doctor_.empty()) {  // a check a line, cut to the page; the whole line is in the log
-      const std::vector<std::string> cut = render::wrap_text(font, text, room - font.measure("..."));
-      page.push_back(cut.size() > 1 ? cut.front() + "..." : text);
-      continue;
-    }
-    std::string indent;
-    while (font.measure(indent + text) > room) {
-      std::size_t cut = std::string::npos;
-      const Break* at_break = nullptr;
-      for (const Break& b : kBreaks)
-        for (std::size_t at = text.find(b.separator); at != std::string::npos; at = text.find(b.separator, at + 1))
-          if (at > 8 && (cut == std::string::npos || at > cut) &&
-              font.measure(indent + text.substr(0, at + b.kept)) <= room)
-            cut = at, at_break = &b;
-      if (!at_break) {  // no separator that fits: the words that do
-        const std::vector<std::string> words = render::wrap_text(font, text, room - font.measure(indent));
-        if (words.size() < 2) break;
-        page.push_back(indent + words.front());
-        text.erase(0, words.front().size());  // the first line is the text's start, as written
-        text.erase(0, text.find_first_not_of(' '));
-        indent = "    ";
-        continue;
-      }
-      page.push_back(indent + text.substr(0, cut + at_break->kept));
-      text = text.substr(cut + at_break->resume);
-      indent = "    ";
-    }
-    page.push_back(indent + text);
-  }
-  const float line = px * 1.4f, ph = line * static_cast<float>(page.size() + 1);
-  const float x0 = (w - pw) / 2, y0 = std::max(0.0f, (h - ph) / 2);
-  o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
-  o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  for (std::size_t i = 0; i < page.size(); ++i)
-    o.text(x0 + px, y0 + line * static_cast<float>(i + 1), page[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
+  draw_operator_page(o, lines, !doctor_.empty(), w, h);
 }
 
 int WindowKiosk::run() {
   const Nanos quit_after = static_cast<Nanos>(std::llround(options_.quit_after_s * 1e9));
   Nanos last_frame = monotonic_now();
-  next_log_ = last_frame + 60 * kNanosPerSecond;
-  metrics_frame_at_ = last_frame;
   double frame_ms = 0;
   for (;;) {
     win_.pace();  // the frame budget: [render] max_fps
@@ -983,11 +594,11 @@ int WindowKiosk::run() {
     win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still());
     frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
     last_frame = now;
-    ++polls_;
+    health_.polled();
     if (reload_requested()) {
-      notifier_.reloading();
+      health_.notifier().reloading();
       reload();
-      notifier_.ready();
+      health_.notifier().ready();
     }
     handle_keys(now);
     if (win_.window->close_requested()) {
@@ -1001,7 +612,7 @@ int WindowKiosk::run() {
       std::fprintf(stderr, "<5>mallet run: %s received, stopping\n", g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM");
       break;
     }
-    if (states_->should_quit() || (quit_after > 0 && now - started_ >= quit_after)) break;
+    if (states_->should_quit() || (quit_after > 0 && now - health_.started() >= quit_after)) break;
 
     // The mouse's samples since the last frame: from its reading thread (evdev), else the
     // window system's cursor events, each stamped as it was read.
@@ -1055,7 +666,10 @@ int WindowKiosk::run() {
     draw_overlay(now, frame_ms);
     render::FrameState state;
     const Nanos present = win_.window->predicted_present(now);
-    if (!latency_test_.empty()) latency_test_frame(present);
+    if (latency_test_.square_shown(present)) {
+      const float side = win_.font->pixel_height() * 4;
+      win_.overlay->fill_rect(0, 0, side, side, {1.0f, 1.0f, 1.0f, 1.0f});
+    }
     const StrikeLoop::View view = !states_->visitor_plays() ? route.view()
                                   : !mouse                 ? stage_->remote->view()
                                   : stage_->mouse          ? stage_->mouse->view()
@@ -1073,18 +687,14 @@ int WindowKiosk::run() {
     if (win_.draw_or_recover(
             *stage_->renderer, state, [&] { stage_->renderer.reset(); },
             [&] { stage_->renderer = make_renderer(*stage_); }))
-      ++frames_;
+      health_.frame_drawn();
     else if (win_.window->still())
-      ++still_frames_;  // nothing changed: the screen shows this frame already
+      health_.frame_still();  // nothing changed: the screen shows this frame already
     work_ms_ = 0.9 * work_ms_ + 0.1 * to_seconds(monotonic_now() - now) * 1e3;
-    if (frames_ == 1) notifier_.ready();
-    heartbeat(now);
-    feed_metrics(now);
+    if (health_.frames() == 1) health_.notifier().ready();
+    health_.beat(now, *stage_, *states_, win_);
   }
-  notifier_.stopping();
-  std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
-               static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes()));
-  if (metrics_file_.enabled()) write_metrics(monotonic_now());  // the final counts, as the line above
+  health_.stop(monotonic_now(), *stage_, win_);
   vkDeviceWaitIdle(win_.ctx->device());
   if (stage_->device) stage_->device->stop();
   if (stage_->evdev) stage_->evdev->stop();

@@ -13,16 +13,21 @@
 // waits for a frame. The main thread takes the remote's samples once a frame for the states
 // (movement, tracking lost) and the calibration screen.
 //
-// Calibration (app/calibration_screen.hpp): entered by R on the operator page, or at
+// Calibration (calibration_screen.hpp): entered by R on the operator page, or at
 // start-up once the remote's link runs, when no valid calibration file is in state_dir()
 // or it names another remote. Accepted → saved atomically and used at once; abandoned or
 // failed → the previous one stays. With the mouse as input the screen runs with the mouse
 // as the dot and saves nothing.
 //
-// The operator page: input, audio device and latency, frame time, uptime, the volume and
+// The operator page (operator_page.hpp: its keys, its panel, the doctor's view;
+// latency_test.hpp): input, audio device and latency, frame time, uptime, the volume and
 // the actuator gain (the paper's amplifier knob, in software), recalibrate, quit. Keys on
 // the page: Up/Down volume, Left/Right actuator gain, R recalibrate, Q quit, Esc close.
 // Visitors cannot leave the app: the window's close request is refused outside the page.
+//
+// This file is the frame loop: input → states → strikes → picture, once a frame. What it
+// plays with is a KioskStage (kiosk_stage.hpp), its input chosen by input_choice.hpp; its
+// liveness and metrics are KioskHealth's (kiosk_health.hpp).
 //
 // SIGHUP reloads the settings (with their drop-ins) and the scene; an invalid new file is
 // refused with its reason on stderr and the running configuration stays. SIGTERM (systemd's

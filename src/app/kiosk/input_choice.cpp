@@ -1,0 +1,130 @@
+#include "app/kiosk/input_choice.hpp"
+
+#include <cstdio>
+
+#include "core/data_paths.hpp"
+#include "core/saved_calibration.hpp"
+#include "core/strike_line.hpp"
+
+namespace mallet::app {
+
+namespace {
+
+//! evdev when it can be opened, else the window system's events.
+void choose_mouse(KioskStage& stage, const InputDevices& devices) {
+  const InputConfig& in = stage.config.input;
+  if (in.mouse == "window") {
+    stage.mouse_line = "mouse: the window system's events, once a frame (the settings say window)";
+    return;
+  }
+  input::evdev::EvdevMouseConfig mc;
+  mc.screen_width_px = static_cast<int>(devices.window.window->extent().width);
+  mc.screen_height_px = static_cast<int>(devices.window.window->extent().height);
+  input::evdev::EvdevOpenResult opened =
+      input::evdev::EvdevMouse::open(in.mouse_device.empty() ? input::evdev::kAutoDevice : in.mouse_device, mc);
+  if (!opened.mouse) {
+    stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
+    // Asked for by name: said as a warning; the window system's events keep the kiosk playable.
+    if (in.mouse == "evdev")
+      std::fprintf(stderr, "<4>[input] mouse = \"evdev\" could not be opened: %s\n", opened.error.c_str());
+    return;
+  }
+  stage.evdev = std::move(opened.mouse);
+  stage.mouse = std::make_unique<MousePointer>(stage.scene, stage.config, *stage.rig.engine,
+                                               &devices.window.window->present_clock(), &devices.window.aspect);
+  stage.mouse->on_strike = [t = stage.tally.get()](const Strike& s) { t->record(s.impact); };
+  if (devices.last_cursor) stage.evdev->warp(devices.last_cursor->x, devices.last_cursor->y);
+  stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
+}
+
+}  // namespace
+
+void choose_input(KioskStage& stage, const InputDevices& devices) {
+  const std::string& want = stage.config.input.source;
+  stage.source = InputSource::mouse;
+  if (want == "mouse") {
+    stage.input_why = "the settings say mouse";
+    choose_mouse(stage, devices);
+    return;
+  }
+  if (want == "replay") {
+    stage.replay = std::make_unique<input::wiimote::ReplayFinder>(
+        input::wiimote::ReplayFinder::open_file(stage.config.input.replay_file, devices.clock));
+    stage.source = InputSource::replay;
+    stage.input_why = "replay of " + stage.config.input.replay_file;
+  } else if (want == "auto") {
+    std::optional<input::wiimote::HidDeviceInfo> found;
+    for (const auto& d : devices.finder.enumerate())
+      if (input::wiimote::matches_device(d, stage.config.wiimote.device)) {
+        found = d;
+        break;
+      }
+    if (!found) {
+      stage.input_why = "no Wii Remote found at start-up";
+      choose_mouse(stage, devices);
+      return;
+    }
+    stage.input_why = "found " + remote_identity(*found);
+  } else {
+    stage.input_why = "the settings say wiimote";
+  }
+  if (want != "replay") stage.source = InputSource::wiimote;
+  SavedCalibration saved = load_saved_calibration(calibration_path());
+  stage.calibration = std::move(saved.calibration);
+  stage.calibration_status = std::move(saved.status);
+  if (!saved.warning.empty()) std::fprintf(stderr, "<4>%s\n", saved.warning.c_str());
+  if (stage.source == InputSource::replay && !stage.calibration) {
+    // A recording without a calibration: the camera's view mirrored onto the whole screen
+    // (the camera faces the visitor), so a demo plays at once.
+    Calibration c;
+    c.camera_to_screen.h = {-1.0 / 1023.0, 0, 1, 0, 1.0 / 767.0, 0, 0, 0, 1};
+    stage.calibration = c;
+    stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
+  }
+  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine,
+                                                 &devices.window.window->present_clock(), &devices.window.aspect);
+  stage.remote->set_calibration(stage.calibration);
+  input::wiimote::WiimoteDeviceConfig dc = kiosk_device_config(stage.config, stage.calibration);
+  if (stage.calibration && !stage.calibration->ir_sensitivity.empty())
+    stage.calibration_status_sensitivity = "IR sensitivity " + stage.calibration->ir_sensitivity + " (saved with it)";
+  dc.every_frame = true;  // the calibration screen's sensitivity tuner counts every frame's dots
+  if (stage.replay) dc.device.clear();  // the recording is the only device
+  stage.device = std::make_unique<input::wiimote::WiimoteDevice>(
+      stage.replay ? static_cast<input::wiimote::DeviceFinder&>(*stage.replay) : devices.finder, devices.clock, dc);
+  KioskStage* s = &stage;
+  // The reading thread: strikes go from there through the strike route (RemotePointer);
+  // this only pulses the rumble when configured.
+  stage.remote->on_strike = [s](const Impact& i) {
+    s->tally->record(i);
+    s->device->on_impact();
+  };
+  stage.device->set_sample_sink(
+      [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
+}
+
+std::string input_line(const KioskStage& s) {
+  if (s.source == InputSource::mouse) {
+    std::string line = "input: mouse (" + s.input_why + "); " + s.mouse_line;
+    if (s.evdev) {
+      const input::evdev::EvdevMouseStatus m = s.evdev->status();
+      char buf[120];
+      if (m.connected) std::snprintf(buf, sizeof buf, ", %.0f reports/s", m.rate_hz);
+      else std::snprintf(buf, sizeof buf, ", lost: %s", m.problem.c_str());
+      line += buf;
+    }
+    return line;
+  }
+  const input::wiimote::WiimoteState w = s.device->state();
+  std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
+                             : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
+  if (w.link == input::wiimote::LinkState::running) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, ", %.0f reports/s%s", w.remote.ir_rate_hz, w.tracking ? ", LED seen" : ", no LED");
+    line += buf;
+  } else if (!w.problem.empty()) {
+    line += " (" + w.problem + ")";
+  }
+  return line;
+}
+
+}  // namespace mallet::app

@@ -1,0 +1,34 @@
+#include "app/kiosk/latency_test.hpp"
+
+#include <cstdio>
+
+#include "core/strike_line.hpp"
+
+namespace mallet::app {
+
+void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engine) {
+  instants_.clear();
+  // The first instant far enough ahead that its sound can still be scheduled on time.
+  for (int i = 0; i < kPulses; ++i) instants_.push_back(now + (i + 1) * kNanosPerSecond);
+  for (Nanos t : instants_) {
+    Impact pulse;  // a firm strike on the first bar: a sharp onset on both channels
+    pulse.t_ns = t;
+    pulse.target = 0;
+    pulse.material = scene.targets.empty() ? -1 : scene.targets[0].material;
+    pulse.note = scene.targets.empty() ? 0 : scene.targets[0].note;
+    pulse.speed_m_per_s = 1.0;
+    if (!scene.targets.empty()) engine.post(pulse);  // heard at t: the engine's clock
+  }
+  std::fprintf(stderr, "<5>latency test: %d pulses, one a second, from %s (square, note and actuator at each)\n",
+               kPulses, format_seconds(instants_.front()).c_str());
+}
+
+bool LatencyTest::square_shown(Nanos present) {
+  constexpr Nanos kShown = 100'000'000;
+  std::erase_if(instants_, [present](Nanos t) { return present >= t + kShown; });
+  for (Nanos t : instants_)
+    if (present >= t) return true;
+  return false;
+}
+
+}  // namespace mallet::app

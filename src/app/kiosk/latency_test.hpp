@@ -1,0 +1,30 @@
+#pragma once
+// The operator page's latency test (T): kPulses times, one a second, a white square in the
+// top-left corner, a strike's note on the speaker and its pulse on the actuator, all
+// scheduled for the same instant. A photodiode and a microphone (or a 240 fps video) show
+// the offsets the operator then enters as [timing] display_latency_ms and
+// audio_output_latency_ms.
+#include <vector>
+
+#include "audio/engine.hpp"
+#include "core/scene.hpp"
+#include "core/time.hpp"
+
+namespace mallet::app {
+
+class LatencyTest {
+ public:
+  static constexpr int kPulses = 10;
+
+  //! Posts the pulses (the scene's first bar, a firm strike) from a second after `now`, each
+  //! heard at its instant on the engine's clock; says so in the journal.
+  void start(Nanos now, const Scene& scene, audio::AudioEngine& engine);
+  //! Whether the frame presented at `present` shows the square: at or after an instant,
+  //! for 100 ms.
+  bool square_shown(Nanos present);
+
+ private:
+  std::vector<Nanos> instants_;  //!< still to come or on screen
+};
+
+}  // namespace mallet::app
