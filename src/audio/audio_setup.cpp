@@ -3,9 +3,12 @@
 #include <cstdio>
 #include <exception>
 
+#include <fmt/format.h>
+
 #include "audio/portaudio_output.hpp"
 #include "core/config/instruments_config.hpp"
 #include "core/file_error.hpp"
+#include "core/journal.hpp"
 
 namespace mallet::audio {
 
@@ -49,12 +52,12 @@ std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioCo
   try {
     auto output = std::make_unique<PortAudioOutput>(engine, config);
     output->start();
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "audio: %s, %.1f ms", output->device().name.c_str(), output->output_latency_s() * 1e3);
+    const std::string buf = fmt::format("audio: {}, {:.1f} ms", output->device().name.c_str(),
+                                        output->output_latency_s() * 1e3);
     status = buf;
     return output;
   } catch (const std::exception& e) {  // the screen still plays, silently
-    std::fprintf(stderr, "<3>%s; running without sound\n", e.what());
+    journal::error("{}; running without sound", e.what());
     status = "audio: none (running silent)";
     return nullptr;
   }

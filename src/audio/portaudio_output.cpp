@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -15,6 +14,7 @@
 #define MALLET_HAVE_ALSA_ERROR_HANDLER 1
 #endif
 
+#include "core/journal.hpp"
 #include "core/time.hpp"
 
 namespace mallet::audio {
@@ -29,18 +29,6 @@ std::mutex& pa_mutex() {
   return m;
 }
 
-// One whole line per call, so lines from two threads never interleave.
-void log_line(const char* priority, const char* format, ...) __attribute__((format(printf, 2, 3)));
-void log_line(const char* priority, const char* format, ...) {
-  char text[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(text, sizeof text, format, args);
-  va_end(args);
-  std::fprintf(stderr, "%saudio: %s\n", priority, text);
-}
-constexpr const char* kWarning = "<4>";
-constexpr const char* kInfo = "<6>";
 
 std::string error_text(PaError e) {
   std::string text = Pa_GetErrorText(e);
@@ -454,8 +442,8 @@ void PortAudioOutput::supervise() {
         attempts = 0;
         device_ok_.store(false, std::memory_order_relaxed);
         losses_.fetch_add(1, std::memory_order_relaxed);
-        log_line(kWarning, "output \"%s\" lost (%s); running silent, retrying to open \"%s\"", name.c_str(),
-                 why.c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
+        journal::warning("audio: output \"{}\" lost ({}); running silent, retrying to open \"{}\"", name.c_str(),
+                         why.c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
         backoff = options_.first_retry;
         retry_at = now + backoff;
         silent_since = now;
@@ -490,8 +478,8 @@ void PortAudioOutput::supervise() {
           last_progress_ = Clock::now();
         } catch (const std::exception& e) {
           if (!retry_failure_logged)
-            log_line(kWarning, "reopening failed (%s); retrying with backoff up to %lld ms", e.what(),
-                     static_cast<long long>(options_.max_retry.count()));
+            journal::warning("audio: reopening failed ({}); retrying with backoff up to {} ms", e.what(),
+                             static_cast<long long>(options_.max_retry.count()));
           retry_failure_logged = true;
           backoff = std::min(backoff * 2, options_.max_retry);
           retry_at = Clock::now() + backoff;
@@ -500,17 +488,17 @@ void PortAudioOutput::supervise() {
         lost = false;
         device_ok_.store(true, std::memory_order_relaxed);
         reopens_.fetch_add(1, std::memory_order_relaxed);
-        log_line(kInfo, "output \"%s\" reopened after %llu attempt(s); output latency %.1f ms", name.c_str(),
-                 static_cast<unsigned long long>(attempts), latency * 1e3);
+        journal::info("audio: output \"{}\" reopened after {} attempt(s); output latency {:.1f} ms", name.c_str(),
+                      attempts, latency * 1e3);
       }
     }
 
     const std::uint64_t xruns = xruns_.load(std::memory_order_relaxed);
     if (xruns > xruns_logged && now - last_xrun_log >= xrun_interval) {
-      log_line(kWarning,
-               "%llu output underrun(s) since the last report (%llu in all); raise [audio].frames_per_buffer or "
-               "suggested_latency_ms if they persist",
-               static_cast<unsigned long long>(xruns - xruns_logged), static_cast<unsigned long long>(xruns));
+      journal::warning(
+          "audio: {} output underrun(s) since the last report ({} in all); raise [audio].frames_per_buffer or "
+          "suggested_latency_ms if they persist",
+          xruns - xruns_logged, xruns);
       xruns_logged = xruns;
       last_xrun_log = now;
     }

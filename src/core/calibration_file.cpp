@@ -8,6 +8,8 @@
 #include <ctime>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 
 #include "core/atomic_file.hpp"
 #include "core/config/toml_reader.hpp"
@@ -42,8 +44,7 @@ std::optional<std::pair<std::string, std::string>> problem_of(const Calibration&
 }
 
 std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
+  const std::string buf = fmt::format("{:.17g}", v);
   return buf;
 }
 
@@ -56,8 +57,7 @@ std::string toml_string(std::string_view s) {
       out += '\\';
       out += ch;
     } else if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      const std::string buf = fmt::format("\\u{:04x}", c);
       out += buf;
     } else {
       out += ch;

@@ -6,7 +6,8 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
-#include <variant>
+
+#include <fmt/format.h>
 
 namespace mallet {
 
@@ -16,8 +17,7 @@ bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 std::string px_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
+  const std::string buf = fmt::format("{:.1f}", v);
   return buf;
 }
 
@@ -184,8 +184,8 @@ CalibrationStep CalibrationSession::finish_round() {
   leave_one_out_px_.clear();
   without_px_.clear();
   const bool rounds_left = round_ < config_.max_repeat_rounds;
-  if (const auto* reason = std::get_if<std::string>(&result)) {
-    failure_ = "the fit was refused: " + *reason;
+  if (!result) {
+    failure_ = "the fit was refused: " + result.error();
     if (!rounds_left) {
       status_ = CalibrationStatus::failed;
       return CalibrationStep::failed;
@@ -195,7 +195,7 @@ CalibrationStep CalibrationSession::finish_round() {
     repeat(std::move(all));
     return CalibrationStep::round_rejected;
   }
-  last_fit_ = std::get<HomographyFit>(result);
+  last_fit_ = *result;
   const HomographyFit& fit = *last_fit_;
 
   // Each point against the fit of all the others; where those cannot be fitted, its
@@ -211,9 +211,9 @@ CalibrationStep CalibrationSession::finish_round() {
     double without = std::numeric_limits<double>::infinity();
     if (f.size() >= 4) {
       const auto others = fit_homography(f, t, config_.screen);
-      if (const auto* o = std::get_if<HomographyFit>(&others)) {
-        if (auto e = screen_error_px(o->h, from[i], targets_[i], config_.screen)) err = *e;
-        without = o->max_px;
+      if (others) {
+        if (auto e = screen_error_px(others->h, from[i], targets_[i], config_.screen)) err = *e;
+        without = others->max_px;
       }
     }
     leave_one_out_px_.push_back(err);

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <ctime>
 
+#include <fmt/format.h>
+
 namespace mallet {
 
 namespace {
@@ -11,12 +13,6 @@ constexpr std::uint64_t kMiB = 1024ull * 1024ull;
 constexpr double kRefreshMs = 1000.0 / 60.0;
 constexpr std::int64_t kOldCalibrationDays = 90;  //!< a remote or a screen is often moved by then
 constexpr double kCalibrationErrorPx = 20.0;       //!< about a bar's half-width at 1080p
-
-std::string printf_text(const char* format, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  return buf;
-}
 }  // namespace
 
 const char* to_string(CheckLevel level) {
@@ -29,7 +25,7 @@ const char* to_string(CheckLevel level) {
 }
 
 std::string format_check(const DoctorCheck& c) {
-  std::string line = printf_text("%-5s %-12s %s", to_string(c.level), c.name.c_str(), c.found.c_str());
+  std::string line = fmt::format("{:<5} {:<12} {}", to_string(c.level), c.name, c.found);
   if (!c.fix.empty()) line += " -> fix: " + c.fix;
   std::replace(line.begin(), line.end(), '\n', ' ');  // one line a check, whatever a probe said
   return line;
@@ -42,8 +38,8 @@ int doctor_exit_status(const std::vector<DoctorCheck>& checks) {
 }
 
 DoctorCheck judge_free_space(const std::string& where, std::uint64_t available) {
-  DoctorCheck c{"disk", CheckLevel::ok, printf_text("%.1f GiB free in %s", static_cast<double>(available) / (1024.0 * kMiB),
-                                                    where.c_str()), ""};
+  DoctorCheck c{"disk", CheckLevel::ok,
+                fmt::format("{:.1f} GiB free in {}", static_cast<double>(available) / (1024.0 * kMiB), where), ""};
   if (available < 100 * kMiB) {
     c.level = CheckLevel::fail;
     c.fix = "free space on that file system: study rows and calibrations can no longer be saved";
@@ -57,7 +53,7 @@ DoctorCheck judge_free_space(const std::string& where, std::uint64_t available) 
 DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t width, std::uint32_t height,
                            double frame_ms) {
   DoctorCheck c{"vulkan", CheckLevel::ok,
-                printf_text("%s%s, a %ux%u frame takes %.1f ms", device.c_str(), cpu ? " (software: the CPU draws)" : "",
+                fmt::format("{}{}, a {}x{} frame takes {:.1f} ms", device, cpu ? " (software: the CPU draws)" : "",
                             width, height, frame_ms),
                 ""};
   const bool large = static_cast<std::uint64_t>(width) * height >= 1920ull * 1080ull;
@@ -106,10 +102,10 @@ DoctorCheck judge_calibration(const std::string& path, const std::optional<Calib
   }
   const std::optional<std::int64_t> made = parse_utc(cal->created_utc);
   const std::int64_t days = made ? (now - *made) / 86400 : -1;
-  c.found = printf_text("%s, made %s (%s), max error %.1f px, remote %s", path.c_str(),
-                        cal->created_utc.empty() ? "at an unknown time" : cal->created_utc.c_str(),
-                        days >= 0 ? (std::to_string(days) + " days ago").c_str() : "age unknown",
-                        cal->max_error_screen_px, cal->remote.empty() ? "unknown" : cal->remote.c_str());
+  c.found = fmt::format("{}, made {} ({}), max error {:.1f} px, remote {}", path,
+                        cal->created_utc.empty() ? "at an unknown time" : cal->created_utc,
+                        days >= 0 ? std::to_string(days) + " days ago" : "age unknown", cal->max_error_screen_px,
+                        cal->remote.empty() ? "unknown" : cal->remote);
   if (remote && !cal->remote.empty() && *remote != cal->remote) {
     c.level = CheckLevel::warn;
     c.found += "; the remote connected now is " + *remote;

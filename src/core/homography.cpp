@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <fmt/format.h>
+
 namespace mallet {
 
 namespace {
@@ -34,8 +36,7 @@ std::array<double, 9> canonical(std::array<double, 9> m) {
 }
 
 std::string point_text(Vec2 p) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "(%.6g, %.6g)", p.x, p.y);
+  const std::string buf = fmt::format("({:.6g}, {:.6g})", p.x, p.y);
   return buf;
 }
 
@@ -194,21 +195,23 @@ std::optional<Homography> Homography::inverse() const {
   return Homography{canonical(adj)};  // adj = det·H⁻¹; the scale does not matter
 }
 
-std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> from, std::span<const Vec2> to,
-                                                        ScreenSize screen) {
+Result<HomographyFit, std::string> fit_homography(std::span<const Vec2> from, std::span<const Vec2> to,
+                                                  ScreenSize screen) {
+  const auto refused = [](std::string why) { return tl::unexpected(std::move(why)); };
   if (from.size() != to.size())
-    return "got " + std::to_string(from.size()) + " camera points but " + std::to_string(to.size()) + " screen points";
+    return refused("got " + std::to_string(from.size()) + " camera points but " + std::to_string(to.size()) +
+                   " screen points");
   const std::size_t n = from.size();
   if (n < 4)
-    return "a homography needs at least 4 points, got " + std::to_string(n);
+    return refused("a homography needs at least 4 points, got " + std::to_string(n));
   if (!(screen.width_px > 0 && screen.height_px > 0 && std::isfinite(screen.width_px) &&
         std::isfinite(screen.height_px)))
-    return "the screen size must be finite and > 0 pixels";
+    return refused("the screen size must be finite and > 0 pixels");
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(from[i].x) || !std::isfinite(from[i].y))
-      return "point " + std::to_string(i + 1) + ": the camera coordinates are not finite numbers";
+      return refused("point " + std::to_string(i + 1) + ": the camera coordinates are not finite numbers");
     if (!std::isfinite(to[i].x) || !std::isfinite(to[i].y))
-      return "point " + std::to_string(i + 1) + ": the screen coordinates are not finite numbers";
+      return refused("point " + std::to_string(i + 1) + ": the screen coordinates are not finite numbers");
   }
   // Fit in screen pixels: the isotropic normalisation then weighs x and y errors as they
   // are measured (normalised 0..1 screen units are not square).
@@ -222,9 +225,9 @@ std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> fr
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
         if (std::hypot(pts[i].x - pts[j].x, pts[i].y - pts[j].y) <= 1e-9 * extent)
-          return "points " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " repeat the same " +
-                 (camera ? "camera point " + point_text(from[i]) : "screen point " + point_text(to[i])) +
-                 ": every point must be distinct";
+          return refused("points " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " repeat the same " +
+                         (camera ? "camera point " + point_text(from[i]) : "screen point " + point_text(to[i])) +
+                         ": every point must be distinct");
   }
   if (!has_general_quadruple(from, to_px)) {
     if (n == 4) {
@@ -234,25 +237,25 @@ std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> fr
         std::sort(t, t + 3);
         const bool cam = flatness(from[t[0]], from[t[1]], from[t[2]]) < kCollinearTolerance;
         if (cam || flatness(to_px[t[0]], to_px[t[1]], to_px[t[2]]) < kCollinearTolerance)
-          return "points " + std::to_string(t[0] + 1) + ", " + std::to_string(t[1] + 1) + " and " +
-                 std::to_string(t[2] + 1) + " are (nearly) on one line in " + (cam ? "camera" : "screen") +
-                 " coordinates: a homography needs 4 points with no 3 on a line";
+          return refused("points " + std::to_string(t[0] + 1) + ", " + std::to_string(t[1] + 1) + " and " +
+                         std::to_string(t[2] + 1) + " are (nearly) on one line in " + (cam ? "camera" : "screen") +
+                         " coordinates: a homography needs 4 points with no 3 on a line");
       }
     }
-    return "no 4 of the " + std::to_string(n) +
-           " points are in general position (with no 3 on a line, in camera and screen coordinates): spread "
-           "the points over the screen, e.g. its 4 corners";
+    return refused("no 4 of the " + std::to_string(n) +
+                   " points are in general position (with no 3 on a line, in camera and screen coordinates): spread "
+                   "the points over the screen, e.g. its 4 corners");
   }
 
   const auto t_from = normalising_transform(from);
   const auto t_to = normalising_transform(to_px);
-  if (!t_from || !t_to) return "the points are too far apart or too close together to fit";
+  if (!t_from || !t_to) return refused("the points are too far apart or too close together to fit");
   std::vector<double> a(std::max<std::size_t>(2 * n, 9) * 9, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 p = apply(*t_from, from[i]);
     const Vec2 q = apply(*t_to, to_px[i]);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(q.x) || !std::isfinite(q.y))
-      return "the coordinates are too large to fit";
+      return refused("the coordinates are too large to fit");
     // From q × (H p) = 0: two independent rows per correspondence (H&Z eq. 4.3).
     double* r0 = &a[(2 * i) * 9];
     double* r1 = &a[(2 * i + 1) * 9];
@@ -268,7 +271,7 @@ std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> fr
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return sigma[i] < sigma[j]; });
   // A unique solution needs rank 8: the second smallest singular value must be clear of 0.
   if (!(sigma[order[1]] > 1e-9 * sigma[order[8]]))
-    return "the points do not determine a homography (the linear system is rank deficient)";
+    return refused("the points do not determine a homography (the linear system is rank deficient)");
   std::array<double, 9> hn{};
   for (std::size_t r = 0; r < 9; ++r) hn[r] = v[r * 9 + order[0]];
 
@@ -280,18 +283,19 @@ std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> fr
   fit.screen = screen;
   fit.h.h = canonical(multiply(px_to_unit, multiply(t_to_inv, multiply(hn, *t_from))));
   for (double x : fit.h.h)
-    if (!std::isfinite(x)) return "the fit is not finite (the coordinates are out of range)";
+    if (!std::isfinite(x)) return refused("the fit is not finite (the coordinates are out of range)");
 
   const std::optional<Homography> inverse = fit.h.inverse();
-  if (!inverse) return "the fitted map is singular: the points are inconsistent (check that each camera point is paired "
-                       "with its own screen point)";
+  if (!inverse)
+    return refused("the fitted map is singular: the points are inconsistent (check that each camera point is "
+                   "paired with its own screen point)");
   // All points must be on the same side of the line the map sends to infinity; otherwise
   // the map folds the plane between them (e.g. two corners swapped).
   int positive = 0, negative = 0;
   for (Vec2 p : from) (fit.h.h[6] * p.x + fit.h.h[7] * p.y + fit.h.h[8] > 0 ? positive : negative)++;
   if (positive && negative)
-    return "the best fit folds the screen over (points straddle its vanishing line): the camera and screen points "
-           "are probably paired in the wrong order";
+    return refused("the best fit folds the screen over (points straddle its vanishing line): the camera and "
+                   "screen points are probably paired in the wrong order");
 
   fit.reprojection_error_px.resize(n);
   fit.camera_error_px.resize(n);
@@ -304,7 +308,7 @@ std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> fr
   summarise(fit.reprojection_error_px, fit.rms_px, fit.max_px);
   summarise(fit.camera_error_px, fit.camera_rms_px, fit.camera_max_px);
   if (!std::isfinite(fit.rms_px) || !std::isfinite(fit.camera_rms_px))
-    return "the fit sends a calibration point to infinity: the points are inconsistent";
+    return refused("the fit sends a calibration point to infinity: the points are inconsistent");
   return fit;
 }
 

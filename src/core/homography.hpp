@@ -16,10 +16,10 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/result.hpp"
 
 namespace mallet {
 
@@ -67,8 +67,7 @@ inline constexpr double kCollinearTolerance = 1e-2;
 //! (with 4 points: any 3 collinear within kCollinearTolerance, on either side), the
 //! linear system is rank deficient, the fit is singular, or the points straddle the line
 //! the fit sends to infinity (a "folded" fit, usually points given in the wrong order).
-std::variant<HomographyFit, std::string> fit_homography(std::span<const Vec2> from,
-                                                        std::span<const Vec2> to,
-                                                        ScreenSize screen = {});
+Result<HomographyFit, std::string> fit_homography(std::span<const Vec2> from, std::span<const Vec2> to,
+                                                  ScreenSize screen = {});
 
 }  // namespace mallet

@@ -67,6 +67,11 @@ class Text {
     out_ += '\n';
   }
   void sample(std::string_view name, const std::string& value) { sample(name, {}, value); }
+  //! A family of one unlabelled sample.
+  void single(std::string_view name, std::string_view type, std::string_view help, const std::string& value) {
+    family(name, type, help);
+    sample(name, value);
+  }
   void histogram(std::string_view name, std::string_view help, const DurationHistogram& h) {
     family(name, "histogram", help);
     const std::string bucket = std::string(name) + "_bucket";
@@ -170,8 +175,9 @@ std::string render_prometheus_text(const KioskMetrics& m) {
            "Strikes the kiosk delivered (note, actuator and bounce), visitors' and the attract mode's.");
   for (const auto& [labels, n] : m.strikes)
     t.sample("mallet_strikes_total", {{"instrument", labels.first}, {"material", labels.second}}, format_count(n));
-  t.family("mallet_visitor_sessions_total", "counter", "Visitor sessions: changes from the attract mode to play.");
-  t.sample("mallet_visitor_sessions_total", format_count(m.visitor_sessions()));
+  t.single("mallet_visitor_sessions_total", "counter",
+           "Visitor sessions: changes from the attract mode to play.",
+           format_count(m.visitor_sessions()));
   t.histogram("mallet_visitor_session_seconds",
               "How long visitors played: from the start of play to their last movement before the attract mode.",
               m.session_histogram());
@@ -179,36 +185,38 @@ std::string render_prometheus_text(const KioskMetrics& m) {
            "Visitor micro-study sessions (a visitor accepted its offer), by how they ended.");
   for (const auto& [outcome, n] : m.visitor_study)
     t.sample("mallet_visitor_study_sessions_total", {{"outcome", outcome}}, format_count(n));
-  t.family("mallet_frames_total", "counter", "Frames drawn.");
-  t.sample("mallet_frames_total", format_count(m.frames()));
+  t.single("mallet_frames_total", "counter", "Frames drawn.", format_count(m.frames()));
   t.histogram("mallet_frame_seconds", "Time from one drawn frame to the next.", m.frame_histogram());
-  t.family("mallet_audio_xruns_total", "counter",
-           "Audio callbacks that came too late (the device played silence).");
-  t.sample("mallet_audio_xruns_total", format_count(m.audio_xruns));
-  t.family("mallet_audio_output_latency_seconds", "gauge",
-           "From a sample leaving the program to it being heard (NaN: no audio device).");
-  t.sample("mallet_audio_output_latency_seconds", number(m.audio_output_latency_s));
-  t.family("mallet_render_device_lost_total", "counter",
-           "Times the Vulkan device was lost and the renderer rebuilt on a new one (the kiosk went on).");
-  t.sample("mallet_render_device_lost_total", format_count(m.render_devices_lost));
-  t.family("mallet_vulkan_device_memory_bytes", "gauge",
-           "Vulkan device memory the renderer holds (its buffers and images; not the swapchain's).");
-  t.sample("mallet_vulkan_device_memory_bytes", number(m.vulkan_device_memory_bytes));
-  t.family("mallet_remote_connected", "gauge", "1 while the Wii Remote's link runs, else 0.");
-  t.sample("mallet_remote_connected", m.remote_connected ? "1" : "0");
-  t.family("mallet_remote_battery_ratio", "gauge",
-           "The Wii Remote's battery, 1 = fresh cells (NaN: no remote or no report yet).");
-  t.sample("mallet_remote_battery_ratio", number(m.remote_battery_ratio));
-  t.family("mallet_tracking_lost_seconds_total", "counter",
-           "Time in play with the remote connected but the stick's LED out of the camera's view.");
-  t.sample("mallet_tracking_lost_seconds_total", number(seconds_of(m.tracking_lost_ns())));
+  t.single("mallet_audio_xruns_total", "counter",
+           "Audio callbacks that came too late (the device played silence).",
+           format_count(m.audio_xruns));
+  t.single("mallet_audio_output_latency_seconds", "gauge",
+           "From a sample leaving the program to it being heard (NaN: no audio device).",
+           number(m.audio_output_latency_s));
+  t.single("mallet_render_device_lost_total", "counter",
+           "Times the Vulkan device was lost and the renderer rebuilt on a new one (the kiosk went on).",
+           format_count(m.render_devices_lost));
+  t.single("mallet_vulkan_device_memory_bytes", "gauge",
+           "Vulkan device memory the renderer holds (its buffers and images; not the swapchain's).",
+           number(m.vulkan_device_memory_bytes));
+  t.single("mallet_remote_connected", "gauge",
+           "1 while the Wii Remote's link runs, else 0.",
+           m.remote_connected ? "1" : "0");
+  t.single("mallet_remote_battery_ratio", "gauge",
+           "The Wii Remote's battery, 1 = fresh cells (NaN: no remote or no report yet).",
+           number(m.remote_battery_ratio));
+  t.single("mallet_tracking_lost_seconds_total", "counter",
+           "Time in play with the remote connected but the stick's LED out of the camera's view.",
+           number(seconds_of(m.tracking_lost_ns())));
   t.family("mallet_state", "gauge", "The kiosk's state: 1 for the current one, 0 for the others.");
   for (KioskState s : {KioskState::attract, KioskState::play, KioskState::calibration, KioskState::operator_page})
     t.sample("mallet_state", {{"state", to_string(s)}}, m.state() == s ? "1" : "0");
-  t.family("mallet_uptime_seconds", "gauge", "Time since this run of the kiosk started.");
-  t.sample("mallet_uptime_seconds", number(seconds_of(m.uptime_ns)));
-  t.family("mallet_restarts_total", "counter", "How many times the kiosk started before this run.");
-  t.sample("mallet_restarts_total", format_count(m.restarts));
+  t.single("mallet_uptime_seconds", "gauge",
+           "Time since this run of the kiosk started.",
+           number(seconds_of(m.uptime_ns)));
+  t.single("mallet_restarts_total", "counter",
+           "How many times the kiosk started before this run.",
+           format_count(m.restarts));
   t.family("mallet_build_info", "gauge", "Always 1; the label says which version runs.");
   t.sample("mallet_build_info", {{"version", m.version}}, "1");
   return t.take();

@@ -30,6 +30,7 @@
 
 #include "core/geometry.hpp"
 #include "core/impact.hpp"
+#include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
 
 namespace mallet {
@@ -52,10 +53,7 @@ struct ContactZone {
 
 class Mallet {
  public:
-  struct Counters {
-    std::uint64_t accepted = 0;
-    std::uint64_t ignored_non_finite = 0;
-    std::uint64_t ignored_not_after_previous = 0;  //!< dt <= 0 (duplicates, reordering)
+  struct Counters : SampleCounters {
     std::uint64_t impacts = 0;
     std::uint64_t touches_below_min_speed = 0;
     std::uint64_t clamped_speed = 0;

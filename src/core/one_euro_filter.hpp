@@ -31,6 +31,7 @@
 #include <string>
 
 #include "core/geometry.hpp"
+#include "core/pointer_sample.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
@@ -49,11 +50,7 @@ std::string validate(const OneEuroConfig& config);
 
 class OneEuroFilter {
  public:
-  struct Counters {
-    std::uint64_t accepted = 0;
-    std::uint64_t ignored_non_finite = 0;
-    std::uint64_t ignored_not_after_previous = 0;  //!< dt <= 0 (duplicates, reordering)
-  };
+  using Counters = SampleCounters;
 
   //! Throws std::invalid_argument when validate(config) is not empty.
   explicit OneEuroFilter(OneEuroConfig config = {});

@@ -1,5 +1,7 @@
 #pragma once
 // What every pointer source (Wii Remote IR camera, mouse, replayed trajectory) produces.
+#include <cstdint>
+
 #include "core/time.hpp"
 
 namespace mallet {
@@ -10,6 +12,13 @@ struct PointerSample {
   Nanos t_ns = 0;
   double x = 0;
   double y = 0;
+};
+
+//! What a consumer of samples (the contact solver, the 1€ filter) took, and what it ignored.
+struct SampleCounters {
+  std::uint64_t accepted = 0;
+  std::uint64_t ignored_non_finite = 0;
+  std::uint64_t ignored_not_after_previous = 0;  //!< dt <= 0 (duplicates, reordering)
 };
 
 }  // namespace mallet

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 namespace mallet {
 
 const char* to_string(PresentPacing p) {
@@ -96,11 +98,9 @@ Nanos PresentClock::first_shown(Nanos t, Nanos not_before) const {
 }
 
 std::string PresentClock::describe() const {
-  char buf[96];
   const double ms = static_cast<double>(period_ns()) * 1e-6;
-  std::snprintf(buf, sizeof buf, "%s%s, frame period %.1f ms (%.1f Hz)", to_string(pacing()),
-                unpaced() ? " (not paced by the display)" : "", ms, 1e3 / ms);
-  return buf;
+  return fmt::format("{}{}, frame period {:.1f} ms ({:.1f} Hz)", to_string(pacing()),
+                     unpaced() ? " (not paced by the display)" : "", ms, 1e3 / ms);
 }
 
 }  // namespace mallet

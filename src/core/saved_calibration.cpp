@@ -4,6 +4,8 @@
 #include <exception>
 #include <system_error>
 
+#include <fmt/format.h>
+
 #include "core/atomic_file.hpp"
 
 namespace mallet {
@@ -17,9 +19,8 @@ SavedCalibration load_saved_calibration(const std::filesystem::path& file) {
   }
   try {
     out.calibration = load_calibration(file);
-    char buf[300];
-    std::snprintf(buf, sizeof buf, "calibration: %s (%s, max error %.1f px)", file.c_str(),
-                  out.calibration->created_utc.c_str(), out.calibration->max_error_screen_px);
+    const std::string buf = fmt::format("calibration: {} ({}, max error {:.1f} px)", file.c_str(),
+                                        out.calibration->created_utc.c_str(), out.calibration->max_error_screen_px);
     out.status = buf;
   } catch (const std::exception& e) {  // FileError, and whatever else reading it throws
     const std::optional<std::filesystem::path> bad = set_aside_as_bad(file);

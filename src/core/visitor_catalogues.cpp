@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "core/data_paths.hpp"
+#include "core/journal.hpp"
 #include "core/visitor_language.hpp"
 
 #ifndef MALLET_BUILD_LOCALE_DIR
@@ -50,7 +51,7 @@ void start_visitor_language(const std::string& language, std::vector<std::string
 
 const std::string& visitor_texts() {
   static const bool said = [] {
-    for (const std::string& p : texts().problems) std::fprintf(stderr, "<4>language: %s\n", p.c_str());
+    for (const std::string& p : texts().problems) journal::warning("language: {}", p.c_str());
     return true;
   }();
   (void)said;

@@ -23,6 +23,8 @@
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
+#include <fmt/format.h>
+
 #include "core/file_error.hpp"
 #include "render/gltf_source.hpp"
 
@@ -51,8 +53,7 @@ constexpr int kMaxTextureSide = 8192;
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string str(const glm::dvec3& v) {
-  char text[96];
-  std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x, v.y, v.z);
+  const std::string text = fmt::format("({:g}, {:g}, {:g})", v.x, v.y, v.z);
   return text;
 }
 

@@ -7,6 +7,9 @@
 #include <iterator>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "core/journal.hpp"
 #include "render/vk_error.hpp"
 
 namespace mallet::render {
@@ -37,8 +40,7 @@ PipelineCache::PipelineCache(const Context& ctx, fs::path dir) : ctx_(ctx) {
   const VkPhysicalDeviceProperties& p = ctx.properties();
   std::vector<char> data;
   if (!dir.empty()) {
-    char name[96];
-    std::snprintf(name, sizeof name, "pipelines-%04x-%04x-%08x.bin", p.vendorID, p.deviceID, p.driverVersion);
+    const std::string name = fmt::format("pipelines-{:04x}-{:04x}-{:08x}.bin", p.vendorID, p.deviceID, p.driverVersion);
     file_ = dir / name;
     std::ifstream in(file_, std::ios::binary);
     if (in) data.assign(std::istreambuf_iterator<char>(in), {});
@@ -75,13 +77,13 @@ void PipelineCache::save() const {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(data.data(), static_cast<std::streamsize>(size));
     if (!out) {
-      std::fprintf(stderr, "<4>%s: cannot write the pipeline cache (next start compiles again)\n", tmp.c_str());
+      journal::warning("{}: cannot write the pipeline cache (next start compiles again)", tmp.c_str());
       fs::remove(tmp, ec);
       return;
     }
   }
   fs::rename(tmp, file_, ec);
-  if (ec) std::fprintf(stderr, "<4>%s: cannot save the pipeline cache: %s\n", file_.c_str(), ec.message().c_str());
+  if (ec) journal::warning("{}: cannot save the pipeline cache: {}", file_.c_str(), ec.message().c_str());
 }
 
 }  // namespace mallet::render

@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "core/data_paths.hpp"
+#include "core/journal.hpp"
+#include "core/pixel_size.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "core/file_error.hpp"
 #include "render/vk_error.hpp"
@@ -28,17 +30,9 @@ render::Validation validation_from_env() {
 }
 
 VkExtent2D parse_size(const std::string& text, const std::string& option) {
-  // WIDTHxHEIGHT, digits only (no std::regex: GCC 12 -O2 warns inside it).
-  const auto x = text.find('x');
-  const auto digits = [](const std::string& d) {
-    return !d.empty() && d.size() <= 5 && d.find_first_not_of("0123456789") == std::string::npos;
-  };
-  if (x == std::string::npos || !digits(text.substr(0, x)) || !digits(text.substr(x + 1)))
-    throw FileError(option, 0, 0, "expected WIDTHxHEIGHT such as 1280x720, got \"" + text + "\"");
-  const unsigned long w = std::stoul(text.substr(0, x)), h = std::stoul(text.substr(x + 1));
-  if (w < 16 || h < 16 || w > 8192 || h > 8192)
-    throw FileError(option, 0, 0, "width and height must be 16..8192, got " + text);
-  return {static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)};
+  const Result<PixelSize, std::string> size = parse_pixel_size(text);
+  if (!size) throw FileError(option, 0, 0, size.error());
+  return {size->width, size->height};
 }
 
 std::filesystem::path models_dir() { return data_dir() / "models"; }
@@ -83,7 +77,7 @@ std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
                                                render::FontAtlas::default_cjk_font());
   } catch (const FileError& e) {
     if (e.file() == render::FontAtlas::default_font().string()) throw;
-    std::fprintf(stderr, "<4>font: %s: Japanese shows as '?'\n", e.what());
+    journal::warning("font: {}: Japanese shows as '?'", e.what());
     return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
                                                std::filesystem::path{});
   }
@@ -127,7 +121,7 @@ void ProductWindow::pace() {
     held_ns_ = monotonic_now() - now;
   };
   if (max_fps_ < 0) {  // mallet run --no-frame-cap
-    if (!std::exchange(pace_said_, true)) std::fprintf(stderr, "<5>render: frames not capped (--no-frame-cap)\n");
+    if (!std::exchange(pace_said_, true)) journal::notice("render: frames not capped (--no-frame-cap)");
     if (window->still()) wait_for_next_start();
     return;
   }
@@ -142,12 +136,12 @@ void ProductWindow::pace() {
   constexpr std::uint64_t kSettledFrames = 120;  // the present model's estimate settles in ~60
   if (frames_ >= kSettledFrames && !std::exchange(pace_said_, true)) {
     if (pace)
-      std::fprintf(stderr, "<6>render: frames paced at %.0f a second (%s)\n", cap,
-                   display_paces ? "[render] max_fps, below the display's refresh"
-                   : fifo        ? "the display does not hold them back"
-                                 : "mailbox or immediate presenting");
+      journal::info("render: frames paced at {:.0f} a second ({})", cap,
+                    display_paces ? "[render] max_fps, below the display's refresh"
+                    : fifo        ? "the display does not hold them back"
+                                  : "mailbox or immediate presenting");
     else
-      std::fprintf(stderr, "<6>render: frames paced by the display at its %.0f Hz refresh\n", refresh);
+      journal::info("render: frames paced by the display at its {:.0f} Hz refresh", refresh);
   }
   if (!pace) {
     if (window->still()) wait_for_next_start();
@@ -175,10 +169,8 @@ bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const rende
     if (lost.result() != VK_ERROR_DEVICE_LOST) throw;
     const Nanos at = monotonic_now();
     ++devices_lost_;
-    std::fprintf(stderr,
-                 "<3>render: the Vulkan device was lost (%s); rebuilding the device, the pipelines and the "
-                 "background (the sound and the remote's strikes go on)\n",
-                 lost.what());
+    journal::error("render: the Vulkan device was lost ({}); rebuilding the device, the pipelines and the "
+                   "background (the sound and the remote's strikes go on)", lost.what());
     constexpr int kTries = 5;
     for (int attempt = 1;; ++attempt) {
       try {
@@ -188,14 +180,12 @@ bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const rende
         break;
       } catch (const render::RenderError& e) {
         if (attempt == kTries) throw;
-        std::fprintf(stderr, "<3>render: rebuilding failed (%s); trying again in 1 s (%d of %d)\n", e.what(),
-                     attempt, kTries);
+        journal::error("render: rebuilding failed ({}); trying again in 1 s ({} of {})", e.what(), attempt, kTries);
         std::this_thread::sleep_for(std::chrono::seconds(1));
       }
     }
-    std::fprintf(stderr, "<5>render: rebuilt on %s in %.0f ms; drawing again (device lost %llu time(s))\n",
-                 ctx->device_name().c_str(), to_seconds(monotonic_now() - at) * 1e3,
-                 static_cast<unsigned long long>(devices_lost_));
+    journal::notice("render: rebuilt on {} in {:.0f} ms; drawing again (device lost {} time(s))",
+                    ctx->device_name().c_str(), to_seconds(monotonic_now() - at) * 1e3, devices_lost_);
     return false;
   }
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/journal.hpp"
 #include "render/vk_error.hpp"
 
 namespace mallet::render {
@@ -168,7 +169,7 @@ void Context::on_validation_message(const char* message) {
     std::lock_guard lock(message_mutex_);
     first_message_ = message;
   }
-  std::fprintf(stderr, "<4>vulkan validation: %s\n", message);
+  journal::warning("vulkan validation: {}", message);
 }
 
 std::string Context::first_validation_message() const {

@@ -69,15 +69,14 @@ double max_screen_gap_px(const Homography& a, const Homography& b) {
   return worst;
 }
 
-HomographyFit fit_of(const std::variant<HomographyFit, std::string>& r) {
-  if (const auto* reason = std::get_if<std::string>(&r)) ADD_FAILURE() << "refused: " << *reason;
-  const auto* fit = std::get_if<HomographyFit>(&r);
-  return fit ? *fit : HomographyFit{};
+HomographyFit fit_of(const Result<HomographyFit, std::string>& r) {
+  if (!r) ADD_FAILURE() << "refused: " << r.error();
+  return r.value_or(HomographyFit{});
 }
 
 std::string reason_of(const std::vector<Vec2>& from, const std::vector<Vec2>& to) {
   const auto r = fit_homography(from, to, kScreen);
-  if (const auto* reason = std::get_if<std::string>(&r)) return *reason;
+  if (!r) return r.error();
   ADD_FAILURE() << "accepted a degenerate set";
   return {};
 }

@@ -22,9 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!any) (void)any.error().message();
   // parse_input succeeds exactly when the id is known and the length is that id's.
   const bool known_size = size > 0 && wm::input_report_size(data[0]) == size;
-  if (any.ok() != known_size) std::abort();
-  if (ir.ok()) {
-    if (!any.ok() || !std::holds_alternative<wm::IrReport>(*any)) std::abort();
+  if (any.has_value() != known_size) std::abort();
+  if (ir.has_value()) {
+    if (!any.has_value() || !std::holds_alternative<wm::IrReport>(*any)) std::abort();
     for (const auto& slot : ir->slots) {
       if (!slot) continue;
       if (slot->x < 0 || slot->x > wm::kIrMaxX || slot->y < 0 || slot->y > wm::kIrMaxY) std::abort();
@@ -32,9 +32,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if ((slot->size == -1) != (ir->format == wm::IrFormat::basic)) std::abort();
     }
   }
-  if (status.ok() && !std::holds_alternative<wm::StatusReport>(*any)) std::abort();
-  if (read.ok() && (read->size < 1 || read->size > 16)) std::abort();
-  if (ack.ok() && !std::holds_alternative<wm::AckReport>(*any)) std::abort();
+  if (status.has_value() && !std::holds_alternative<wm::StatusReport>(*any)) std::abort();
+  if (read.has_value() && (read->size < 1 || read->size > 16)) std::abort();
+  if (ack.has_value() && !std::holds_alternative<wm::AckReport>(*any)) std::abort();
 
   // The start-up state machine eats the same bytes without trouble.
   wm::IrStartup startup;
@@ -45,12 +45,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // And the hex reader on the same bytes as text.
-  std::string problem;
-  std::size_t column = 0;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  if (const auto parsed = wm::parse_hex_bytes(text, problem, column)) {
-    if (wm::parse_hex_bytes(wm::to_hex(*parsed), problem, column) != parsed) std::abort();
-  } else if (column < 1 || column > size) {
+  if (const auto parsed = wm::parse_hex_bytes(text)) {
+    const auto again = wm::parse_hex_bytes(wm::to_hex(*parsed));
+    if (!again || *again != *parsed) std::abort();
+  } else if (parsed.error().column < 1 || parsed.error().column > size) {
     std::abort();
   }
   return 0;

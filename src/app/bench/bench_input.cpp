@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_report.hpp"
 #include "app/bench/bench_commands.hpp"
 #include "core/data_paths.hpp"
@@ -267,13 +269,10 @@ Result evaluate(const Scene& scene, const std::vector<Observed>& still, const st
 
 std::string cell(const ImpactScore& s, bool with_time) {
   if (s.matched == 0) return "(no strike found)";
-  char b[64];
   if (with_time)
-    std::snprintf(b, sizeof b, "%+6.1f/%5.1f %+6.1f/%5.1f%s", s.speed_bias_pct, s.speed_abs_pct, s.time_mean_ms,
-                  s.time_max_abs_ms, s.missed + s.extra ? " !" : "");
-  else
-    std::snprintf(b, sizeof b, "%+6.1f/%5.1f", s.speed_bias_pct, s.speed_abs_pct);
-  return b;
+    return fmt::format("{:+6.1f}/{:5.1f} {:+6.1f}/{:5.1f}{}", s.speed_bias_pct, s.speed_abs_pct, s.time_mean_ms,
+                       s.time_max_abs_ms, s.missed + s.extra ? " !" : "");
+  return fmt::format("{:+6.1f}/{:5.1f}", s.speed_bias_pct, s.speed_abs_pct);
 }
 
 void print_header(const char* title) {
@@ -286,14 +285,7 @@ void print_header(const char* title) {
 }
 
 void print_row(const Result& r) {
-  auto ms = [](double v) {
-    char b[16];
-    if (v >= 149.0)
-      std::snprintf(b, sizeof b, ">150");
-    else
-      std::snprintf(b, sizeof b, "%6.2f", v);
-    return std::string(b);
-  };
+  auto ms = [](double v) { return v >= 149.0 ? std::string(">150") : fmt::format("{:6.2f}", v); };
   std::string misses;
   if (r.segments.missed + r.segments.extra)
     misses = " missed " + std::to_string(r.segments.missed) + " extra " + std::to_string(r.segments.extra);
@@ -508,9 +500,9 @@ void run_bench_input(const std::filesystem::path& scene_path, std::uint64_t seed
     }
     for (std::size_t k = 0; k < tracks.size(); ++k) {
       const std::vector<StrikeTrack> one{tracks[k]};
-      char label[16];
-      std::snprintf(label, sizeof label, "%.1f-%.1f", std::max(1.0, speeds[k] - 0.5), std::min(4.0, speeds[k] + 0.5));
-      std::printf("| %-9s | %-29s | %-29s | %-16s |\n", label, cell(score(one, {raw_found[k]}), true).c_str(),
+      const std::string label = fmt::format("{:.1f}-{:.1f}", std::max(1.0, speeds[k] - 0.5),
+                                            std::min(4.0, speeds[k] + 0.5));
+      std::printf("| %-9s | %-29s | %-29s | %-16s |\n", label.c_str(), cell(score(one, {raw_found[k]}), true).c_str(),
                   cell(score(one, {seg[k]}), true).c_str(), cell(score(one, {der[k]}), false).c_str());
     }
   }
@@ -565,8 +557,7 @@ std::vector<PointerTradeRow> measure_pointer_trade(const Scene& scene, std::uint
   for (const OneEuroConfig& cfg : configs) {
     const Result r = evaluate(scene, w.still, w.slow, w.tracks, cfg);
     PointerTradeRow row;
-    char label[64];
-    std::snprintf(label, sizeof label, "min_cutoff %g Hz, beta %g /m", cfg.min_cutoff_hz, cfg.beta_per_m);
+    const std::string label = fmt::format("min_cutoff {:g} Hz, beta {:g} /m", cfg.min_cutoff_hz, cfg.beta_per_m);
     row.label = label;
     row.cfg = cfg;
     row.jitter_mm = r.jitter_mm;

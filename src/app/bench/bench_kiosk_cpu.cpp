@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_latency_child.hpp"
 #include "app/bench/bench_latency_jack.hpp"
@@ -166,14 +168,10 @@ TextTable kiosk_cpu_table(const std::vector<KioskCpuRow>& rows, int width, int h
   t.title = "The kiosk's CPU at " + std::to_string(width) + "x" + std::to_string(height) +
             ", with and without the frame budget";
   t.header = {"frames", "phase", "kiosk CPU % of a core", "frames/s", "X server CPU %"};
-  char buf[3][32];
-  for (const KioskCpuRow& r : rows) {
-    std::snprintf(buf[0], sizeof buf[0], "%.1f", r.cpu_percent);
-    std::snprintf(buf[1], sizeof buf[1], "%.1f", r.fps);
-    std::snprintf(buf[2], sizeof buf[2], "%.1f", r.x_server_percent);
-    t.rows.push_back({r.capped ? "capped (max_fps = refresh)" : "uncapped (--no-frame-cap)", r.phase, buf[0], buf[1],
-                      buf[2]});
-  }
+  for (const KioskCpuRow& r : rows)
+    t.rows.push_back({r.capped ? "capped (max_fps = refresh)" : "uncapped (--no-frame-cap)", r.phase,
+                      fmt::format("{:.1f}", r.cpu_percent), fmt::format("{:.1f}", r.fps),
+                      fmt::format("{:.1f}", r.x_server_percent)});
   t.note = "The real kiosk, fullscreen on its own Xvfb (lavapipe), its sound on its own JACK server: the attract "
            "mode with nobody there, then play (an XTest pointer sweeping over the bars), then still (the pointer "
            "at rest above the bars: a frame that changes nothing is not drawn). The X server's share is the "

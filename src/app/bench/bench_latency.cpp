@@ -21,6 +21,8 @@
 
 #include <toml++/toml.h>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_latency_child.hpp"
 #include "app/bench/bench_latency_jack.hpp"
@@ -620,8 +622,7 @@ std::string load_average() {
 
 std::string cell(const std::optional<double>& v) {
   if (!v) return "nan";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3f", *v);
+  const std::string b = fmt::format("{:.3f}", *v);
   return b;
 }
 
@@ -715,8 +716,7 @@ void run_bench_latency(const LatencyOptions& options) {
   for (const ConfigResult& r : results)
     for (std::size_t i = 0; i < r.matched.rows.size(); ++i) {
       const StrikeRow& row = r.matched.rows[i];
-      char t[48];
-      std::snprintf(t, sizeof t, "%.6f", to_seconds(row.contact.t));
+      const std::string t = fmt::format("{:.6f}", to_seconds(row.contact.t));
       per << r.config.source << ',' << r.config.preset << ',' << r.config.align << ',' << i << ','
           << rig.bars[static_cast<std::size_t>(row.contact.bar)].target << ',' << row.contact.speed << ',' << t << ','
           << cell(row.strike_ms) << ',' << cell(row.actuator_ms) << ',' << cell(row.note_ms) << ','

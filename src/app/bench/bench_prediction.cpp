@@ -43,6 +43,8 @@
 #include <cstdio>
 #include <ostream>
 
+#include <fmt/format.h>
+
 #include "core/strike_detector.hpp"
 
 namespace mallet::app {
@@ -159,28 +161,24 @@ int run_bench_prediction(const Scene& scene, const ContactConfig& contact, std::
   corpus.seed = kPredictionCorpusSeed;
   const std::vector<PredictionBenchRow> rows =
       measure_prediction_trade(scene, contact, corpus, {0.0, 5.0, 10.0, 15.0}, prediction_levels());
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "contact prediction on %d strokes per rate (%d shapes × 6 kinds), camera σ %.1f px "
-                "(%.2f mm), %.0f %% dropped, seed %u\n",
-                corpus.shapes_per_kind * kStrokeKinds, corpus.shapes_per_kind, corpus.noise_px,
-                corpus.noise_px * metres_per_camera_px(scene, corpus) * 1e3, corpus.drop_probability * 100,
-                corpus.seed);
-  out << line;
+  out << fmt::format(
+      "contact prediction on {} strokes per rate ({} shapes × 6 kinds), camera σ {:.1f} px ({:.2f} mm), {:.0f} % "
+      "dropped, seed {}\n",
+      corpus.shapes_per_kind * kStrokeKinds, corpus.shapes_per_kind, corpus.noise_px,
+      corpus.noise_px * metres_per_camera_px(scene, corpus) * 1e3, corpus.drop_probability * 100, corpus.seed);
   out << "rate  horizon  level     | latency ms med   p99   max | sched err ms p1   p99 | pred/strikes "
          "| false % (added) missed % | speed err p99 % (≥1 m/s)\n";
   for (const PredictionBenchRow& r : rows) {
-    std::snprintf(line, sizeof line,
-                  "%4.0f  %4.0f ms  %-9s |  %5.2f %5.2f %5.2f | %7.2f %6.2f | %4d/%-5d | %5.2f (%+5.2f) %6.2f | %6.1f %7.1f\n",
-                  r.rate_hz, r.horizon_ms, r.level.c_str(), r.latency_median_ms, r.latency_p99_ms, r.latency_max_ms,
-                  r.schedule_error_p1_ms, r.schedule_error_p99_ms, r.predicted, r.strikes, r.false_pct,
-                  r.false_added_pct, r.missed_pct, r.speed_error_p99_pct, r.speed_error_p99_fast_pct);
-    out << line;
+    out << fmt::format(
+        "{:4.0f}  {:4.0f} ms  {:<9} |  {:5.2f} {:5.2f} {:5.2f} | {:7.2f} {:6.2f} | {:4}/{:<5} | "
+        "{:5.2f} ({:+5.2f}) {:6.2f} | {:6.1f} {:7.1f}\n",
+        r.rate_hz, r.horizon_ms, r.level, r.latency_median_ms, r.latency_p99_ms, r.latency_max_ms,
+        r.schedule_error_p1_ms, r.schedule_error_p99_ms, r.predicted, r.strikes, r.false_pct, r.false_added_pct,
+        r.missed_pct, r.speed_error_p99_pct, r.speed_error_p99_fast_pct);
   }
   out << "false strikes by stroke kind (strike slow_approach stop_above hover slide double_tap):\n";
   for (const PredictionBenchRow& r : rows) {
-    std::snprintf(line, sizeof line, "%4.0f  %4.0f ms  %-9s |", r.rate_hz, r.horizon_ms, r.level.c_str());
-    out << line;
+    out << fmt::format("{:4.0f}  {:4.0f} ms  {:<9} |", r.rate_hz, r.horizon_ms, r.level);
     for (int n : r.false_by_kind) out << ' ' << n;
     out << '\n';
   }

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "render/detailed_model.hpp"
 #include "app/bench/bench_kiosk_cpu.hpp"
 #include "app/bench/bench_report.hpp"
@@ -226,17 +228,14 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
                 std::string(10, '-').c_str(), std::string(10, '-').c_str(), std::string(15, '-').c_str(),
                 std::string(14, '-').c_str());
     for (const Row& row : rows) {
-      char rms[32] = "", diff[32] = "";
-      if (row.rms >= 0) {
-        std::snprintf(rms, sizeof rms, "%.3f", row.rms);
-        std::snprintf(diff, sizeof diff, "%.3f", row.differing);
-      }
+      const std::string rms = row.rms >= 0 ? fmt::format("{:.3f}", row.rms) : "";
+      const std::string diff = row.rms >= 0 ? fmt::format("{:.3f}", row.differing) : "";
       if (row.median_ms == 0) {
         std::printf("| %-28s | %9s | %8s | %8s | %13s | %12s |\n", row.what.c_str(), "-", "-", "-", "-", "-");
         continue;
       }
       std::printf("| %-28s | %9.2f | %8.2f | %8.2f | %13s | %12s |\n", row.what.c_str(), row.median_ms, row.p95_ms,
-                  row.median_ms / rows[0].median_ms, rms, diff);
+                  row.median_ms / rows[0].median_ms, rms.c_str(), diff.c_str());
     }
     std::printf("\n");
   }

@@ -6,6 +6,8 @@
 #include <memory>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_prediction.hpp"
 #include "app/bench/bench_report.hpp"
 #include "app/bench/bench_commands.hpp"
@@ -29,16 +31,12 @@ void measure_pointer(const Scene& scene, const ReportOptions& o, ReportSections&
   for (const PointerTradeRow& r : rows) {
     const bool is_preset = r.label != "raw" && r.cfg.beta_per_m == preset.beta_per_m &&
                            r.cfg.min_cutoff_hz == preset.min_cutoff_hz;
-    char b[64];
-    std::snprintf(b, sizeof b, "aiming lag %.1f ms", r.slow_lag_ms);
-    char label[32];
-    std::snprintf(label, sizeof label, "beta %g", r.cfg.beta_per_m);
+    const std::string b = fmt::format("aiming lag {:.1f} ms", r.slow_lag_ms);
+    const std::string label = fmt::format("beta {:g}", r.cfg.beta_per_m);
     t.points.push_back({r.label == "raw" ? "raw" : label, std::max(0.01, r.lag_ms), r.jitter_mm,
                         is_preset ? "fast balanced exact" : "", b});
-    char s[32], tm[32];
-    std::snprintf(s, sizeof s, "%.1f", r.speed_abs_pct);
-    std::snprintf(tm, sizeof tm, "%.2f", r.time_max_ms);
-    impacts.rows.push_back({r.label == "raw" ? "raw swept segments (what the kiosk uses)" : "filtered: " + r.label, s, tm,
+    impacts.rows.push_back({r.label == "raw" ? "raw swept segments (what the kiosk uses)" : "filtered: " + r.label,
+                            fmt::format("{:.1f}", r.speed_abs_pct), fmt::format("{:.2f}", r.time_max_ms),
                             std::to_string(r.missed), std::to_string(r.extra)});
   }
   t.note = "Camera model of `mallet bench input` (0.82 mm/px, σ 0.5 px, 100 Hz). Strikes are detected on the raw "
@@ -67,8 +65,7 @@ void measure_prediction(const Scene& scene, const ReportOptions& o, ReportSectio
   const double preset_horizon = quality_knobs(Quality::balanced).predict_horizon_ms;
   for (const PredictionBenchRow& r : rows) {
     auto cell = [](double v) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.2f", v);
+      const std::string b = fmt::format("{:.2f}", v);
       return std::string(b);
     };
     full.rows.push_back({cell(r.rate_hz), cell(r.horizon_ms), r.horizon_ms > 0 ? r.level : "off",
@@ -79,10 +76,9 @@ void measure_prediction(const Scene& scene, const ReportOptions& o, ReportSectio
     const std::string presets = r.horizon_ms == 0                                          ? "exact"
                                 : r.horizon_ms == preset_horizon && r.level == "balanced" ? "fast balanced"
                                                                                            : "";
-    char label[48], note[64];
-    std::snprintf(label, sizeof label, "%s %.0f ms", r.horizon_ms > 0 ? r.level.c_str() : "off", r.horizon_ms);
-    std::snprintf(note, sizeof note, "p99 %.1f ms, false +%.2f %%", r.latency_p99_ms, r.false_added_pct);
-    t.points.push_back({label, std::max(0.01, r.latency_median_ms), r.speed_error_p99_fast_pct, presets, note});
+    t.points.push_back({fmt::format("{} {:.0f} ms", r.horizon_ms > 0 ? r.level : "off", r.horizon_ms),
+                        std::max(0.01, r.latency_median_ms), r.speed_error_p99_fast_pct, presets,
+                        fmt::format("p99 {:.1f} ms, false +{:.2f} %", r.latency_p99_ms, r.false_added_pct)});
   }
   t.note = "The stroke corpus of `mallet bench prediction` (minimum-jerk downswings 0.2–4 m/s, slowing approaches, "
            "stops above a bar, hovers, slides, double taps; σ 0.5 px, 2 % dropped) through the strike route's "

@@ -26,6 +26,8 @@
 #ifdef MALLET_HAVE_STK
 #include <stk/ModalBar.h>
 #include <stk/Stk.h>
+
+#include <fmt/format.h>
 #endif
 
 namespace mallet::app {
@@ -44,12 +46,6 @@ double median_ns_per_unit(int runs, double units, const std::function<void()>& b
   }
   std::nth_element(t.begin(), t.begin() + static_cast<long>(t.size() / 2), t.end());
   return t[t.size() / 2];
-}
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
 }
 
 //! The note's reference over n samples at kFs (exact_reference.hpp).
@@ -191,7 +187,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
           [&](const QualityKnobs& q) { return k == std::min<int>(q.max_modes, static_cast<int>(glock->modes.size())); });
       t.points.push_back({std::to_string(k) + (k == 1 ? " mode" : " modes"), ns, std::max(err, 1e-16), presets, ""});
       const int dft = std::min(m, o.quick ? 512 : 4096);
-      spectral.rows.push_back({std::to_string(k), fmt("%.1f", spectral_error_db(x, ref, dft))});
+      spectral.rows.push_back({std::to_string(k), fmt::format("{:.1f}", spectral_error_db(x, ref, dft))});
     }
     t.note = "Leaving out the top modes loses exactly their share; the modes kept are bit-for-bit those of the full note.";
     out.trades.push_back(t);
@@ -209,7 +205,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
       g_sink = buf[7];
     });
     peers.rows.push_back({"ours: modal bar voice, " + p.name + " (" + std::to_string(p.modes.size()) + " modes)",
-                          fmt("%.2f", ours), "1.00"});
+                          fmt::format("{:.2f}", ours), "1.00"});
 #ifdef MALLET_HAVE_STK
     {
       stk::Stk::setSampleRate(kFs);
@@ -222,7 +218,8 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
         for (int i = 0; i < n; ++i) acc += bar.tick();
         g_sink = acc;
       });
-      peers.rows.push_back({"STK ModalBar (4 modes + strike sample)", fmt("%.2f", ns), fmt("%.2f", ns / ours)});
+      peers.rows.push_back(
+          {"STK ModalBar (4 modes + strike sample)", fmt::format("{:.2f}", ns), fmt::format("{:.2f}", ns / ours)});
     }
 #else
     out.skipped.push_back("STK ModalBar: not built (install libstk-dev and stk)");
@@ -236,7 +233,8 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
         for (int i = 0; i < n; i += 64) route.render(buf.data(), 64);
         g_sink = buf[0];
       });
-      peers.rows.push_back({"FluidSynth, per voice-frame (16 notes, TimGM6mb)", fmt("%.2f", ns), fmt("%.2f", ns / ours)});
+      peers.rows.push_back({"FluidSynth, per voice-frame (16 notes, TimGM6mb)", fmt::format("{:.2f}", ns),
+                            fmt::format("{:.2f}", ns / ours)});
     } catch (const std::exception& e) {
       out.skipped.push_back(std::string("FluidSynth: ") + e.what());
     }
@@ -255,8 +253,9 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
         for (int i = 0; i < n; i += 64) high.add_to(buf.data(), 64);
         g_sink = buf[7];
       });
-      band.rows.push_back({fmt("%.1f Hz", note_hz), std::to_string(sounding) + " of " + std::to_string(p.modes.size()),
-                           fmt("%.2f", ns)});
+      band.rows.push_back({fmt::format("{:.1f} Hz", note_hz),
+                           std::to_string(sounding) + " of " + std::to_string(p.modes.size()),
+                           fmt::format("{:.2f}", ns)});
     }
     band.note = "A mode at or above 0.45 × the sample rate could only alias; ModalBarVoice leaves it out (the strike "
                 "law's sums still count it, so the modes kept are unchanged).";
@@ -334,7 +333,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
       double worst = 0, best = 0;
       latency(64, a, worst, best);
       const std::string presets = presets_where([&](const QualityKnobs& k) { return k.schedule_ahead_ms == a; });
-      ahead.points.push_back({fmt("%g ms", a), worst, worst - best, presets,
+      ahead.points.push_back({fmt::format("{:g} ms", a), worst, worst - best, presets,
                               a > 0 && a < 64.0 / kFs * 1e3 ? "shorter than one block: late strikes" : ""});
     }
     ahead.note = "A constant delay of at least one block makes every strike sound exactly that late (jitter = one sample). Here each impact is posted at its own time (as a 1000 Hz mouse would); the 100 Hz camera reveals a contact up to 10 ms after it happens, so the exact preset takes 12 ms (see the latency budget: with 5 ms, most strikes came late).";

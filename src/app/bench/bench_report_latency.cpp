@@ -11,6 +11,8 @@
 #include <random>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "audio/audio_setup.hpp"
 #include "app/bench/bench_report.hpp"
 #include "core/csv_file.hpp"
@@ -24,8 +26,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 std::string ms(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3f", v);
+  const std::string b = fmt::format("{:.3f}", v);
   return b;
 }
 
@@ -160,8 +161,8 @@ void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSe
     const AppConfig& c = row.config;
     const Measured m = measure(scene, c, strikes);
     const double total = maximum(m.path_ms) + maximum(m.stream_ms) + maximum(m.process_ms);
-    char head[96];
-    std::snprintf(head, sizeof head, "%s (%d, %g)", row.name.c_str(), c.audio.frames_per_buffer, c.audio.schedule_ahead_ms);
+    const std::string head = fmt::format("{} ({}, {:g})", row.name.c_str(), c.audio.frames_per_buffer,
+                                         c.audio.schedule_ahead_ms);
     audio.rows.push_back({head, ms(median(m.path_ms)) + " / " + ms(maximum(m.path_ms)),
                           ms(median(m.stream_ms)) + " / " + ms(maximum(m.stream_ms)),
                           ms(median(m.process_ms)) + " / " + ms(maximum(m.process_ms)),
@@ -197,12 +198,11 @@ void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSe
       }
       video.rows.push_back({mode, ms(hz).substr(0, ms(hz).find('.')), ms(mean), ms(worst)});
     }
-  char note[256];
-  std::snprintf(note, sizeof note,
-                "Computed, not measured on a display: r = %.2f ms, the balanced preset's measured frame time above; "
-                "T = 1/refresh. Eq. 1 is evaluated at each frame's predicted present time, so the bounce's phase is "
-                "right whatever this latency.",
-                r);
+  const std::string note = fmt::format(
+      "Computed, not measured on a display: r = {:.2f} ms, the balanced preset's measured frame time above; "
+      "T = 1/refresh. Eq. 1 is evaluated at each frame's predicted present time, so the bounce's phase is "
+      "right whatever this latency.",
+      r);
   video.note = note;
   out.tables.push_back(video);
   include_measured_latency(o, out);

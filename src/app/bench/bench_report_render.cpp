@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_kiosk_cpu.hpp"
 #include "app/bench/bench_report.hpp"
 #include "render/render_setup.hpp"
@@ -114,9 +116,8 @@ void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSec
     for (bool shadow : {false, true}) {
       if (msaa > 1 && !shadow && preset_of(msaa, shadow).empty()) continue;
       try {
-        char label[64];
-        std::snprintf(label, sizeof label, "%s, %s", msaa == 1 ? "no AA" : (std::to_string(msaa) + "x MSAA").c_str(),
-                      shadow ? "shadow" : "no shadow");
+        const std::string label = fmt::format("{}, {}", msaa == 1 ? "no AA" : (std::to_string(msaa) + "x MSAA").c_str(),
+                                              shadow ? "shadow" : "no shadow");
         cases.push_back({label, make(msaa, shadow, size), state, true, false, preset_of(msaa, shadow), {}});
       } catch (const render::RenderError&) {
         // not offered by this device
@@ -153,25 +154,22 @@ void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSec
   TextTable savings{"Work the frame does not need (" + std::string(size_text) + ")", {"case", "ms per frame", "× floor"}, {}, ""};
   for (Case& c : cases) {
     const double ms = median_of(c.ms);
-    char x[32];
-    std::snprintf(x, sizeof x, "%.1f× floor", ms / floor_ms);
+    const std::string x = fmt::format("{:.1f}× floor", ms / floor_ms);
     if (c.trade) {
       c.r->render(c.state);
       const render::Image image = c.half ? upscale2(c.r->read_back()) : c.r->read_back();
       const render::ImageDiff d = render::compare_images(image, reference, 3);
       t.points.push_back({c.label, ms, d.rms, c.presets, std::string(x) + (c.half ? "; bilinear upscale" : "")});
     } else if (&c != &cases.front()) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.2f", ms);
+      const std::string b = fmt::format("{:.2f}", ms);
       savings.rows.push_back({c.label, b, x});
     }
   }
-  char note[256];
-  std::snprintf(note, sizeof note,
-                "Floor (clear + read-back, same size, same run): %.2f ms. `auto` antialiasing on this device = %dx "
-                "per frame, %dx for the cached background of the instruments. "
-                "%d rounds × %d frames per case, the cases interleaved.",
-                floor_ms, auto_samples, auto_samples > 1 ? auto_samples : auto_background, rounds, frames);
+  const std::string note =
+      fmt::format("Floor (clear + read-back, same size, same run): {:.2f} ms. `auto` antialiasing on this device = {}x "
+                  "per frame, {}x for the cached background of the instruments. "
+                  "{} rounds × {} frames per case, the cases interleaved.", floor_ms, auto_samples,
+                  auto_samples > 1 ? auto_samples : auto_background, rounds, frames);
   t.note = note;
   for (const TradePoint& p : t.points)
     if (p.presets.find("balanced") != std::string::npos) out.frame_ms_balanced = p.time;

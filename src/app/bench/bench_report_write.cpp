@@ -10,6 +10,8 @@
 #include <limits>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_report.hpp"
 #include "core/gnuplot.hpp"
 #include "core/file_error.hpp"
@@ -27,12 +29,8 @@ void mark_front(TradeTable& table) {
 namespace {
 
 std::string num(double v) {
-  char b[32];
-  if (v != 0 && (std::fabs(v) < 1e-3 || std::fabs(v) >= 1e5))
-    std::snprintf(b, sizeof b, "%.2e", v);
-  else
-    std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
+  if (v != 0 && (std::fabs(v) < 1e-3 || std::fabs(v) >= 1e5)) return fmt::format("{:.2e}", v);
+  return fmt::format("{:.3g}", v);
 }
 
 void write_plot(const TradeTable& t, const std::filesystem::path& dir) {

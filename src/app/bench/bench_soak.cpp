@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_latency_child.hpp"
 #include "app/bench/bench_latency_jack.hpp"
@@ -128,10 +130,9 @@ class StrikeAudit {
       int late = 0;  // the JACK cycles around the window that came late: the seams find_onset skips
       for (const latency::Gap& g : gaps) late += g.end > i0 && g.begin < i1 + 2 * static_cast<std::size_t>(kRate) / 10;
       lost_near_late_cycles += late > 0;
-      char line[200];
-      std::snprintf(line, sizeof line, "%.4f,%.9f,%d,%d,%d,%.1f,%.1f\n", to_seconds(t - start_) / 3600.0, to_seconds(t),
-                    note, actuator, late, to_seconds(since) * 1e3,
-                    pending_.empty() ? -1.0 : to_seconds(pending_.front() - t) * 1e3);
+      const std::string line = fmt::format("{:.4f},{:.9f},{},{},{},{:.1f},{:.1f}\n", to_seconds(t - start_) / 3600.0,
+                                           to_seconds(t), note, actuator, late, to_seconds(since) * 1e3,
+                                           pending_.empty() ? -1.0 : to_seconds(pending_.front() - t) * 1e3);
       lost_file_ << line << std::flush;
     }
     // Keep a second before what is still to be audited (the onset search's training window).

@@ -11,6 +11,8 @@
 #include <iterator>
 #include <sstream>
 
+#include <fmt/format.h>
+
 namespace mallet::app::soak {
 
 std::optional<ProcessSample> read_process(pid_t pid) {
@@ -136,13 +138,9 @@ std::string csv_header() {
 }
 
 std::string csv_row(const Minute& m) {
-  char b[320];
-  std::snprintf(b, sizeof b, "%.4f,%.2f,%d,%d,%.2f,%llu,%llu,%llu,%llu,%llu,%llu,%.2f,%s,%llu", m.hours, m.rss_mib, m.fds,
-                m.threads, m.vulkan_mib, static_cast<unsigned long long>(m.strokes),
-                static_cast<unsigned long long>(m.strikes), static_cast<unsigned long long>(m.actuator),
-                static_cast<unsigned long long>(m.note), static_cast<unsigned long long>(m.lost),
-                static_cast<unsigned long long>(m.frames), m.frame_p99_ms, m.state.c_str(),
-                static_cast<unsigned long long>(m.xruns));
+  const std::string b = fmt::format("{:.4f},{:.2f},{},{},{:.2f},{},{},{},{},{},{},{:.2f},{},{}", m.hours, m.rss_mib,
+                                    m.fds, m.threads, m.vulkan_mib, m.strokes, m.strikes, m.actuator, m.note, m.lost,
+                                    m.frames, m.frame_p99_ms, m.state.c_str(), m.xruns);
   return b;
 }
 
@@ -200,7 +198,6 @@ std::string svg_plot(const std::vector<Minute>& rows) {
   double x_max = 0;
   for (const Minute& m : rows) x_max = std::max(x_max, m.hours);
   if (x_max <= 0) x_max = 1;
-  char b[160];
   for (std::size_t k = 0; k < std::size(kColumns); ++k) {
     const Column& c = kColumns[k];
     const int left = kMargin + static_cast<int>(k % kCols) * (kPanelW + kMargin);
@@ -221,25 +218,22 @@ std::string svg_plot(const std::vector<Minute>& rows) {
       const double pad = 0.1 * (hi - lo);
       lo -= pad, hi += pad;
     }
-    std::snprintf(b, sizeof b, "%s: %+.3g %s per hour", c.name, growth[k].per_hour, c.unit);
-    svg << "<text x=\"" << left << "\" y=\"" << top - 8 << "\" font-weight=\"bold\">" << b << "</text>\n";
+    svg << "<text x=\"" << left << "\" y=\"" << top - 8 << "\" font-weight=\"bold\">"
+        << fmt::format("{}: {:+.3g} {} per hour", c.name, growth[k].per_hour, c.unit) << "</text>\n";
     svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << kPanelW << "\" height=\"" << kPanelH
         << "\" fill=\"none\" stroke=\"#888\"/>\n";
-    std::snprintf(b, sizeof b, "%.4g", hi);
-    svg << "<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" fill=\"#555\">" << b << "</text>\n";
-    std::snprintf(b, sizeof b, "%.4g", lo);
-    svg << "<text x=\"" << left + 4 << "\" y=\"" << top + kPanelH - 4 << "\" fill=\"#555\">" << b << "</text>\n";
-    svg << "<text x=\"" << left << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">0 h</text>\n";
-    std::snprintf(b, sizeof b, "%.2f h", x_max);
-    svg << "<text x=\"" << left + kPanelW - 40 << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">" << b
+    svg << "<text x=\"" << left + 4 << "\" y=\"" << top + 14 << "\" fill=\"#555\">" << fmt::format("{:.4g}", hi)
         << "</text>\n";
+    svg << "<text x=\"" << left + 4 << "\" y=\"" << top + kPanelH - 4 << "\" fill=\"#555\">"
+        << fmt::format("{:.4g}", lo) << "</text>\n";
+    svg << "<text x=\"" << left << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">0 h</text>\n";
+    svg << "<text x=\"" << left + kPanelW - 40 << "\" y=\"" << top + kPanelH + 14 << "\" fill=\"#555\">"
+        << fmt::format("{:.2f} h", x_max) << "</text>\n";
     svg << "<polyline fill=\"none\" stroke=\"#1f5fa8\" stroke-width=\"1.5\" points=\"";
     for (const Minute& m : rows) {
       const double v = c.of(m);
       if (!std::isfinite(v)) continue;
-      std::snprintf(b, sizeof b, "%.1f,%.1f ", left + m.hours / x_max * kPanelW,
-                    top + (hi - v) / (hi - lo) * kPanelH);
-      svg << b;
+      svg << fmt::format("{:.1f},{:.1f} ", left + m.hours / x_max * kPanelW, top + (hi - v) / (hi - lo) * kPanelH);
     }
     svg << "\"/>\n";
   }

@@ -1,5 +1,7 @@
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "app/offline/analyze.hpp"
 #include "app/cli/commands.hpp"
 #include "core/data_paths.hpp"
@@ -39,10 +41,8 @@ void register_analyze(CLI::App& app) {
       for (const Material& candidate : scene.materials)
         if (candidate.name == a.material) m = &candidate;
       auto row = [](const DampedSineFit& fit, double scale) {
-        char buf[64];
-        if (!fit.ok) std::snprintf(buf, sizeof buf, "%-33s", "(too short to fit)");
-        else std::snprintf(buf, sizeof buf, "%-11.7g %10.6f %10.6f", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);
-        return std::string(buf);
+        if (!fit.ok) return fmt::format("{:<33}", "(too short to fit)");
+        return fmt::format("{:<11.7g} {:10.6f} {:10.6f}", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);
       };
       std::printf("%-14s %-9s %7.4f | fit   %s | fit   %s\n", format_seconds(a.t_ns).c_str(), a.material.c_str(),
                   a.velocity, row(a.visual, a.velocity).c_str(),

@@ -4,7 +4,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <variant>
 
 #include "app/cli/commands.hpp"
 #include "core/calibration_file.hpp"
@@ -110,9 +109,8 @@ void add_fit(CLI::App& calibrate) {
     const ScreenSize screen = parse_screen_size(o->screen);
     const PointPairs pairs = read_points_csv(o->points);
     const auto result = fit_homography(pairs.camera, pairs.screen, screen);
-    if (const std::string* reason = std::get_if<std::string>(&result))
-      throw FileError(o->points.string(), 0, 0, *reason);
-    const HomographyFit& fit = std::get<HomographyFit>(result);
+    if (!result) throw FileError(o->points.string(), 0, 0, result.error());
+    const HomographyFit& fit = *result;
     const auto& h = fit.h.h;
     std::printf("camera -> normalised screen (row-major 3x3):\n");
     for (int r = 0; r < 3; ++r) std::printf("  % .10e % .10e % .10e\n", h[r * 3], h[r * 3 + 1], h[r * 3 + 2]);

@@ -16,6 +16,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include <fmt/format.h>
+
 namespace mallet::app {
 namespace {
 
@@ -134,8 +136,7 @@ void run_render(const RenderCliOptions& o) {
       const Nanos t = from + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / *o.fps));
       if (t > to) break;
       if (k >= 100000) throw FileError("--fps", 0, 0, "more than 100000 frames requested");
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%06lld.png", static_cast<long long>(k));
+      const std::string name = fmt::format("frame_{:06}.png", static_cast<long long>(k));
       frames.push_back({t, o.out_dir / name});
     }
     if (o.out_dir.empty()) throw FileError("--out-dir", 0, 0, "is required with --fps");
@@ -181,7 +182,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--input-space", o->input_space, "screen: x,y normalised 0..1; world: sphere centre in metres")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
-  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str()->check(pixel_size());
   auto* at = cmd->add_option("--at", o->at_s, "One frame at this time (s)");
   auto* out = cmd->add_option("--out", o->out, "PNG file for --at");
   auto* fps = cmd->add_option("--fps", o->fps, "A sequence at this frame rate")

@@ -59,7 +59,8 @@ void register_run(CLI::App& app) {
       ->check(positive_at_most(86400.0));
   cmd->add_option("--out", o->out_dir, "Headless: output directory (default: a new mallet-run-DATE folder)");
   cmd->add_option("--size", o->size, "Headless image size, or the window's size with --windowed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(pixel_size());
   cmd->add_option("--idle-after", o->idle_after_s,
                   "Seconds without input before the attract mode plays (default [attract].idle_after_s, 45)")
       ->check(positive_at_most(86400.0));

@@ -231,7 +231,9 @@ void register_study(CLI::App& app) {
   add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_flag("--headless", *headless, "Run on a simulated clock without a window (--answers or the simulated observer)");
   cmd->add_flag("--windowed", window->windowed, "With a display: a window instead of fullscreen");
-  cmd->add_option("--size", window->size, "The window's size with --windowed")->capture_default_str();
+  cmd->add_option("--size", window->size, "The window's size with --windowed")
+      ->capture_default_str()
+      ->check(pixel_size());
   cmd->add_option("--device", window->device, "Vulkan device (substring of its name; default: the settings')");
   cmd->add_option("--quit-after", window->quit_after_s, "With a display: stop as Esc would after this many seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
@@ -253,8 +255,7 @@ void register_study(CLI::App& app) {
         std::fflush(stdout);
         std::_Exit(3);  // no destructors, no flushing: what a crash leaves behind
       };
-    bool validation_failed = false;
-    const StudyRunResult r = windowed ? run_study_window(*o, *window, validation_failed) : run_study(*o);
+    const StudyRunResult r = windowed ? run_study_window(*o, *window) : run_study(*o);
     for (const std::string& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (r.procedure == "constant")
       std::printf("participant %s: %d trials in the schedule\n", o->participant.c_str(), r.total);
@@ -273,7 +274,7 @@ void register_study(CLI::App& app) {
     if (windowed && r.stopped)
       std::printf("stopped before the end (Esc, Q or the window closed); run the same command to resume\n");
     for (const auto& p : r.written) std::printf("wrote %s\n", p.c_str());
-    if (validation_failed) set_exit_status(1);
+    if (r.validation_failed) set_exit_status(1);
   });
 }
 

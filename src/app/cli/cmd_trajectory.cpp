@@ -1,6 +1,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include <fmt/format.h>
+
 #include "app/cli/commands.hpp"
 #include "core/data_paths.hpp"
 #include "app/offline/simulate.hpp"
@@ -65,12 +67,10 @@ void register_trajectory(CLI::App& app) {
     std::ofstream f(o->out);
     if (!f) throw std::runtime_error(o->out.string() + ": cannot create");
     f << "t,x,y\n";
-    char buf[96];
     for (const PointerSample& s : path.samples) {
       const Vec2 p = o->space == "screen" ? scene.screen_to_world.unmap({s.x, s.y}) : Vec2{s.x, s.y};
       if (s.t_ns < 0) continue;  // an approach before t = 0 is cut: TRAJ.csv starts at 0
-      std::snprintf(buf, sizeof buf, ",%.12g,%.12g\n", p.x, p.y);
-      f << format_seconds(s.t_ns) << buf;
+      f << format_seconds(s.t_ns) << fmt::format(",{:.12g},{:.12g}\n", p.x, p.y);
     }
     f.flush();
     if (!f) throw std::runtime_error(o->out.string() + ": write failed");

@@ -34,10 +34,8 @@ std::string decode_hex_text(std::string_view text, const std::string& name) {
     const std::uint32_t line_no = lines.number();
     std::string_view line = *next;
     if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    std::string problem;
-    std::size_t column = 0;
-    const auto bytes = wm::parse_hex_bytes(line, problem, column);
-    if (!bytes) throw FileError(name, line_no, static_cast<std::uint32_t>(column), problem);
+    const auto bytes = wm::parse_hex_bytes(line);
+    if (!bytes) throw FileError(name, line_no, static_cast<std::uint32_t>(bytes.error().column), bytes.error().problem);
     if (bytes->empty()) continue;  // blank or comment only
     const auto report = wm::parse_input(*bytes);
     if (!report) throw FileError(name, line_no, 0, report.error().message());

@@ -2,6 +2,10 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
+#include "core/pixel_size.hpp"
+
 namespace mallet::app {
 
 namespace {
@@ -12,8 +16,7 @@ std::vector<std::string> g_when_done;
 int exit_status() { return g_exit_status; }
 void set_exit_status(int status) { g_exit_status = status; }
 CLI::Validator positive_at_most(double most) {
-  char hi[32] = "";
-  if (most > 0) std::snprintf(hi, sizeof hi, "%g", most);
+  const std::string hi = most > 0 ? fmt::format("{:g}", most) : "";
   const std::string want = most > 0 ? std::string("must be > 0 and at most ") + hi : "must be > 0";
   return CLI::Validator(
       [most, want](std::string& value) {
@@ -22,6 +25,15 @@ CLI::Validator positive_at_most(double most) {
         return std::string();
       },
       most > 0 ? std::string("in (0, ") + hi + "]" : "> 0");
+}
+
+CLI::Validator pixel_size() {
+  return CLI::Validator(
+      [](std::string& value) {
+        const Result<PixelSize, std::string> size = parse_pixel_size(value);
+        return size ? std::string() : size.error();
+      },
+      "WIDTHxHEIGHT");
 }
 
 void say_when_done(std::string line) { g_when_done.push_back(std::move(line)); }

@@ -13,6 +13,10 @@ namespace mallet::app {
 //! double as its bound.
 CLI::Validator positive_at_most(double most = 0);
 
+//! A flag's check for a size in pixels, WIDTHxHEIGHT with each side 16..8192
+//! (core/pixel_size.hpp), worded as the parser words it.
+CLI::Validator pixel_size();
+
 //! The status the last command asked to exit with (0 unless it said otherwise).
 int exit_status();
 void set_exit_status(int status);

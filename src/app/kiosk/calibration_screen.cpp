@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <system_error>
 
+#include <fmt/printf.h>
+
+#include "core/journal.hpp"
 #include "core/visitor_language.hpp"
 #include "render/text_wrap.hpp"
 
@@ -45,7 +48,7 @@ void CalibrationScreen::frame(const IrFrame& f) {
     }
   }
   request_ = sensitivity_;
-  std::fprintf(stderr, "<6>calibration: %s\n", tuner_note_.c_str());
+  journal::info("calibration: {}", tuner_note_.c_str());
 }
 
 CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
@@ -54,23 +57,18 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
   const CalibrationStep step = session_.feed(t_ns, camera_px);
   if (step == CalibrationStep::target_measured || step == CalibrationStep::unstable ||
       step == CalibrationStep::round_rejected)
-    std::fprintf(stderr, "<6>calibration: %s at camera %.0f,%.0f\n", to_string(step), camera_px.x, camera_px.y);
+    journal::info("calibration: {} at camera {:.0f},{:.0f}", to_string(step), camera_px.x, camera_px.y);
   if (step == CalibrationStep::round_rejected || step == CalibrationStep::failed) {
-    char buf[200];
     if (const auto& fit = session_.last_fit())
-      std::snprintf(buf, sizeof buf, tr("Round %d: largest error %.1f px (limit %.1f px): measuring again"),
-                    session_.round(), fit->max_px, session_.config().max_error_screen_px);
+      last_round_ = fmt::sprintf(tr("Round %d: largest error %.1f px (limit %.1f px): measuring again"),
+                                 session_.round(), fit->max_px, session_.config().max_error_screen_px);
     else
-      std::snprintf(buf, sizeof buf, tr("Round %d refused: %s"), session_.round(), session_.failure().c_str());
-    last_round_ = buf;
+      last_round_ = fmt::sprintf(tr("Round %d refused: %s"), session_.round(), session_.failure());
   }
   if (step == CalibrationStep::accepted) accept();
   if (step == CalibrationStep::failed) {
     outcome_ = Outcome::failed;
-    char buf[240];
-    std::snprintf(buf, sizeof buf, tr("Calibration failed (%s); the previous calibration stays"),
-                  session_.failure().c_str());
-    message_ = buf;
+    message_ = fmt::sprintf(tr("Calibration failed (%s); the previous calibration stays"), session_.failure());
   }
   return step;
 }
@@ -79,10 +77,8 @@ void CalibrationScreen::accept() {
   result_ = session_.calibration(remote_, utc_timestamp_now());
   if (sensitivity_chosen_) result_->ir_sensitivity = sensitivity_;  // kept with it: restored at start-up
   const auto& fit = session_.last_fit();
-  char buf[160];
-  std::snprintf(buf, sizeof buf, tr("Calibrated: reprojection error %.1f px rms, %.1f px max"), fit ? fit->rms_px : 0.0,
-                fit ? fit->max_px : 0.0);
-  message_ = buf;
+  message_ = fmt::sprintf(tr("Calibrated: reprojection error %.1f px rms, %.1f px max"), fit ? fit->rms_px : 0.0,
+                          fit ? fit->max_px : 0.0);
   if (!save_to_) {
     outcome_ = Outcome::accepted;
     message_ += remote_ == "mouse" ? tr(" (mouse: not saved)") : tr(" (not saved)");
@@ -109,10 +105,8 @@ std::string CalibrationScreen::status_line() const {
   // ones would.
   const std::size_t count = session_.targets().size();
   const int target = session_.current_target().value_or(static_cast<int>(count) - 1);
-  char status[200];
-  std::snprintf(status, sizeof status, tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1,
-                dot_seen_ ? tr("light seen") : tr("no light seen"));
-  return status;
+  return fmt::sprintf(tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1,
+                      dot_seen_ ? tr("light seen") : tr("no light seen"));
 }
 
 void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {

@@ -18,6 +18,8 @@
 #include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
 #include "audio/audio_setup.hpp"
 #include "core/data_paths.hpp"
 #include "app/kiosk/kiosk_setup.hpp"
@@ -71,8 +73,7 @@ std::size_t count_lines(const std::string& s) {
 }
 
 std::string ms_text(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f ms", s * 1e3);
+  const std::string buf = fmt::format("{:.1f} ms", s * 1e3);
   return buf;
 }
 
@@ -129,11 +130,10 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
     audio::PortAudioOutput output(*rig.engine, config.audio, {});
     const audio::DeviceInfo d = output.device();
     const AudioRouting& r = config.audio.routing;
-    char buf[400];
-    std::snprintf(buf, sizeof buf,
-                  "\"%s\" (%s), %.0f Hz, output latency %s, %d channels: note on %d, actuator on %d (device has %d)",
-                  d.name.c_str(), d.host_api.c_str(), output.sample_rate_hz(), ms_text(output.output_latency_s()).c_str(),
-                  r.channels, r.acoustic, r.actuator, d.max_output_channels);
+    const std::string buf = fmt::format(
+        "\"{}\" ({}), {:.0f} Hz, output latency {}, {} channels: note on {}, actuator on {} (device has {})", d.name,
+        d.host_api, output.sample_rate_hz(), ms_text(output.output_latency_s()), r.channels, r.acoustic, r.actuator,
+        d.max_output_channels);
     DoctorCheck c{"audio", CheckLevel::ok, buf, ""};
     if (r.channels > d.max_output_channels) {
       c.level = CheckLevel::fail;
@@ -201,11 +201,13 @@ DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::
   if (s.link != wm::LinkState::running)
     return fail("wiimote", found_text + (s.problem.empty() ? "" : ": " + s.problem),
                 "the IR camera's start-up was not answered: press 1+2 to reconnect it, change its batteries");
-  char buf[120];
   const double battery = s.remote.battery ? *s.remote.battery / 200.0 : -1.0;
-  std::snprintf(buf, sizeof buf, ", IR camera answered, %.0f reports/s, battery %s", s.remote.ir_rate_hz,
-                battery >= 0 ? (std::to_string(static_cast<int>(std::min(1.0, battery) * 100)) + " %").c_str() : "unknown");
-  DoctorCheck c{"wiimote", CheckLevel::ok, found_text + buf, ""};
+  const std::string battery_text =
+      battery >= 0 ? std::to_string(static_cast<int>(std::min(1.0, battery) * 100)) + " %" : "unknown";
+  DoctorCheck c{"wiimote", CheckLevel::ok,
+                found_text + fmt::format(", IR camera answered, {:.0f} reports/s, battery {}", s.remote.ir_rate_hz,
+                                         battery_text),
+                ""};
   if (s.remote.battery_low) {
     c.level = CheckLevel::warn;
     c.fix = "the batteries are low: change them";
@@ -278,11 +280,14 @@ DoctorCheck check_languages(const AppConfig& config) {
 }
 
 //! The user the service runs as (mallet), else whoever runs the doctor.
-std::string kiosk_user(bool& service_user) {
-  service_user = ::getpwnam("mallet") != nullptr;
-  if (service_user) return "mallet";
+struct KioskUser {
+  std::string name;
+  bool service = false;  //!< the package's own user
+};
+KioskUser kiosk_user() {
+  if (::getpwnam("mallet") != nullptr) return {"mallet", true};
   const passwd* me = ::getpwuid(::getuid());
-  return me ? me->pw_name : "?";
+  return {me ? me->pw_name : "?", false};
 }
 
 DoctorCheck check_hidraw() {
@@ -294,8 +299,9 @@ DoctorCheck check_hidraw() {
       rule = p.string();
       break;
     }
-  bool service_user = false;
-  const std::string user = kiosk_user(service_user);
+  const KioskUser kiosk = kiosk_user();
+  const std::string& user = kiosk.name;
+  const bool service_user = kiosk.service;
   std::vector<std::string> missing;
   if (const passwd* pw = service_user ? ::getpwnam(user.c_str()) : nullptr) {
     std::vector<gid_t> groups(64);

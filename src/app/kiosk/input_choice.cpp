@@ -2,7 +2,10 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "core/data_paths.hpp"
+#include "core/journal.hpp"
 #include "core/saved_calibration.hpp"
 #include "core/strike_line.hpp"
 
@@ -26,7 +29,7 @@ void choose_mouse(KioskStage& stage, const InputDevices& devices) {
     stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
     // Asked for by name: said as a warning; the window system's events keep the kiosk playable.
     if (in.mouse == "evdev")
-      std::fprintf(stderr, "<4>[input] mouse = \"evdev\" could not be opened: %s\n", opened.error.c_str());
+      journal::warning("[input] mouse = \"evdev\" could not be opened: {}", opened.error.c_str());
     return;
   }
   stage.evdev = std::move(opened.mouse);
@@ -72,7 +75,7 @@ void choose_input(KioskStage& stage, const InputDevices& devices) {
   SavedCalibration saved = load_saved_calibration(calibration_path());
   stage.calibration = std::move(saved.calibration);
   stage.calibration_status = std::move(saved.status);
-  if (!saved.warning.empty()) std::fprintf(stderr, "<4>%s\n", saved.warning.c_str());
+  if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
   if (stage.source == InputSource::replay && !stage.calibration) {
     // A recording without a calibration: the camera's view mirrored onto the whole screen
     // (the camera faces the visitor), so a demo plays at once.
@@ -107,10 +110,7 @@ std::string input_line(const KioskStage& s) {
     std::string line = "input: mouse (" + s.input_why + "); " + s.mouse_line;
     if (s.evdev) {
       const input::evdev::EvdevMouseStatus m = s.evdev->status();
-      char buf[120];
-      if (m.connected) std::snprintf(buf, sizeof buf, ", %.0f reports/s", m.rate_hz);
-      else std::snprintf(buf, sizeof buf, ", lost: %s", m.problem.c_str());
-      line += buf;
+      line += m.connected ? fmt::format(", {:.0f} reports/s", m.rate_hz) : ", lost: " + m.problem;
     }
     return line;
   }
@@ -118,8 +118,8 @@ std::string input_line(const KioskStage& s) {
   std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
                              : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
   if (w.link == input::wiimote::LinkState::running) {
-    char buf[120];
-    std::snprintf(buf, sizeof buf, ", %.0f reports/s%s", w.remote.ir_rate_hz, w.tracking ? ", LED seen" : ", no LED");
+    const std::string buf = fmt::format(", {:.0f} reports/s{}", w.remote.ir_rate_hz,
+                                        w.tracking ? ", LED seen" : ", no LED");
     line += buf;
   } else if (!w.problem.empty()) {
     line += " (" + w.problem + ")";

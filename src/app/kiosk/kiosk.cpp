@@ -7,6 +7,8 @@
 #include <memory>
 #include <span>
 
+#include <fmt/format.h>
+
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
 #include "render/render_setup.hpp"
@@ -105,16 +107,14 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   wav.close();
   render::write_png(renderer.read_back(), out / "screenshot.png");
   const std::uint64_t vk_messages = renderer.context().validation_messages();
-  char summary[200];
-  std::snprintf(summary, sizeof summary, "ran %.3f s: %llu frames, %llu strikes, %lld audio frames at %d Hz", o.seconds,
-                static_cast<unsigned long long>(frames), static_cast<unsigned long long>(strikes),
-                static_cast<long long>(audio_pos), rate);
+  const std::string summary = fmt::format("ran {:.3f} s: {} frames, {} strikes, {} audio frames at {} Hz", o.seconds,
+                                          frames, strikes, static_cast<long long>(audio_pos), rate);
   say(summary);
   if (vk_messages) say("error: " + std::to_string(vk_messages) + " Vulkan validation message(s)");
   metrics.uptime_ns = end;  // the run's simulated span, as its "ran" line says
   if (metrics_file.enabled() && metrics_file.write(metrics, end)) say("metrics: " + metrics_file.path().string());
   log.close();
-  std::printf("mallet run: headless (%s)\n%s\n", why.c_str(), summary);
+  std::printf("mallet run: headless (%s)\n%s\n", why.c_str(), summary.c_str());
   for (const char* f : {"screenshot.png", "audio.wav", "log.txt"}) std::printf("wrote %s\n", (out / f).c_str());
   return vk_messages ? 1 : 0;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/journal.hpp"
 #include "render/vk_handle.hpp"
 
 namespace mallet::app {
@@ -31,8 +32,7 @@ void KioskHealth::beat(Nanos now, const KioskStage& stage, const KioskStates& st
 
 void KioskHealth::stop(Nanos now, const KioskStage& stage, const render::ProductWindow& win) {
   notifier_.stopping();
-  std::fprintf(stderr, "<6>mallet run: stopping after %llu frames and %llu strikes\n",
-               static_cast<unsigned long long>(frames_), static_cast<unsigned long long>(strikes(stage)));
+  journal::info("mallet run: stopping after {} frames and {} strikes", frames_, strikes(stage));
   if (metrics_file_.enabled()) write_metrics(now, stage, win);  // the final counts, as the line above
 }
 
@@ -62,17 +62,15 @@ void KioskHealth::heartbeat(Nanos now, const KioskStage& stage, const KioskState
     // Why the watchdog goes hungry, said once per stall: systemd's own line only says that it
     // fired (`mallet doctor` shows this line as the watchdog's last reason).
     if (!alive && !starving_)
-      std::fprintf(stderr, "<4>watchdog not fed: %s%s%s stalled\n", render_alive ? "" : "render ",
-                   audio_alive ? "" : "audio ", input_alive ? "" : "input");
+      journal::warning("watchdog not fed: {}{}{} stalled", render_alive ? "" : "render ", audio_alive ? "" : "audio ",
+                       input_alive ? "" : "input");
     starving_ = !alive;
     next_watchdog_ = now + interval;
   }
   if (log_due) {
-    std::fprintf(stderr, "<6>heartbeat: %s, frames %llu, strikes %llu, audio callbacks %llu, xruns %llu%s\n",
-                 to_string(states.state()), static_cast<unsigned long long>(frames_),
-                 static_cast<unsigned long long>(strikes(stage)), static_cast<unsigned long long>(a.callbacks),
-                 static_cast<unsigned long long>(a.xruns), stage.output && !stage.output->device_ok()
-                                                               ? ", audio device lost (retrying)" : "");
+    journal::info("heartbeat: {}, frames {}, strikes {}, audio callbacks {}, xruns {}{}", to_string(states.state()),
+                  frames_, strikes(stage), a.callbacks, a.xruns,
+                  stage.output && !stage.output->device_ok() ? ", audio device lost (retrying)" : "");
     next_log_ = now + 60 * kNanosPerSecond;
   }
   frames_at_beat_ = frames_ + still_frames_;

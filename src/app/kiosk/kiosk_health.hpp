@@ -13,6 +13,7 @@
 #include "app/kiosk/kiosk_stage.hpp"
 #include "app/kiosk/metrics_file.hpp"
 #include "app/kiosk/systemd_notify.hpp"
+#include "core/journal.hpp"
 #include "core/kiosk_metrics.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/data_paths.hpp"
@@ -71,8 +72,8 @@ class KioskHealth {
   std::uint64_t callbacks_at_beat_ = 0;
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
   KioskMetrics metrics_;
-  MetricsFile metrics_file_{state_dir(), [](const std::string& line) { std::fprintf(stderr, "<4>%s\n", line.c_str()); },
-                            [](const std::string& line) { std::fprintf(stderr, "<5>%s\n", line.c_str()); }};
+  MetricsFile metrics_file_{state_dir(), [](const std::string& line) { journal::warning("{}", line.c_str()); },
+                            [](const std::string& line) { journal::notice("{}", line.c_str()); }};
   StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
   std::uint64_t xruns_retired_ = 0;   //!< by the audio outputs a reload replaced
   Nanos metrics_frame_at_;            //!< the last drawn frame's time

@@ -43,12 +43,11 @@ KioskSetup load_kiosk_setup(const KioskOptions& o) {
   return s;
 }
 
-std::optional<KioskSetup> load_setup(const KioskOptions& o, std::string& why) {
+Result<KioskSetup, std::string> load_setup(const KioskOptions& o) {
   try {
     return load_kiosk_setup(o);
   } catch (const std::exception& e) {  // FileError, and whatever a library throws (bad_alloc...)
-    why = e.what();
-    return std::nullopt;
+    return tl::unexpected(std::string(e.what()));
   }
 }
 

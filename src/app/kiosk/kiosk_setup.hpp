@@ -11,6 +11,7 @@
 #include "app/kiosk/kiosk.hpp"
 #include "core/app_config.hpp"
 #include "core/config/settings_files.hpp"
+#include "core/result.hpp"
 #include "core/scene.hpp"
 
 namespace mallet::app {
@@ -34,8 +35,8 @@ std::filesystem::path named_scene(const std::optional<std::filesystem::path>& se
 //! for a bad settings file or scene.
 KioskSetup load_kiosk_setup(const KioskOptions& options);
 
-//! As load_kiosk_setup, for a reload: nothing, and `why` holds the one-line reason, whatever
-//! was thrown — a reload never ends the kiosk.
-std::optional<KioskSetup> load_setup(const KioskOptions& options, std::string& why);
+//! As load_kiosk_setup, for a reload: the setup, or the one-line reason, whatever was thrown
+//! — a reload never ends the kiosk.
+Result<KioskSetup, std::string> load_setup(const KioskOptions& options);
 
 }  // namespace mallet::app

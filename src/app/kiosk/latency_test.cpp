@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "core/journal.hpp"
 #include "core/strike_line.hpp"
 
 namespace mallet::app {
@@ -19,8 +20,8 @@ void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engin
     pulse.speed_m_per_s = 1.0;
     if (!scene.targets.empty()) engine.post(pulse);  // heard at t: the engine's clock
   }
-  std::fprintf(stderr, "<5>latency test: %d pulses, one a second, from %s (square, note and actuator at each)\n",
-               kPulses, format_seconds(instants_.front()).c_str());
+  journal::notice("latency test: {} pulses, one a second, from {} (square, note and actuator at each)", kPulses,
+                  format_seconds(instants_.front()).c_str());
 }
 
 bool LatencyTest::square_shown(Nanos present) {

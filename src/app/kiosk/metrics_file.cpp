@@ -5,6 +5,8 @@
 #include <fstream>
 #include <system_error>
 
+#include <fmt/format.h>
+
 #include "core/atomic_file.hpp"
 
 #ifndef MALLET_VERSION
@@ -22,8 +24,7 @@ std::string material_label(const Scene& scene, int material) {
 }
 
 std::string seconds_text(Nanos ns) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", static_cast<double>(ns) / 1e9);
+  const std::string buf = fmt::format("{:g}", static_cast<double>(ns) / 1e9);
   return buf;
 }
 

@@ -8,6 +8,7 @@
 
 #include "app/kiosk/doctor.hpp"
 #include "app/kiosk/input_choice.hpp"
+#include "core/journal.hpp"
 #include "render/text_wrap.hpp"
 
 namespace mallet::app {
@@ -113,10 +114,10 @@ std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render
   for (const DoctorCheck& c : checks) {
     // On the page what was found; in the journal the whole line with its fix.
     lines.push_back(format_check({c.name, c.level, c.found, ""}));
-    std::fprintf(stderr, "<5>doctor: %s\n", format_check(c).c_str());
+    journal::notice("doctor: {}", format_check(c).c_str());
     failing += c.level == CheckLevel::fail;
   }
-  std::fprintf(stderr, "<5>operator: doctor, %d check(s) failing\n", failing);
+  journal::notice("operator: doctor, {} check(s) failing", failing);
   return lines;
 }
 

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "input/wiimote/replay_source.hpp"
 #include "input/wiimote/reports.hpp"
 
@@ -14,20 +16,13 @@ namespace wm = mallet::input::wiimote;
 
 namespace {
 
-std::string printf_string(const char* format, auto... args) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, args...);
-  return buf;
-}
-
-std::string time_column(Nanos t_rel_ns) { return printf_string("%8.3f s", to_seconds(t_rel_ns)); }
+std::string time_column(Nanos t_rel_ns) { return fmt::format("{:8.3f} s", to_seconds(t_rel_ns)); }
 
 Nanos seconds_to_ns(double s) { return static_cast<Nanos>(std::llround(s * 1e9)); }
 
 std::string summary(const wm::RemoteStats& r) {
-  return printf_string("%llu reports (%llu IR, %llu status, %llu malformed)", static_cast<unsigned long long>(r.reports),
-                       static_cast<unsigned long long>(r.ir_reports), static_cast<unsigned long long>(r.status_reports),
-                       static_cast<unsigned long long>(r.malformed));
+  return fmt::format("{} reports ({} IR, {} status, {} malformed)", r.reports, r.ir_reports, r.status_reports,
+                     r.malformed);
 }
 
 }  // namespace
@@ -39,32 +34,32 @@ std::string format_device_list(const std::vector<wm::HidDeviceInfo>& devices) {
            "under the battery cover, then pair, trust and connect its address. To be opened,\n" +
            wm::udev_hint() + ".\n";
   }
-  std::string out = printf_string("%-16s %-22s %-19s %s\n", "path", "product", "serial", "name");
+  std::string out = fmt::format("{:<16} {:<22} {:<19} {}\n", "path", "product", "serial", "name");
   for (const wm::HidDeviceInfo& d : devices) {
-    const std::string product = wm::product_name(d.product_id) + printf_string(" (%04x)", d.product_id);
-    out += printf_string("%-16s %-22s %-19s %s\n", d.path.c_str(), product.c_str(),
-                         d.serial.empty() ? "-" : d.serial.c_str(), d.product.empty() ? "-" : d.product.c_str());
+    const std::string product = wm::product_name(d.product_id) + fmt::format(" ({:04x})", d.product_id);
+    out += fmt::format("{:<16} {:<22} {:<19} {}\n", d.path, product, d.serial.empty() ? "-" : d.serial,
+                       d.product.empty() ? "-" : d.product);
   }
-  out += printf_string("%zu Wii Remote(s). Choose one with [wiimote].device or --device: a part of its path or serial.\n",
-                       devices.size());
+  out += fmt::format("{} Wii Remote(s). Choose one with [wiimote].device or --device: a part of its path or serial.\n",
+                     devices.size());
   return out;
 }
 
 std::string format_monitor_line(const MonitorLine& l) {
-  std::string out = time_column(l.t_rel_ns) + "  " + printf_string("%-9s", l.link.c_str());
+  std::string out = time_column(l.t_rel_ns) + "  " + fmt::format("{:<9}", l.link);
   if (l.link == "searching" || l.link == "starting") {
     if (!l.note.empty()) out += "  " + l.note;
     return out;
   }
-  out += printf_string("  %5.1f Hz", l.remote.ir_rate_hz);
+  out += fmt::format("  {:5.1f} Hz", l.remote.ir_rate_hz);
   if (l.remote.battery)
-    out += printf_string("  battery 0x%02x%s", static_cast<unsigned>(*l.remote.battery), l.remote.battery_low ? " LOW" : "");
+    out += fmt::format("  battery 0x{:02x}{}", *l.remote.battery, l.remote.battery_low ? " LOW" : "");
   else
     out += "  battery ?";
   if (l.tracking && l.point)
-    out += printf_string("  tracking  led %.0f,%.0f", l.point->x, l.point->y);
+    out += fmt::format("  tracking  led {:.0f},{:.0f}", l.point->x, l.point->y);
   else if (l.point)
-    out += printf_string("  lost      led %.0f,%.0f", l.point->x, l.point->y);
+    out += fmt::format("  lost      led {:.0f},{:.0f}", l.point->x, l.point->y);
   else
     out += "  lost      led -";
   out += "  dots " + wm::format_ir_slots(l.remote.last_slots);
@@ -74,7 +69,7 @@ std::string format_monitor_line(const MonitorLine& l) {
 
 std::string format_event_line(Nanos t_rel_ns, IrTrackerEvent event, const std::optional<IrPoint>& point) {
   std::string out = time_column(t_rel_ns) + "  tracking " + to_string(event);
-  if (point && event != IrTrackerEvent::lost) out += printf_string(" at %.0f,%.0f", point->x, point->y);
+  if (point && event != IrTrackerEvent::lost) out += fmt::format(" at {:.0f},{:.0f}", point->x, point->y);
   return out;
 }
 
@@ -129,7 +124,7 @@ int run_live_monitor(wm::WiimoteDevice& device, input::Clock& clock, const Monit
         std::fprintf(out, "%s  %s\n", time_column(now - t0).c_str(), s.problem.c_str());
         last_problem = s.problem;
       }
-      line.note = printf_string("retry in %.1f s: ", to_seconds(std::max<Nanos>(0, s.next_attempt_ns - s.now_ns))) +
+      line.note = fmt::format("retry in {:.1f} s: ", to_seconds(std::max<Nanos>(0, s.next_attempt_ns - s.now_ns))) +
                   (s.problem.empty() ? "looking for a remote" : s.problem.substr(0, s.problem.find_first_of(";\n")));
     } else if (s.link == wm::LinkState::starting) {
       line.note = "IR start-up: " + std::string(wm::to_string(s.startup)) + " " + s.device.path;

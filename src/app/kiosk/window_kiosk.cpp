@@ -17,8 +17,12 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include <fmt/format.h>
+#include <fmt/printf.h>
+
 #include "audio/audio_setup.hpp"
 #include "app/kiosk/calibration_screen.hpp"
+#include "core/journal.hpp"
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
 #include "render/overlay_text.hpp"
@@ -130,8 +134,8 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
   volume_ = setup.config.audio.volume;
   gain_ = setup.config.actuator.gain;
   build(std::move(setup));
-  std::fprintf(stderr, "<6>mallet run: %s, %ux%u, %s\n", win_.ctx->device_name().c_str(),
-               win_.window->extent().width, win_.window->extent().height, stage_->audio_status.c_str());
+  journal::info("mallet run: {}, {}x{}, {}", win_.ctx->device_name().c_str(), win_.window->extent().width,
+                win_.window->extent().height, stage_->audio_status.c_str());
 }
 
 std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const KioskStage& stage) {
@@ -158,7 +162,7 @@ bool WindowKiosk::visitor_offered(Nanos now) {
   const bool offered = offer_->offered(now);
   if (offered && !was) {
     offer_since_ = now;
-    std::fprintf(stderr, "<6>visitor study: offered (%s)\n", stage_->visitor->visitor->offer.c_str());
+    journal::info("visitor study: offered ({})", stage_->visitor->visitor->offer.c_str());
   }
   if (!offered) offer_since_ = 0;
   return offered;
@@ -174,7 +178,7 @@ bool WindowKiosk::visitor_accepted(Nanos now, const StrikeLoop::View& view) {
 }
 
 void WindowKiosk::run_visitor_session() {
-  std::fprintf(stderr, "<6>visitor study: a visitor accepted; the instrument pauses\n");
+  journal::info("visitor study: a visitor accepted; the instrument pauses");
   // The study's own audio and strike route play meanwhile: the kiosk's output is closed (a
   // device may take only one stream), and its pointers' threads strike nothing (they still
   // hand their samples over).
@@ -204,14 +208,13 @@ void WindowKiosk::run_visitor_session() {
           health_.feed_watchdog(monotonic_now());
           return !g_stop.load();
         });
-    std::fprintf(stderr, "<6>visitor study: %s %s, %d of %d trials, %s\n", r.id.c_str(),
-                 !r.consented ? (r.abandoned ? "walked away at the consent" : "declined")
-                 : r.abandoned ? "abandoned"
-                               : "completed",
-                 r.answered, r.planned, r.csv.c_str());
+    journal::info("visitor study: {} {}, {} of {} trials, {}", r.id,
+                  !r.consented ? (r.abandoned ? "walked away at the consent" : "declined")
+                  : r.abandoned ? "abandoned"
+                  : "completed", r.answered, r.planned, r.csv.string());
     ++health_.metrics().visitor_study[r.abandoned ? "abandoned" : r.consented ? "completed" : "declined"];
   } catch (const std::exception& e) {  // the kiosk plays on
-    std::fprintf(stderr, "<3>visitor study: %s\n", e.what());
+    journal::error("visitor study: {}", e.what());
   }
   install_callbacks();
   cursor_.clear();
@@ -245,7 +248,7 @@ void WindowKiosk::build(KioskSetup setup) {
       stage->visitor = options_.visitor_sessions.load(c.study, stage->scene);
     } catch (const std::exception& e) {
       stage->problems.push_back(std::string("visitor study off: ") + e.what());
-      std::fprintf(stderr, "<4>visitor study off: %s\n", e.what());
+      journal::warning("visitor study off: {}", e.what());
     }
   }
   // The old output must stop before the new one opens the device; so must the old remote.
@@ -287,8 +290,8 @@ void WindowKiosk::build(KioskSetup setup) {
     MousePointer* m = stage_->mouse.get();
     stage_->evdev->start([m](std::span<const PointerSample> samples) { m->on_samples(samples); });
   }
-  std::fprintf(stderr, "<6>%s\n", input_line(*stage_).c_str());
-  std::fprintf(stderr, "<6>%s\n", timing_line().c_str());
+  journal::info("{}", input_line(*stage_).c_str());
+  journal::info("{}", timing_line().c_str());
   apply_volume();
 }
 
@@ -296,20 +299,17 @@ void WindowKiosk::build(KioskSetup setup) {
 //! "off", or "10 ms ahead".
 std::string predict_text(const PredictionConfig& p) {
   if (!(p.horizon_ms > 0)) return "off";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.0f ms ahead", p.horizon_ms);
+  const std::string buf = fmt::format("{:.0f} ms ahead", p.horizon_ms);
   return buf;
 }
 
 std::string WindowKiosk::timing_line() const {
   const AppConfig& c = stage_->config;
   const TimingConfig& t = c.timing;
-  char buf[240];
   const double audio_ms = stage_->output ? stage_->output->output_latency_s() * 1e3 : 0.0;
-  std::snprintf(buf, sizeof buf, "timing: align %s, prediction %s, frames %s, display %.0f ms, audio out %.1f ms%s",
-                to_string(t.align), predict_text(t.predict).c_str(), win_.window->present_clock().describe().c_str(),
-                t.display_latency_ms, audio_ms, c.audio.output_latency_ms >= 0 ? " (set)" : " (the device's)");
-  return buf;
+  return fmt::format("timing: align {}, prediction {}, frames {}, display {:.0f} ms, audio out {:.1f} ms{}",
+                     to_string(t.align), predict_text(t.predict), win_.window->present_clock().describe(),
+                     t.display_latency_ms, audio_ms, c.audio.output_latency_ms >= 0 ? " (set)" : " (the device's)");
 }
 
 
@@ -325,22 +325,21 @@ void WindowKiosk::poll_remote(Nanos now) {
   if (up != s.link_up) {
     s.link_up = up;
     states_->remote_connected(now, up);
-    std::fprintf(stderr, up ? "<5>Wii Remote %s connected\n" : "<4>Wii Remote %s lost: %s\n",
-                 remote_identity(w.device).c_str(), w.problem.c_str());
+    if (up) journal::notice("Wii Remote {} connected", remote_identity(w.device));
+    else journal::warning("Wii Remote {} lost: {}", remote_identity(w.device), w.problem);
     // A recording's timeline on the kiosk's clock (`mallet bench latency` maps its strokes' true
     // contacts with it).
     if (up && s.replay)
-      std::fprintf(stderr, "<6>replay: the recording's time 0 is t=%s\n",
-                   format_seconds(s.replay->last_origin()).c_str());
+      journal::info("replay: the recording's time 0 is t={}", format_seconds(s.replay->last_origin()).c_str());
   }
   if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
     // Start-up: no valid calibration, or one made with another remote → calibrate now.
     s.checked_calibration = true;
     const std::string id = remote_identity(w.device);
     if (!s.calibration || (!s.calibration->remote.empty() && s.calibration->remote != id)) {
-      std::fprintf(stderr, "<5>calibration needed: %s\n",
-                   s.calibration ? ("it was made with " + s.calibration->remote + ", this remote is " + id).c_str()
-                                 : "none valid");
+      journal::notice("calibration needed: {}",
+                      s.calibration ? "it was made with " + s.calibration->remote + ", this remote is " + id
+                      : std::string("none valid"));
       states_->calibration_needed(now);
     }
   }
@@ -362,7 +361,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (states_->state() != KioskState::calibration) {
     // Abandoned (the operator chord): the previous calibration stays, and so does the
     // configured sensitivity if the tuner was trying another.
-    if (calibration_) std::fprintf(stderr, "<5>operator: calibration abandoned, the previous one stays\n");
+    if (calibration_) journal::notice("operator: calibration abandoned, the previous one stays");
     if (calibration_ && calibration_->tuning() && stage_->device)
       stage_->device->request_sensitivity(kiosk_sensitivity(stage_->config, stage_->calibration));
     calibration_.reset();
@@ -388,7 +387,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     stage_->calibration_status_sensitivity = "IR sensitivity " + calibration_->sensitivity();
   notice_ = calibration_->message();
   notice_until_ = now + 6 * kNanosPerSecond;
-  std::fprintf(stderr, "<5>%s\n", notice_.c_str());
+  journal::notice("{}", notice_.c_str());
   if (calibration_->outcome() == CalibrationScreen::Outcome::accepted) {
     if (stage_->remote) {
       stage_->calibration = calibration_->result();
@@ -421,28 +420,28 @@ void WindowKiosk::handle_keys(Nanos now) {
       case OperatorAction::open: states_->operator_chord(now); break;
       case OperatorAction::close: states_->operator_page_closed(now); break;
       case OperatorAction::quit:
-        std::fprintf(stderr, "<5>operator: quit\n");
+        journal::notice("operator: quit");
         states_->quit_requested(now);
         break;
       case OperatorAction::recalibrate:  // the screen itself starts in the frame
-        std::fprintf(stderr, "<5>operator: recalibrate\n");
+        journal::notice("operator: recalibrate");
         states_->recalibrate(now);
         break;
       case OperatorAction::volume_up:
       case OperatorAction::volume_down:
         volume_ = knob_step(volume_, kVolumeKnob, action == OperatorAction::volume_up);
-        std::fprintf(stderr, "<5>operator: volume %.0f %%\n", volume_ * 100);
+        journal::notice("operator: volume {:.0f} %", volume_ * 100);
         break;
       case OperatorAction::gain_up:
       case OperatorAction::gain_down:
         gain_ = knob_step(gain_, kGainKnob, action == OperatorAction::gain_up);
-        std::fprintf(stderr, "<5>operator: actuator gain %.2f\n", gain_);
+        journal::notice("operator: actuator gain {:.2f}", gain_);
         break;
       case OperatorAction::next_material: next_wall_material(); break;
       case OperatorAction::next_scene: next_scene(); break;
       case OperatorAction::next_language:
         use_visitor_language(language_.next());
-        std::fprintf(stderr, "<5>operator: language %s\n", visitor_language().c_str());
+        journal::notice("operator: language {}", visitor_language().c_str());
         break;
       case OperatorAction::latency_test: latency_test_.start(now, stage_->scene, *stage_->rig.engine); break;
       case OperatorAction::doctor:
@@ -460,8 +459,8 @@ void WindowKiosk::next_wall_material() {
   const int m = stage_->route->loop().wall_material();
   if (stage_->remote) stage_->remote->set_wall_material(m);
   if (stage_->mouse) stage_->mouse->set_wall_material(m);
-  std::fprintf(stderr, "<5>operator: wall material %s\n",
-               stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
+  journal::notice("operator: wall material {}",
+                  stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
 }
 
 
@@ -476,7 +475,7 @@ void WindowKiosk::next_scene() {
     if (choices[i] == std::filesystem::path(stage_->scene.file)) next = (i + 1) % choices.size();
   const std::filesystem::path previous = options_.scene;
   options_.scene = choices[next];
-  std::fprintf(stderr, "<5>switching to the scene %s\n", options_.scene.c_str());
+  journal::notice("switching to the scene {}", options_.scene.c_str());
   reload();
   if (std::filesystem::path(stage_->scene.file) != options_.scene) options_.scene = previous;  // refused: stays
 }
@@ -488,10 +487,9 @@ void WindowKiosk::on_cursor(double x, double y) {
 }
 
 void WindowKiosk::reload() {
-  std::string why;
-  std::optional<KioskSetup> setup = load_setup(options_, why);
+  Result<KioskSetup, std::string> setup = load_setup(options_);
   if (!setup) {
-    std::fprintf(stderr, "<4>reload refused, the running configuration stays: %s\n", why.c_str());
+    journal::warning("reload refused, the running configuration stays: {}", setup.error());
     return;
   }
   try {
@@ -501,10 +499,10 @@ void WindowKiosk::reload() {
     const std::vector<std::string> problems = setup->problems;
     const std::string settings = setup->settings_line;
     build(std::move(*setup));
-    std::fprintf(stderr, "<5>reloaded the settings and the scene (%s)\n", settings.c_str());
-    for (const std::string& p : problems) std::fprintf(stderr, "<4>%s\n", p.c_str());
+    journal::notice("reloaded the settings and the scene ({})", settings.c_str());
+    for (const std::string& p : problems) journal::warning("{}", p.c_str());
   } catch (const std::exception& e) {  // e.g. a model the new scene names is broken: whatever is thrown
-    std::fprintf(stderr, "<4>reload refused, the running configuration stays: %s\n", e.what());
+    journal::warning("reload refused, the running configuration stays: {}", e.what());
   }
 }
 
@@ -541,31 +539,27 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     doctor_asked_ = false;
     doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_);  // what a frame costs, not the budget's interval
   }
-  char buf[240];
   std::vector<std::string> lines;
   const double uptime = to_seconds(now - health_.started());
-  // The page's words are the operator's language; its status lines (input, audio, timing,
-  // settings, the doctor's checks) stay as the journal and `mallet doctor` write them.
-  std::snprintf(buf, sizeof buf, tr("Mallet: operator page   quality: %s   language: %s"),
-                to_string(stage_->config.quality), visitor_language().c_str());
-  lines.emplace_back(buf);
+  // The page's words are the operator's language (translated texts keep printf's syntax,
+  // which gettext checks: fmt::sprintf); its status lines (input, audio, timing, settings,
+  // the doctor's checks) stay as the journal and `mallet doctor` write them.
+  lines.push_back(fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"),
+                               to_string(stage_->config.quality), visitor_language()));
   lines.push_back(input_line(*stage_));
   lines.push_back(stage_->audio_status);
-  std::snprintf(buf, sizeof buf, "frame: %.1f ms (its work %.1f ms)   uptime: %.0f h %02.0f min", frame_ms, work_ms_,
-                std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0));
-  lines.emplace_back(buf);
-  std::snprintf(buf, sizeof buf, tr("volume %.0f %%  (Up / Down)"), volume_ * 100);
-  lines.emplace_back(buf);
-  std::snprintf(buf, sizeof buf, tr("actuator gain %.2f  (Left / Right)"), gain_);
-  lines.emplace_back(buf);
+  lines.push_back(fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
+                              work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)));
+  lines.push_back(fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100));
+  lines.push_back(fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_));
   lines.emplace_back(tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close"));
   const int wall = stage_->route->loop().wall_material();
-  const char* wall_name = wall >= 0 ? stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str() : "";
-  std::snprintf(buf, sizeof buf, tr("scene: %s  (S next)"),
-                std::filesystem::path(stage_->scene.file).filename().c_str());
+  std::string scene_line =
+      fmt::sprintf(tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().string());
   if (wall >= 0)
-    std::snprintf(buf + std::strlen(buf), sizeof buf - std::strlen(buf), tr("   wall: %s  (M next)"), wall_name);
-  lines.emplace_back(buf);
+    scene_line += fmt::sprintf(tr("   wall: %s  (M next)"),
+                               stage_->scene.materials[static_cast<std::size_t>(wall)].display_name);
+  lines.push_back(scene_line);
   const std::string& tuned = stage_->calibration_status_sensitivity;
   lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
                                  : tr("calibration: R runs the screen with the mouse (not saved)"));
@@ -603,13 +597,13 @@ int WindowKiosk::run() {
     handle_keys(now);
     if (win_.window->close_requested()) {
       glfwSetWindowShouldClose(win_.window->window(), GLFW_FALSE);
-      std::fprintf(stderr, "<5>window close requested (%s)\n",
-                   options_.windowed ? "the operator page opens" : "refused outside the operator page");
+      journal::notice("window close requested ({})",
+                      options_.windowed ? "the operator page opens" : "refused outside the operator page");
       if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes from the page
       states_->window_close_requested(now);
     }
     if (g_stop.load()) {  // systemd's stop (SIGTERM), or Ctrl+C: a clean end, as the operator's Q
-      std::fprintf(stderr, "<5>mallet run: %s received, stopping\n", g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM");
+      journal::notice("mallet run: {} received, stopping", g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM");
       break;
     }
     if (states_->should_quit() || (quit_after > 0 && now - health_.started() >= quit_after)) break;
@@ -700,9 +694,8 @@ int WindowKiosk::run() {
   if (stage_->evdev) stage_->evdev->stop();
   if (stage_->output) stage_->output->stop();
   if (win_.ctx->validation_messages() > 0) {
-    std::fprintf(stderr, "<3>%llu Vulkan validation message(s); first: %s\n",
-                 static_cast<unsigned long long>(win_.ctx->validation_messages()),
-                 win_.ctx->first_validation_message().c_str());
+    journal::error("{} Vulkan validation message(s); first: {}", win_.ctx->validation_messages(),
+                   win_.ctx->first_validation_message().c_str());
     return 1;
   }
   return 0;

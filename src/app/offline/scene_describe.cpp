@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
 namespace mallet::app {
 
 namespace {
@@ -17,13 +19,11 @@ namespace {
 // cannot hold (nothing should produce a NaN).
 nlohmann::ordered_json number(double v) {
   if (!std::isfinite(v)) return nullptr;
-  char text[40];
-  const int size = std::snprintf(text, sizeof text, "%.12g", v);
-  const std::string_view digits(text, static_cast<std::size_t>(size));
+  const std::string digits = fmt::format("{:.12g}", v);
   long long whole = 0;
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), whole);
   if (error == std::errc() && end == digits.data() + digits.size()) return whole;
-  return std::strtod(text, nullptr);
+  return std::strtod(digits.c_str(), nullptr);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "audio/audio_setup.hpp"
 #include "app/common/settings_source.hpp"
 #include "audio/wav_file.hpp"
@@ -87,14 +89,12 @@ std::uint32_t trajectory_row_line(std::string_view text, std::size_t index) {
 }
 
 std::string gigabytes(double bytes) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f GB", bytes / 1e9);
+  const std::string buf = fmt::format("{:.1f} GB", bytes / 1e9);
   return buf;
 }
 
 std::string g9(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
+  const std::string buf = fmt::format("{:.9g}", v);
   return buf;
 }
 
@@ -169,10 +169,10 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   if (past != trajectory.samples.end() && !options.allow_long) {
     const double last_s = to_seconds(trajectory.samples.back().t_ns);
     const double audio_bytes = (last_s + options.tail_s) * rate * config.audio.routing.channels * 4.0;
-    char what[200];
-    std::snprintf(what, sizeof what, "t = %.9g s is more than an hour after t = 0 (is t in milliseconds? it must be "
-                  "in seconds); the outputs would run to %.0f s (audio.wav alone %s); --allow-long writes them anyway",
-                  to_seconds(past->t_ns), last_s + options.tail_s, gigabytes(audio_bytes).c_str());
+    const std::string what = fmt::format(
+        "t = {:.9g} s is more than an hour after t = 0 (is t in milliseconds? it must be in seconds); the outputs "
+        "would run to {:.0f} s (audio.wav alone {}); --allow-long writes them anyway",
+        to_seconds(past->t_ns), last_s + options.tail_s, gigabytes(audio_bytes));
     throw FileError(options.input.string(),
                     trajectory_row_line(trajectory_text, static_cast<std::size_t>(past - trajectory.samples.begin())),
                     0, what);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/journal.hpp"
 #include "core/strike_line.hpp"
 
 namespace mallet::app {
@@ -39,7 +40,7 @@ Strike StrikeRoute::deliver(const Impact& impact, Nanos known, bool stimulus) {
   s.impact.delay_ns = s.heard_ns - impact.t_ns;
   if (engine_) engine_->post(s.impact, options_.producer);
   strikes_.fetch_add(1, std::memory_order_relaxed);
-  if (options_.log) std::fprintf(stderr, "<6>%s\n", strike_line(scene_, s.impact).c_str());
+  if (options_.log) journal::info("{}", strike_line(scene_, s.impact).c_str());
   if (on_strike) on_strike(s);
   return s;
 }

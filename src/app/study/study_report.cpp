@@ -7,6 +7,8 @@
 #include <map>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/gnuplot.hpp"
 #include "core/file_error.hpp"
 
@@ -67,20 +69,18 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
       dat << l.x << ' ' << static_cast<double>(l.correct) / l.trials << ' ' << l.trials << '\n';
     dat << "\n\n";
     const int colour = block + 1;
-    char size[64];
-    std::snprintf(size, sizeof size, "(0.6 + 2.4 * sqrt($3 / %d.0))", max_trials);
+    const std::string size = fmt::format("(0.6 + 2.4 * sqrt($3 / {}.0))", max_trials);
     add_curve(plot, block, "psychometric.dat",
               "using 1:2:" + std::string(size) + " with points pt 7 ps variable lc " + std::to_string(colour) +
                   " title '" + c->condition + "'");
     const study::PsychometricFit& f = *c->fit;
     if (f.ok) {
-      char curve[160];
-      std::snprintf(curve, sizeof curve, "0.5 + 0.5 / (1 + exp(-%.9g * (x - %.9g)))", f.slope, f.threshold);
+      const std::string curve = fmt::format("0.5 + 0.5 / (1 + exp(-{:.9g} * (x - {:.9g})))", f.slope, f.threshold);
       plot += ", \\\n     " + std::string(curve) + " with lines lc " + std::to_string(colour) + " notitle";
       if (c->intervals && c->intervals->ok) {
-        char bar[200];
-        std::snprintf(bar, sizeof bar, "'+' using (%.9g):(0.75):(%.9g):(%.9g) every ::0::0 with xerrorbars lc %d pt 1 notitle",
-                      f.threshold, c->intervals->threshold.lo, c->intervals->threshold.hi, colour);
+        const std::string bar =
+            fmt::format("'+' using ({:.9g}):(0.75):({:.9g}):({:.9g}) every ::0::0 with xerrorbars lc {} pt 1 notitle",
+                        f.threshold, c->intervals->threshold.lo, c->intervals->threshold.hi, colour);
         plot += ", \\\n     " + std::string(bar);
       }
     }

@@ -53,6 +53,7 @@ struct StudyRunResult {
   std::string source;        //!< the rows' `source` (AnswerSource::name)
   bool answers_ran_out = false;
   bool stopped = false;      //!< the answer source stopped before the schedule's end (script, Esc)
+  bool validation_failed = false;  //!< in a window: Vulkan validation reported a message
   std::vector<std::string> warnings;  //!< FILE:LINE: ... (an incomplete last line ignored)
   std::vector<std::filesystem::path> written;
 };

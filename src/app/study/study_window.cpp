@@ -15,8 +15,11 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include <fmt/printf.h>
+
 #include "audio/audio_setup.hpp"
 #include "app/strike/headless_loop.hpp"
+#include "core/journal.hpp"
 #include "render/overlay_text.hpp"
 #include "render/render_setup.hpp"
 #include "app/strike/strike_route.hpp"
@@ -98,8 +101,8 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
       for (std::size_t i = static_cast<std::size_t>(actuator); i < block.size(); i += channels)
         peak_ = std::max(peak_, static_cast<double>(std::fabs(block[i])));
     };
-    std::fprintf(stderr, "<6>mallet study: %s, %ux%u, %s\n", win_.ctx->device_name().c_str(),
-                 win_.window->extent().width, win_.window->extent().height, audio_status_.c_str());
+    journal::info("mallet study: {}, {}x{}, {}", win_.ctx->device_name().c_str(), win_.window->extent().width,
+                  win_.window->extent().height, audio_status_.c_str());
   }
 
   ~StudyWindow() override {
@@ -120,9 +123,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   }
   Strike present(const Impact& impact) override {
     ++tap_;
-    char tap[64];
-    std::snprintf(tap, sizeof tap, tr("Tap %d"), tap_);
-    banner_ = plan_.stimuli_per_trial() > 1 ? tap : tr("Tap");
+    banner_ = plan_.stimuli_per_trial() > 1 ? fmt::sprintf(tr("Tap %d"), tap_) : tr("Tap");
     const Strike strike = route_->present(impact, monotonic_now());
     // The actuator's signal, rendered offline by the same engine on its own clock: the
     // device's output is not read back.
@@ -147,7 +148,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   Exploration explore(const Scene& trial_scene, Nanos until) override {
     const AppConfig& c = plan_.config;
     banner_ = tr("Cross the white disc");
-    std::fprintf(stderr, "<6>crossing for %.1f s: %s\n", to_seconds(until - monotonic_now()), banner_.c_str());
+    journal::info("crossing for {:.1f} s: {}", to_seconds(until - monotonic_now()), banner_.c_str());
     // The crossing's own engine and route (its relief, its cues); the study's output is
     // closed meanwhile, as a device may take only one stream.
     const bool sound = output_ != nullptr;
@@ -169,27 +170,24 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     if (sound) output_ = audio::start_output(*rig_.engine, c.audio, audio_status_);
     banner_.clear();
     const Exploration e = measure_crossing(trial_scene, c, crossing.hand);
-    std::fprintf(stderr, "<6>crossed: %zu samples, the cursor up to %.2f mm off the hand, the stripes up to %.3f\n",
-                 crossing.hand.size(), e.cursor_offset_peak_m * 1e3, e.actuator_peak);
+    journal::info("crossed: {} samples, the cursor up to {:.2f} mm off the hand, the stripes up to {:.3f}",
+                  crossing.hand.size(), e.cursor_offset_peak_m * 1e3, e.actuator_peak);
     return e;
   }
   void trial_starts(const ScheduledTrial& trial) override {
     ++trials_shown_;
     tap_ = 0;
     banner_.clear();
-    char status[96];
     // An adaptive protocol's tracks stop by their own rules: its count is only a bound.
-    std::snprintf(status, sizeof status,
-                  plan_.protocol.procedure == study::StudyProcedure::constant ? tr("Trial %d of %zu")
-                                                                               : tr("Trial %d (at most %zu)"),
-                  trial.number, static_cast<std::size_t>(plan_.planned_trials()));
-    status_ = status;
+    status_ = fmt::sprintf(plan_.protocol.procedure == study::StudyProcedure::constant ? tr("Trial %d of %zu")
+                                                                                       : tr("Trial %d (at most %zu)"),
+                           trial.number, static_cast<std::size_t>(plan_.planned_trials()));
   }
 
   // --- AnswerSource
   std::optional<TrialAnswer> answer(const ScheduledTrial& trial, Nanos opens) override {
     banner_ = prompt_;
-    std::fprintf(stderr, "<6>trial %d of %d: %s\n", trial.number, plan_.planned_trials(), prompt_.c_str());
+    journal::info("trial {} of {}: {}", trial.number, plan_.planned_trials(), prompt_.c_str());
     // A key pressed (or a bar struck) before the answer window opened is not an answer.
     std::erase_if(pressed_, [opens](const Press& p) { return p.t < opens; });
     if (!bars_.empty()) {  // the answer bar struck, at the contact the strike route found
@@ -219,7 +217,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     banner_ = visitor.consent;
     const std::vector<render::BarLabel> answers = labels_;
     labels_ = {{bars_.at(0).target, tr("Yes")}, {bars_.at(1).target, tr("No")}};
-    std::fprintf(stderr, "<6>mallet study: a visitor's consent screen\n");
+    journal::info("mallet study: a visitor's consent screen");
     const std::optional<std::size_t> k = struck_bar(opens, 2);
     labels_ = answers;
     if (!k) return std::nullopt;
@@ -241,7 +239,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     status_.clear();
     pressed_.clear();
     thanking_ = true;
-    std::fprintf(stderr, "<6>mallet study: Thank you (any key closes)\n");
+    journal::info("mallet study: Thank you (any key closes)");
     while (frame() && pressed_.empty()) {
     }
   }
@@ -270,7 +268,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
       if (hand_live_) hand(p.t_ns, view.map(p.x, p.y));
     if (quit_) {
       if (!thanking_)
-        std::fprintf(stderr, "<5>mallet study: stopped by the participant after %d trial(s) shown\n", trials_shown_);
+        journal::notice("mallet study: stopped by the participant after {} trial(s) shown", trials_shown_);
       return false;
     }
     render::Overlay& o = *win_.overlay;
@@ -292,7 +290,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   //! The answer window is over (a visitor walked away) once run_.answer_timeout has passed.
   bool timed_out(Nanos opens) {
     if (run_.answer_timeout <= 0 || monotonic_now() < opens + run_.answer_timeout) return false;
-    std::fprintf(stderr, "<5>mallet study: no answer for %.0f s: the session ends here\n", to_seconds(run_.answer_timeout));
+    journal::notice("mallet study: no answer for {:.0f} s: the session ends here", to_seconds(run_.answer_timeout));
     return true;
   }
 
@@ -370,9 +368,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
 
 }  // namespace
 
-StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window,
-                                bool& validation_failed) {
-  validation_failed = false;
+StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window) {
   const StudyPlan plan = plan_study(options);
   if (plan.finished) return nothing_run(plan);  // nothing left: no window
   const Scene scene = make_study_scene(plan.base, plan.protocol);
@@ -383,14 +379,14 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
   sigaction(SIGTERM, &sa, nullptr);
   std::vector<std::string> problems;  // the participant reads the settings' [kiosk] language
   start_visitor_language(plan.config.language, problems);
-  for (const std::string& p : problems) std::fprintf(stderr, "<4>%s\n", p.c_str());
+  for (const std::string& p : problems) journal::warning("{}", p.c_str());
   render::ProductWindow win(plan.config.render, window.device, window.size, window.windowed, "Mallet study");
   StudyWindowRun run;
   run.quit_after = static_cast<Nanos>(std::llround(window.quit_after_s * 1e9));
   StudyWindow w(plan, scene, win, run);
   StudyRunResult result = run_session(plan, scene, w, w, options.after_row);
   if (!w.quit()) w.thank_you();
-  if (w.validation_messages() > 0) validation_failed = true;
+  result.validation_failed = w.validation_messages() > 0;
   return result;
 }
 

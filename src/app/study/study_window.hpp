@@ -25,9 +25,8 @@ struct StudyWindowOptions {
 };
 
 //! Same errors as run_study (the answers come from the keys: StudyOptions::answers and
-//! ::audio are not used). `validation_failed`: Vulkan validation reported a message.
-StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window,
-                                bool& validation_failed);
+//! ::audio are not used); `validation_failed` when Vulkan validation reported a message.
+StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window);
 
 //! A visitor's session (visitor_study.hpp) in the kiosk's own window `win`: the consent
 //! screen and the trials, answered by striking; "Thank you" for 3 s after the last. The

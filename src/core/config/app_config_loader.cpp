@@ -16,11 +16,9 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   if (const std::optional<Quality> q = parse_quality(quality)) apply_quality(*q, c);
   else top.fail("quality", "expected \"fast\", \"balanced\" or \"exact\", got \"" + quality + "\"");
   if (auto t = top.optional_table("contact")) {
-    c.contact.rearm_height_m = t->number_or("rearm_height_m", c.contact.rearm_height_m);
-    t->require_non_negative("rearm_height_m", c.contact.rearm_height_m);
+    c.contact.rearm_height_m = t->non_negative_or("rearm_height_m", c.contact.rearm_height_m);
     c.contact.min_impact_speed_m_per_s =
-        t->number_or("min_impact_speed_m_per_s", c.contact.min_impact_speed_m_per_s);
-    t->require_non_negative("min_impact_speed_m_per_s", c.contact.min_impact_speed_m_per_s);
+        t->non_negative_or("min_impact_speed_m_per_s", c.contact.min_impact_speed_m_per_s);
     c.contact.max_impact_speed_m_per_s =
         t->number_or("max_impact_speed_m_per_s", c.contact.max_impact_speed_m_per_s);
     if (!(c.contact.max_impact_speed_m_per_s > c.contact.min_impact_speed_m_per_s))

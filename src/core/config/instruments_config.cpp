@@ -9,23 +9,14 @@ namespace mallet::config {
 
 namespace {
 
-std::string number_text(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
 Mode read_mode(TableReader t, bool fundamental) {
   Mode m;
-  m.ratio = t.number("ratio");
-  t.require_positive("ratio", m.ratio);
+  m.ratio = t.positive("ratio");
   // The note is named after its first mode: the scene's frequency is that mode's.
   if (fundamental && m.ratio != 1.0)
     t.fail("ratio", "the first mode is the fundamental, its ratio must be 1, got " + number_text(m.ratio));
-  m.gain = t.number("gain");
-  t.require_non_negative("gain", m.gain);
-  m.decay_per_s = t.number("decay_per_s");
-  t.require_non_negative("decay_per_s", m.decay_per_s);
+  m.gain = t.non_negative("gain");
+  m.decay_per_s = t.non_negative("decay_per_s");
   t.finish();
   return m;
 }
@@ -35,8 +26,7 @@ ModalPreset read_preset(TableReader t, const std::string& name) {
   p.name = name;
   p.loudness = t.number("loudness");
   t.require_range("loudness", p.loudness, 0.0, 1.0);
-  p.reference_speed_m_per_s = t.number("reference_speed_m_per_s");
-  t.require_positive("reference_speed_m_per_s", p.reference_speed_m_per_s);
+  p.reference_speed_m_per_s = t.positive("reference_speed_m_per_s");
   p.brightness = t.number("brightness");
   // At most 1: then no partial ever gets quieter when the strike gets harder (modal_preset.hpp).
   t.require_range("brightness", p.brightness, 0.0, 1.0);

@@ -8,12 +8,9 @@ namespace {
 
 VibrationParams read_triple(TableReader t, std::string_view amplitude_key) {
   VibrationParams p;
-  p.amplitude = t.number(amplitude_key);
-  t.require_non_negative(amplitude_key, p.amplitude);
-  p.decay_per_s = t.number("decay_per_s");
-  t.require_non_negative("decay_per_s", p.decay_per_s);
-  p.freq_hz = t.number("freq_hz");
-  t.require_positive("freq_hz", p.freq_hz);
+  p.amplitude = t.non_negative(amplitude_key);
+  p.decay_per_s = t.non_negative("decay_per_s");
+  p.freq_hz = t.positive("freq_hz");
   t.finish();
   return p;
 }

@@ -12,12 +12,6 @@ namespace mallet::config {
 
 namespace {
 
-std::string number_text(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
 int add_material(Scene& scene, const Material& m) {
   for (std::size_t i = 0; i < scene.materials.size(); ++i)
     if (scene.materials[i].name == m.name) return static_cast<int>(i);
@@ -46,12 +40,9 @@ void read_instrument(TableReader t, const MaterialLibrary& library, Scene& scene
 
   const double x_start = t.number("x_start_m");
   const double top_y = t.number("top_y_m");
-  const double width = t.number("bar_width_m");
-  t.require_positive("bar_width_m", width);
-  const double gap = t.number("gap_m");
-  t.require_non_negative("gap_m", gap);
-  const double thickness = t.number_or("bar_thickness_m", 0.02);
-  t.require_positive("bar_thickness_m", thickness);
+  const double width = t.positive("bar_width_m");
+  const double gap = t.non_negative("gap_m");
+  const double thickness = t.positive_or("bar_thickness_m", 0.02);
   const std::vector<std::int64_t> notes = t.integers("notes");
   const std::vector<double> lengths = t.numbers("bar_lengths_m");
   if (notes.empty()) t.fail("notes", "needs at least one note");
@@ -101,10 +92,8 @@ void read_texture(TableReader& top, Scene& scene) {
     else if (profile == "cosine") tex.relief.profile = ReliefProfile::cosine;
     else t.fail("profile", "must be \"gaussian\" or \"cosine\", got \"" + profile + "\"");
     tex.relief.center = {t.number("center_x_m"), t.number("center_y_m")};
-    tex.relief.radius_m = t.number("radius_m");
-    t.require_positive("radius_m", tex.relief.radius_m);
-    tex.relief.height_m = t.number("height_m");
-    t.require_positive("height_m", tex.relief.height_m);
+    tex.relief.radius_m = t.positive("radius_m");
+    tex.relief.height_m = t.positive("height_m");
     t.finish();
   }
   if (std::optional<TableReader> t = top.optional_table("speed_technique")) {
@@ -112,10 +101,8 @@ void read_texture(TableReader& top, Scene& scene) {
     t->read("slope_gain", c.slope_gain, 0.0, 1000.0);
     t->read("gain_min", c.gain_min, 0.01, 1.0);
     t->read("gain_max", c.gain_max, 1.0, 100.0);
-    c.relax_distance_m = t->number_or("relax_distance_m", c.relax_distance_m);
-    t->require_positive("relax_distance_m", c.relax_distance_m);
-    c.max_offset_m = t->number_or("max_offset_m", c.max_offset_m);
-    t->require_positive("max_offset_m", c.max_offset_m);
+    c.relax_distance_m = t->positive_or("relax_distance_m", c.relax_distance_m);
+    c.max_offset_m = t->positive_or("max_offset_m", c.max_offset_m);
     t->finish();
   }
   if (std::optional<TableReader> t = top.optional_table("stripes")) {
@@ -125,8 +112,7 @@ void read_texture(TableReader& top, Scene& scene) {
     t->read("phase_rad", p.phase_rad, -100.0, 100.0);
     p.fade_s = t->number_or("fade_ms", p.fade_s * 1e3) / 1e3;
     t->require_range("fade_ms", p.fade_s * 1e3, 0.0, 1000.0);
-    p.rest_speed_m_per_s = t->number_or("rest_speed_m_per_s", p.rest_speed_m_per_s);
-    t->require_non_negative("rest_speed_m_per_s", p.rest_speed_m_per_s);
+    p.rest_speed_m_per_s = t->non_negative_or("rest_speed_m_per_s", p.rest_speed_m_per_s);
     t->read("max_freq_hz", p.max_freq_hz, 1.0, 20000.0);
     p.motion_timeout_s = t->number_or("motion_timeout_ms", p.motion_timeout_s * 1e3) / 1e3;
     t->require_range("motion_timeout_ms", p.motion_timeout_s * 1e3, 1.0, 10000.0);
@@ -173,8 +159,7 @@ void read_wall(TableReader& top, const MaterialLibrary& library, Scene& scene) {
   wall.thickness_m = wall.top_y - bottom;
   if (!std::isfinite(wall.thickness_m))
     t.fail("top_y_m", "top_y_m - bottom_m overflows (keep the wall within a few metres of 0)");
-  wall.length_m = t.number_or("depth_m", 2 * scene.mallet_radius_m);
-  t.require_positive("depth_m", wall.length_m);
+  wall.length_m = t.positive_or("depth_m", 2 * scene.mallet_radius_m);
   t.finish();
   inst.targets.push_back(wall.id);
   scene.targets.push_back(std::move(wall));
@@ -193,8 +178,7 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
     top.fail("kind", "must be \"percussion\", \"texture\" or \"wall\", got \"" + kind + "\"");
   top.string_or("materials_file", "");  // resolved by the caller
   scene.instruments_file = top.string_or("instruments_file", "../instruments.toml");
-  scene.mallet_radius_m = top.number("mallet_radius_m");
-  top.require_positive("mallet_radius_m", scene.mallet_radius_m);
+  scene.mallet_radius_m = top.positive("mallet_radius_m");
   scene.tuning_a4_hz = 440.0;
   top.read("tuning_a4_hz", scene.tuning_a4_hz, 300.0, 600.0);
 

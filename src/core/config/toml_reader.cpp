@@ -199,13 +199,35 @@ void TableReader::finish() const {
   }
 }
 
-namespace {
 std::string number_text(double v) {
   std::ostringstream out;
   out << v;
   return out.str();
 }
-}  // namespace
+
+double TableReader::positive(std::string_view key) {
+  const double v = number(key);
+  require_positive(key, v);
+  return v;
+}
+
+double TableReader::non_negative(std::string_view key) {
+  const double v = number(key);
+  require_non_negative(key, v);
+  return v;
+}
+
+double TableReader::positive_or(std::string_view key, double fallback) {
+  const double v = number_or(key, fallback);
+  require_positive(key, v);
+  return v;
+}
+
+double TableReader::non_negative_or(std::string_view key, double fallback) {
+  const double v = number_or(key, fallback);
+  require_non_negative(key, v);
+  return v;
+}
 
 void TableReader::require_positive(std::string_view key, double value) const {
   if (!(value > 0.0)) fail(key, "must be > 0, got " + number_text(value));

@@ -16,6 +16,9 @@
 
 namespace mallet::config {
 
+//! A number as the messages quote it ("0.3", "1e+09").
+std::string number_text(double v);
+
 //! Parses a whole file; a syntax error becomes a ConfigError with its position.
 toml::table parse_file(const std::filesystem::path& path);
 
@@ -49,6 +52,13 @@ class TableReader {
 
   //! A ConfigError located at `key` (or at the table itself if the key is absent).
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+
+  //! A number that must be > 0 (>= 0), typed once: the key's value, else `fallback` (the
+  //! _or forms), refused with the value quoted when out of range.
+  double positive(std::string_view key);
+  double non_negative(std::string_view key);
+  double positive_or(std::string_view key, double fallback);
+  double non_negative_or(std::string_view key, double fallback);
 
   //! Range checks with the value quoted in the message.
   void require_positive(std::string_view key, double value) const;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <set>
 
+#include <fmt/format.h>
+
 #include "core/config/toml_reader.hpp"
 
 namespace mallet::study {
@@ -220,8 +222,7 @@ void make_adaptive_pairs(StudyProtocol& p) {
   for (int k = 0; k <= steps; ++k) {
     const double level = p.adaptive.min_pct + k * kAdaptiveGridPct;
     Stimulus s = reference;
-    char name[32];
-    std::snprintf(name, sizeof name, "+%g", level);
+    const std::string name = fmt::format("+{:g}", level);
     s.name = reference.name + name;
     s.decay_scale = reference.decay_scale * (1 + level / 100);
     s.material.visual.decay_per_s *= 1 + level / 100;

@@ -13,6 +13,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "core/csv_file.hpp"
 #include "core/file_error.hpp"
 
@@ -20,11 +22,11 @@ namespace mallet::study {
 
 namespace {
 
-std::string g(double v, const char* format) {
+//! `v` with `decimals` digits after the point (fixed) or significant digits (`general`), or
+//! empty for NaN (a column the row does not have).
+std::string g(double v, int digits, bool general = false) {
   if (std::isnan(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
+  return general ? fmt::format("{:.{}g}", v, digits) : fmt::format("{:.{}f}", v, digits);
 }
 
 struct Columns {
@@ -130,10 +132,10 @@ std::size_t results_columns(std::string_view header) {
 std::string format_row(const ResultRow& r, std::size_t columns) {
   const std::string fields[kResultsColumns] = {
       r.participant, std::to_string(r.trial), r.condition, r.stimuli, r.answer, r.correct ? "1" : "0",
-      g(r.response_time_ms, "%.3f"), r.protocol, r.task, g(r.difference_pct, "%.6g"), r.source, r.session,
-      g(r.visual_peak_m, "%.6g"), g(r.actuator_peak, "%.6g"), g(r.actuator_onset_ms, "%.3f"),
-      g(r.picture_onset_ms, "%.3f"), r.procedure, r.track_trial > 0 ? std::to_string(r.track_trial) : "",
-      r.reversals >= 0 ? std::to_string(r.reversals) : "", g(r.estimate_pct, "%.4g"), g(r.estimate_sd_pct, "%.4g"),
+      g(r.response_time_ms, 3), r.protocol, r.task, g(r.difference_pct, 6, true), r.source, r.session,
+      g(r.visual_peak_m, 6, true), g(r.actuator_peak, 6, true), g(r.actuator_onset_ms, 3),
+      g(r.picture_onset_ms, 3), r.procedure, r.track_trial > 0 ? std::to_string(r.track_trial) : "",
+      r.reversals >= 0 ? std::to_string(r.reversals) : "", g(r.estimate_pct, 4, true), g(r.estimate_sd_pct, 4, true),
       r.planned_trials > 0 ? std::to_string(r.planned_trials) : ""};
   std::string out;
   for (std::size_t i = 0; i < std::min(columns, kResultsColumns); ++i) out += (i ? "," : "") + fields[i];

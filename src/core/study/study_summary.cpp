@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "core/study/balanced_schedule.hpp"
 #include "core/study/study_protocol.hpp"
 #include "core/study/visitor_offer.hpp"
@@ -28,22 +30,16 @@ std::uint64_t interval_seed(std::uint64_t seed, const std::string& participant, 
 std::string interval_text(const std::optional<PsychometricIntervals>& ci, bool threshold) {
   if (!ci || !ci->ok) return "-";
   const Interval& i = threshold ? ci->threshold : ci->slope;
-  char b[64];
-  std::snprintf(b, sizeof b, threshold ? "[%.2f, %.2f]" : "[%.3f, %.3f]", i.lo, i.hi);
-  return b;
+  return threshold ? fmt::format("[{:.2f}, {:.2f}]", i.lo, i.hi) : fmt::format("[{:.3f}, {:.3f}]", i.lo, i.hi);
 }
 //! One condition's fit as a row: condition, levels, threshold, slope, their intervals, note.
 std::string fit_columns(const ConditionSummary& c) {
   const PsychometricFit& f = *c.fit;
-  char line[256];
   if (f.ok)
-    std::snprintf(line, sizeof line, "%-14s %7d %14.3f %14.4f %18s %18s  %s\n", c.condition.c_str(), f.levels,
-                  f.threshold, f.slope, interval_text(c.intervals, true).c_str(),
-                  interval_text(c.intervals, false).c_str(), f.reason.c_str());
-  else
-    std::snprintf(line, sizeof line, "%-14s %7d %14s %14s %18s %18s  %s\n", c.condition.c_str(), f.levels, "-", "-",
-                  "-", "-", f.reason.c_str());
-  return line;
+    return fmt::format("{:<14} {:7} {:14.3f} {:14.4f} {:>18} {:>18}  {}\n", c.condition, f.levels, f.threshold, f.slope,
+                       interval_text(c.intervals, true), interval_text(c.intervals, false), f.reason);
+  return fmt::format("{:<14} {:7} {:>14} {:>14} {:>18} {:>18}  {}\n", c.condition, f.levels, "-", "-", "-", "-",
+                     f.reason);
 }
 }  // namespace
 
@@ -126,34 +122,27 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
 }
 
 std::string format_summary(const StudySummary& s) {
-  std::string out;
-  char line[256];
-  std::snprintf(line, sizeof line, "%d trial%s, %zu participant%s\n", s.rows, s.rows == 1 ? "" : "s",
-                s.participants.size(), s.participants.size() == 1 ? "" : "s");
-  out += line;
+  std::string out = fmt::format("{} trial{}, {} participant{}\n", s.rows, s.rows == 1 ? "" : "s",
+                                s.participants.size(), s.participants.size() == 1 ? "" : "s");
+  auto line = std::back_inserter(out);
   if (s.simulated_rows)
     out += "note: " + std::to_string(s.simulated_rows) + " row(s) were answered by the simulated observer (source=simulated)\n";
   if (const int n = s.visitor_sessions_completed + s.visitor_sessions_abandoned; n > 0) {
-    std::snprintf(line, sizeof line, "visitor sessions: %d (%d completed, %d abandoned)\n", n,
-                  s.visitor_sessions_completed, s.visitor_sessions_abandoned);
-    out += line;
+    fmt::format_to(line, "visitor sessions: {} ({} completed, {} abandoned)\n", n, s.visitor_sessions_completed,
+                   s.visitor_sessions_abandoned);
   }
-  std::snprintf(line, sizeof line, "%-14s %7s %8s %9s %10s\n", "condition", "trials", "correct", "accuracy", "mean_rt_ms");
-  out += line;
-  for (const ConditionSummary& c : s.conditions) {
-    std::snprintf(line, sizeof line, "%-14s %7d %8d %8.1f%% %10.1f\n", c.condition.c_str(), c.trials, c.correct,
-                  100.0 * c.accuracy(), c.mean_response_ms);
-    out += line;
-  }
+  fmt::format_to(line, "{:<14} {:>7} {:>8} {:>9} {:>10}\n", "condition", "trials", "correct", "accuracy", "mean_rt_ms");
+  for (const ConditionSummary& c : s.conditions)
+    fmt::format_to(line, "{:<14} {:7} {:8} {:8.1f}% {:10.1f}\n", c.condition, c.trials, c.correct, 100.0 * c.accuracy(),
+                   c.mean_response_ms);
   bool header = false;
   for (const ConditionSummary& c : s.conditions) {
     if (!c.fit) continue;
     if (!header) {
       out += "psychometric fit, 2AFC: P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold))), "
              "x = difference in B (%), maximum likelihood\n";
-      std::snprintf(line, sizeof line, "%-14s %7s %14s %14s %18s %18s  %s\n", "condition", "levels",
-                    "threshold_pct", "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
-      out += line;
+      fmt::format_to(line, "{:<14} {:>7} {:>14} {:>14} {:>18} {:>18}  {}\n", "condition", "levels", "threshold_pct",
+                     "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
       header = true;
     }
     out += fit_columns(c);
@@ -161,9 +150,8 @@ std::string format_summary(const StudySummary& s) {
   if (header)
     for (const ConditionSummary& c : s.conditions)
       if (c.intervals) {
-        std::snprintf(line, sizeof line, "95 %% intervals: parametric bootstrap, %d resamples, bias-corrected percentiles\n",
-                      s.resamples);
-        out += line;
+        fmt::format_to(line, "95 % intervals: parametric bootstrap, {} resamples, bias-corrected percentiles\n",
+                       s.resamples);
         break;
       }
   bool adaptive = false;
@@ -172,9 +160,8 @@ std::string format_summary(const StudySummary& s) {
     if (!adaptive) {
       out += "adaptive tracks: the estimate at each track's last trial (staircase: the mean level at its last "
              "reversals; quest: the posterior mean)\n";
-      std::snprintf(line, sizeof line, "%-14s %-10s %6s %13s %13s\n", "condition", "procedure", "tracks",
-                    "estimate_pct", "spread_pct");
-      out += line;
+      fmt::format_to(line, "{:<14} {:<10} {:>6} {:>13} {:>13}\n", "condition", "procedure", "tracks", "estimate_pct",
+                     "spread_pct");
       adaptive = true;
     }
     double mean = 0, spread = 0;
@@ -184,13 +171,11 @@ std::string format_summary(const StudySummary& s) {
     // Between participants' estimates (their SD); one participant's QUEST: its posterior SD.
     const bool between = c.final_estimates.size() > 1;
     if (between) spread = std::sqrt(spread / static_cast<double>(c.final_estimates.size() - 1));
-    char est[32] = "-", spr[32] = "-";
-    if (!c.final_estimates.empty()) std::snprintf(est, sizeof est, "%.2f", mean);
-    if (between) std::snprintf(spr, sizeof spr, "%.2f", spread);
-    else if (c.final_sd) std::snprintf(spr, sizeof spr, "%.2f (SD)", *c.final_sd);
-    std::snprintf(line, sizeof line, "%-14s %-10s %6zu %13s %13s\n", c.condition.c_str(), c.procedure.c_str(),
-                  c.tracks.size(), est, spr);
-    out += line;
+    const std::string est = c.final_estimates.empty() ? "-" : fmt::format("{:.2f}", mean);
+    const std::string spr = between     ? fmt::format("{:.2f}", spread)
+                            : c.final_sd ? fmt::format("{:.2f} (SD)", *c.final_sd)
+                                         : "-";
+    fmt::format_to(line, "{:<14} {:<10} {:6} {:>13} {:>13}\n", c.condition, c.procedure, c.tracks.size(), est, spr);
   }
   return out;
 }
@@ -207,18 +192,15 @@ std::vector<std::pair<std::string, StudySummary>> summarize_participants(const s
 
 std::string format_participant_fits(const std::vector<std::pair<std::string, StudySummary>>& participants) {
   std::string out;
-  char line[256];
   for (const auto& [p, summary] : participants) {
     for (const ConditionSummary& c : summary.conditions) {
       if (!c.fit) continue;
       if (out.empty()) {
         out = "per participant, the same fit:\n";
-        std::snprintf(line, sizeof line, "%-12s %-14s %7s %14s %14s %18s %18s  %s\n", "participant", "condition",
-                      "levels", "threshold_pct", "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
-        out += line;
+        fmt::format_to(std::back_inserter(out), "{:<12} {:<14} {:>7} {:>14} {:>14} {:>18} {:>18}  {}\n", "participant",
+                       "condition", "levels", "threshold_pct", "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
       }
-      std::snprintf(line, sizeof line, "%-12s ", p.c_str());
-      out += line + fit_columns(c);
+      out += fmt::format("{:<12} ", p) + fit_columns(c);
     }
   }
   return out;

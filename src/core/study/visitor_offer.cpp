@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 namespace mallet::study {
 
 bool VisitorOffer::offered(Nanos now) {
@@ -10,8 +12,7 @@ bool VisitorOffer::offered(Nanos now) {
 }
 
 std::string visitor_session_id(std::uint64_t random) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "visitor-%08x", static_cast<unsigned>(random & 0xffffffffu));
+  const std::string buf = fmt::format("visitor-{:08x}", static_cast<unsigned>(random & 0xffffffffu));
   return buf;
 }
 

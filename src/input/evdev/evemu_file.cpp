@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdint>
 
+#include <fmt/format.h>
+
 #include "core/file_error.hpp"
 #include "core/text_lines.hpp"
 
@@ -73,11 +75,9 @@ std::vector<input_event> read_evemu_events(const std::filesystem::path& path) {
 }
 
 std::string format_evemu_event(const input_event& event) {
-  char line[96];
-  std::snprintf(line, sizeof line, "E: %" PRId64 ".%06" PRId64 " %04x %04x %04d",
-                static_cast<std::int64_t>(event.input_event_sec), static_cast<std::int64_t>(event.input_event_usec),
-                static_cast<unsigned>(event.type), static_cast<unsigned>(event.code), static_cast<int>(event.value));
-  return line;
+  return fmt::format("E: {}.{:06} {:04x} {:04x} {:04}", static_cast<std::int64_t>(event.input_event_sec),
+                     static_cast<std::int64_t>(event.input_event_usec), static_cast<unsigned>(event.type),
+                     static_cast<unsigned>(event.code), static_cast<int>(event.value));
 }
 
 }  // namespace mallet::input::evdev

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <variant>
 
+#include <fmt/format.h>
+
 namespace mallet::input::wiimote {
 
 namespace {
@@ -114,8 +116,7 @@ void IrStartup::tick(Nanos now_ns) {
   if (!awaiting_ack()) return;
   if (now_ns - sent_at_ns_ < config_.ack_timeout_ns) return;
   if (tries_ > config_.max_resends) {
-    char ms[32];
-    std::snprintf(ms, sizeof ms, "%.0f ms", static_cast<double>(config_.ack_timeout_ns) * 1e-6);
+    const std::string ms = fmt::format("{:.0f} ms", static_cast<double>(config_.ack_timeout_ns) * 1e-6);
     fail("no acknowledgement for " + std::string(to_string(step_)) + " after " + std::to_string(tries_) +
          (tries_ == 1 ? " try" : " tries") + ", " + ms + " apart (is the remote still connected?)");
     return;

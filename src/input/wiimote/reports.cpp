@@ -1,5 +1,7 @@
 #include "input/wiimote/reports.hpp"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -231,8 +233,7 @@ std::optional<OutputReport> read_memory(AddressSpace space, std::uint32_t addres
 // Parsers
 
 std::string ReportError::message() const {
-  char id_text[8];
-  std::snprintf(id_text, sizeof id_text, "0x%02x", id);
+  const std::string id_text = fmt::format("0x{:02x}", id);
   switch (kind) {
     case Kind::empty: return "empty report (no bytes)";
     case Kind::unknown_id:
@@ -247,7 +248,7 @@ std::string ReportError::message() const {
 
 Parsed<StatusReport> parse_status(std::span<const std::uint8_t> report) {
   WireStatus w{};
-  if (auto e = load(report, InputReportId::status, w)) return *e;
+  if (auto e = load(report, InputReportId::status, w)) return tl::unexpected(*e);
   StatusReport s;
   s.buttons = be16(w.buttons);
   s.battery_low = (w.flags & 0x01) != 0;
@@ -261,7 +262,7 @@ Parsed<StatusReport> parse_status(std::span<const std::uint8_t> report) {
 
 Parsed<ReadDataReport> parse_read_data(std::span<const std::uint8_t> report) {
   WireReadData w{};
-  if (auto e = load(report, InputReportId::read_data, w)) return *e;
+  if (auto e = load(report, InputReportId::read_data, w)) return tl::unexpected(*e);
   ReadDataReport r;
   r.buttons = be16(w.buttons);
   r.size = u8((w.size_error >> 4) + 1u);
@@ -273,7 +274,7 @@ Parsed<ReadDataReport> parse_read_data(std::span<const std::uint8_t> report) {
 
 Parsed<AckReport> parse_ack(std::span<const std::uint8_t> report) {
   WireAck w{};
-  if (auto e = load(report, InputReportId::ack, w)) return *e;
+  if (auto e = load(report, InputReportId::ack, w)) return tl::unexpected(*e);
   return AckReport{be16(w.buttons), w.report, w.error};
 }
 
@@ -307,13 +308,13 @@ IrSlots decode_basic_ir(std::span<const std::uint8_t, 10> ir) {
 Parsed<IrReport> parse_ir(std::span<const std::uint8_t> report) {
   ReportError e;
   e.got_size = report.size();
-  if (report.empty()) return e;
+  if (report.empty()) return tl::unexpected(e);
   e.id = report[0];
   IrReport r;
   switch (report[0]) {
     case 0x33: {
       WireButtonsAccelIr12 w{};
-      if (auto err = load(report, InputReportId::buttons_accel_ir12, w)) return *err;
+      if (auto err = load(report, InputReportId::buttons_accel_ir12, w)) return tl::unexpected(*err);
       r.id = InputReportId::buttons_accel_ir12;
       r.format = IrFormat::extended;
       r.buttons = be16(w.buttons);
@@ -322,7 +323,7 @@ Parsed<IrReport> parse_ir(std::span<const std::uint8_t> report) {
     }
     case 0x36: {
       WireButtonsIr10Ext9 w{};
-      if (auto err = load(report, InputReportId::buttons_ir10_ext9, w)) return *err;
+      if (auto err = load(report, InputReportId::buttons_ir10_ext9, w)) return tl::unexpected(*err);
       r.id = InputReportId::buttons_ir10_ext9;
       r.format = IrFormat::basic;
       r.buttons = be16(w.buttons);
@@ -331,7 +332,7 @@ Parsed<IrReport> parse_ir(std::span<const std::uint8_t> report) {
     }
     case 0x37: {
       WireButtonsAccelIr10Ext6 w{};
-      if (auto err = load(report, InputReportId::buttons_accel_ir10_ext6, w)) return *err;
+      if (auto err = load(report, InputReportId::buttons_accel_ir10_ext6, w)) return tl::unexpected(*err);
       r.id = InputReportId::buttons_accel_ir10_ext6;
       r.format = IrFormat::basic;
       r.buttons = be16(w.buttons);
@@ -340,48 +341,48 @@ Parsed<IrReport> parse_ir(std::span<const std::uint8_t> report) {
     }
     default:
       e.kind = input_report_size(report[0]) == 0 ? ReportError::Kind::unknown_id : ReportError::Kind::wrong_id;
-      return e;
+      return tl::unexpected(e);
   }
 }
 
 Parsed<InputReport> parse_input(std::span<const std::uint8_t> report) {
   ReportError e;
   e.got_size = report.size();
-  if (report.empty()) return e;
+  if (report.empty()) return tl::unexpected(e);
   e.id = report[0];
   const std::size_t size = input_report_size(report[0]);
   if (size == 0) {
     e.kind = ReportError::Kind::unknown_id;
-    return e;
+    return tl::unexpected(e);
   }
   switch (report[0]) {
     case 0x20: {
       auto p = parse_status(report);
-      if (!p) return p.error();
+      if (!p) return tl::unexpected(p.error());
       return InputReport{*p};
     }
     case 0x21: {
       auto p = parse_read_data(report);
-      if (!p) return p.error();
+      if (!p) return tl::unexpected(p.error());
       return InputReport{*p};
     }
     case 0x22: {
       auto p = parse_ack(report);
-      if (!p) return p.error();
+      if (!p) return tl::unexpected(p.error());
       return InputReport{*p};
     }
     case 0x33:
     case 0x36:
     case 0x37: {
       auto p = parse_ir(report);
-      if (!p) return p.error();
+      if (!p) return tl::unexpected(p.error());
       return InputReport{*p};
     }
     default:
       if (report.size() != size) {
         e.kind = ReportError::Kind::wrong_length;
         e.expected_size = size;
-        return e;
+        return tl::unexpected(e);
       }
       return InputReport{OtherDataReport{static_cast<InputReportId>(report[0])}};
   }
@@ -390,8 +391,7 @@ Parsed<InputReport> parse_input(std::span<const std::uint8_t> report) {
 // ---------------------------------------------------------------------------------------
 // Hex
 
-std::optional<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text, std::string& problem,
-                                                        std::size_t& column) {
+Result<std::vector<std::uint8_t>, HexError> parse_hex_bytes(std::string_view text) {
   std::vector<std::uint8_t> out;
   std::size_t i = 0;
   while (i < text.size()) {
@@ -402,21 +402,17 @@ std::optional<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text, 
     const std::size_t start = i;
     while (i < text.size() && !is_blank(text[i])) {
       if (!is_hex_digit(text[i])) {
-        column = i + 1;
         const auto c = static_cast<unsigned char>(text[i]);
-        char shown[16];
-        if (c >= 0x20 && c < 0x7f) std::snprintf(shown, sizeof shown, "'%c'", text[i]);
-        else std::snprintf(shown, sizeof shown, "byte 0x%02x", c);
-        problem = std::string(shown) + " is not a hex digit";
-        return std::nullopt;
+        const std::string shown =
+            c >= 0x20 && c < 0x7f ? fmt::format("'{}'", text[i]) : fmt::format("byte 0x{:02x}", c);
+        return tl::unexpected(HexError{shown + " is not a hex digit", i + 1});
       }
       ++i;
     }
     if ((i - start) % 2 != 0) {
-      column = start + 1;
-      problem = "\"" + std::string(text.substr(start, i - start)) +
-                "\" has an odd number of hex digits (write each byte as two digits)";
-      return std::nullopt;
+      return tl::unexpected(HexError{"\"" + std::string(text.substr(start, i - start)) +
+                                         "\" has an odd number of hex digits (write each byte as two digits)",
+                                     start + 1});
     }
     for (std::size_t k = start; k < i; k += 2)
       out.push_back(u8(hex_value(text[k]) << 4 | hex_value(text[k + 1])));
@@ -495,11 +491,10 @@ Recording parse_replay(std::string_view text, const std::string& name) {
                       "time " + std::to_string(t_ns) + " is before the previous line's " +
                           std::to_string(out.reports.back().t_ns) + " (times must not decrease)");
     const std::string_view hex = body.substr(t_end);
-    std::string problem;
-    std::size_t column = 0;
-    auto bytes = parse_hex_bytes(hex, problem, column);
+    auto bytes = parse_hex_bytes(hex);
     if (!bytes)
-      throw FileError(name, line_no, static_cast<std::uint32_t>(lead + t_end + column), problem);
+      throw FileError(name, line_no, static_cast<std::uint32_t>(lead + t_end + bytes.error().column),
+                      bytes.error().problem);
     if (bytes->empty()) throw FileError(name, line_no, 0, "missing the report (hex bytes) after the time");
     if (bytes->size() > kMaxRecordedReportSize)
       throw FileError(name, line_no, 0,

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/ir_dot.hpp"
+#include "core/result.hpp"
 #include "core/time.hpp"
 
 namespace mallet::input::wiimote {
@@ -144,22 +145,9 @@ struct ReportError {
   friend bool operator==(const ReportError&, const ReportError&) = default;
 };
 
-//! A parsed value or why not (std::expected is C++23).
+//! A parsed report or why not.
 template <class T>
-class Parsed {
- public:
-  Parsed(T value) : v_(std::move(value)) {}            // NOLINT: implicit by design
-  Parsed(ReportError error) : v_(std::move(error)) {}  // NOLINT
-  bool ok() const { return v_.index() == 0; }
-  explicit operator bool() const { return ok(); }
-  const T& value() const { return std::get<0>(v_); }  //!< only when ok()
-  const T& operator*() const { return value(); }
-  const T* operator->() const { return &value(); }
-  const ReportError& error() const { return std::get<1>(v_); }  //!< only when !ok()
-
- private:
-  std::variant<T, ReportError> v_;
-};
+using Parsed = Result<T, ReportError>;
 
 //! 0x20 status. Arrives after a 0x15 request *and* unsolicited (extension plugged or
 //! unplugged, battery low); either way the remote then stops sending data reports until
@@ -245,11 +233,15 @@ IrSlots decode_basic_ir(std::span<const std::uint8_t, 10> ir);
 // ---------------------------------------------------------------------------------------
 // Hex text (the `decode` command's input and the replay file's payload)
 
+//! Why hex text is not bytes: the problem, at the 1-based `column` of the offending character.
+struct HexError {
+  std::string problem;
+  std::size_t column = 0;
+};
+
 //! Bytes written as hex: pairs of hex digits, upper or lower case, with optional spaces or
-//! tabs between bytes ("33 00 00 ff", "330000ff"). On failure returns nothing and sets
-//! `problem` and the 1-based `column` of the offending character.
-std::optional<std::vector<std::uint8_t>> parse_hex_bytes(std::string_view text, std::string& problem,
-                                                        std::size_t& column);
+//! tabs between bytes ("33 00 00 ff", "330000ff").
+Result<std::vector<std::uint8_t>, HexError> parse_hex_bytes(std::string_view text);
 //! Lower-case hex, one space between bytes: "33 00 00 ff".
 std::string to_hex(std::span<const std::uint8_t> bytes);
 

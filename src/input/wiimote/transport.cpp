@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 namespace mallet::input::wiimote {
 
 std::string udev_hint() {
@@ -17,8 +19,7 @@ std::string udev_hint() {
 std::string product_name(std::uint16_t product_id) {
   if (product_id == kWiiRemoteProductId) return "RVL-CNT-01";
   if (product_id == kWiiRemoteTrProductId) return "RVL-CNT-01-TR";
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "0x%04x", static_cast<unsigned>(product_id));
+  const std::string buf = fmt::format("0x{:04x}", static_cast<unsigned>(product_id));
   return buf;
 }
 

@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace mallet::input::wiimote {
 
 namespace {
@@ -17,8 +19,7 @@ constexpr Nanos kMaxIdleWaitNs = 50'000'000;
 Nanos ms_to_ns(double ms) { return static_cast<Nanos>(std::llround(ms * 1e6)); }
 
 std::string seconds_text(Nanos ns) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f s", to_seconds(ns));
+  const std::string buf = fmt::format("{:.1f} s", to_seconds(ns));
   return buf;
 }
 

@@ -265,7 +265,7 @@ Calibration mirrored_calibration() {
     scr.push_back(s);
   }
   const auto fit = fit_homography(cam, scr, {1280, 720});
-  return calibration_from_fit(std::get<HomographyFit>(fit), "test");
+  return calibration_from_fit(fit.value(), "test");
 }
 
 //! A downward stroke through bar `target`'s top, in camera pixels, one report per 10 ms.
