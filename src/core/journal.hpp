@@ -13,21 +13,17 @@ namespace mallet::journal {
 //! The whole line in one write, so that lines of several threads never interleave.
 void write(int priority, std::string_view text);
 
-template <typename... Args>
-void error(fmt::format_string<Args...> format, Args&&... args) {
-  write(3, fmt::format(format, std::forward<Args>(args)...));
-}
-template <typename... Args>
-void warning(fmt::format_string<Args...> format, Args&&... args) {
-  write(4, fmt::format(format, std::forward<Args>(args)...));
-}
-template <typename... Args>
-void notice(fmt::format_string<Args...> format, Args&&... args) {
-  write(5, fmt::format(format, std::forward<Args>(args)...));
-}
-template <typename... Args>
-void info(fmt::format_string<Args...> format, Args&&... args) {
-  write(6, fmt::format(format, std::forward<Args>(args)...));
-}
+//! journal::error(...), warning, notice, info: the line formatted by {fmt}, at that priority.
+template <int Priority>
+struct Writer {
+  template <typename... Args>
+  void operator()(fmt::format_string<Args...> format, Args&&... args) const {
+    write(Priority, fmt::format(format, std::forward<Args>(args)...));
+  }
+};
+inline constexpr Writer<3> error;
+inline constexpr Writer<4> warning;
+inline constexpr Writer<5> notice;
+inline constexpr Writer<6> info;
 
 }  // namespace mallet::journal
