@@ -56,7 +56,8 @@ VkSampleCountFlagBits sample_count(const std::string& msaa) {
 }
 
 //! The same frames in a GLFW window (real time for a sequence; held for --at).
-void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& replay, const render::HeadlessOptions& ho) {
+void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& replay,
+                const render::HeadlessOptions& ho) {
   render::WindowSystem glfw;
   render::ContextOptions co;
   co.validation = ho.validation;

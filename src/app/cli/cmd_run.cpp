@@ -30,8 +30,8 @@ VisitorSessions visitor_sessions() {
 
 void register_run(CLI::App& app) {
   auto o = std::make_shared<KioskOptions>();
-  o->config = default_settings();
-  o->visitor_sessions = visitor_sessions();  // the operator's mallet.toml (/etc/mallet when installed)
+  o->config = default_settings();  // the operator's mallet.toml (/etc/mallet when installed)
+  o->visitor_sessions = visitor_sessions();  // the study's, for [study] visitor_protocol
   CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
   cmd->footer(
       "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"

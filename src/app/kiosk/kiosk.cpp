@@ -75,7 +75,8 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     count_strike(scene, s.impact, metrics.strikes);
   };
 
-  const render::HeadlessOptions ho = render::kiosk_headless_options(config.render, render::parse_size(o.size, "--size"), o.device);
+  const render::HeadlessOptions ho =
+      render::kiosk_headless_options(config.render, render::parse_size(o.size, "--size"), o.device);
   render::HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
   const std::unique_ptr<render::FontAtlas> font = render::overlay_font(ho.size);

@@ -25,7 +25,8 @@ void KioskHealth::output_closed(const KioskStage& stage) {
   callbacks_at_beat_ = 0;  // the next output's callbacks count from 0
 }
 
-void KioskHealth::beat(Nanos now, const KioskStage& stage, const KioskStates& states, const render::ProductWindow& win) {
+void KioskHealth::beat(Nanos now, const KioskStage& stage, const KioskStates& states,
+                       const render::ProductWindow& win) {
   heartbeat(now, stage, states);
   feed_metrics(now, stage, states, win);
 }

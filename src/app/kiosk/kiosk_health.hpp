@@ -13,10 +13,10 @@
 #include "app/kiosk/kiosk_stage.hpp"
 #include "app/kiosk/metrics_file.hpp"
 #include "app/kiosk/systemd_notify.hpp"
+#include "core/data_paths.hpp"
 #include "core/journal.hpp"
 #include "core/kiosk_metrics.hpp"
 #include "core/kiosk_states.hpp"
-#include "core/data_paths.hpp"
 #include "core/time.hpp"
 #include "render/render_setup.hpp"
 

@@ -67,6 +67,8 @@ struct KioskStage {
 };
 
 //! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
-inline std::string remote_identity(const input::wiimote::HidDeviceInfo& d) { return d.serial.empty() ? d.path : d.serial; }
+inline std::string remote_identity(const input::wiimote::HidDeviceInfo& d) {
+  return d.serial.empty() ? d.path : d.serial;
+}
 
 }  // namespace mallet::app

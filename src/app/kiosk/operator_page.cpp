@@ -95,13 +95,15 @@ std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render
                                 win.window->extent().width, win.window->extent().height, frame_ms);
   facts.vulkan.found += " (the kiosk's frames)";
   facts.audio = stage.output ? DoctorCheck{"audio", CheckLevel::ok, stage.audio_status, ""}
-                               : DoctorCheck{"audio", CheckLevel::fail, stage.audio_status,
-                                             "connect the sound card and check `aplay -l`; `mallet audio devices`"};
+                             : DoctorCheck{"audio", CheckLevel::fail, stage.audio_status,
+                                           "connect the sound card and check `aplay -l`; `mallet audio devices`"};
   facts.wiimote = {"wiimote", CheckLevel::ok, input_line(stage), ""};
   if (stage.device) {
     const input::wiimote::WiimoteState w = stage.device->state();
-    if (w.link == input::wiimote::LinkState::running) facts.connected_remote = remote_identity(w.device);
-    else facts.wiimote = {"wiimote", CheckLevel::fail, input_line(stage), "press 1+2 on the remote; change its batteries"};
+    if (w.link == input::wiimote::LinkState::running)
+      facts.connected_remote = remote_identity(w.device);
+    else
+      facts.wiimote = {"wiimote", CheckLevel::fail, input_line(stage), "press 1+2 on the remote; change its batteries"};
   } else if (stage.config.input.source == "wiimote") {
     facts.wiimote.level = CheckLevel::fail;
   }

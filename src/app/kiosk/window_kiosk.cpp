@@ -68,8 +68,6 @@ KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   return k;
 }
 
-
-
 class WindowKiosk {
  public:
   WindowKiosk(const KioskOptions& o, KioskSetup setup);
@@ -140,7 +138,8 @@ WindowKiosk::WindowKiosk(const KioskOptions& o, KioskSetup setup)
 
 std::unique_ptr<render::SceneRenderer> WindowKiosk::make_renderer(const KioskStage& stage) {
   return std::make_unique<render::SceneRenderer>(*win_.ctx, stage.scene, render::models_dir(), win_.window->format(),
-                                                 render::render_settings(*win_.ctx, stage.config.render), win_.cache->get());
+                                                 render::render_settings(*win_.ctx, stage.config.render),
+                                                 win_.cache->get());
 }
 
 void WindowKiosk::install_callbacks() {
@@ -255,7 +254,8 @@ void WindowKiosk::build(KioskSetup setup) {
   if (stage_ && stage_->output) stage_->output->stop();
   if (stage_ && stage_->device) stage_->device->stop();
   if (stage_ && stage_->evdev) stage_->evdev->stop();
-  stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);  // null: the scene plays silently
+  // Null: the scene plays silently.
+  stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();

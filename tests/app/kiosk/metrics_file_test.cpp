@@ -61,8 +61,9 @@ TEST(MetricsFile, TheHeadlessRunsFileParsesAndCountsTheStrikesAndFramesOfItsLog)
   // Replaced by rename: no temporary file is left beside it.
   EXPECT_EQ(files_in(dir / "node-exporter"), std::vector<fs::path>{"mallet.prom"});
 
-  const test::CliResult check = run_command(python() + " " + (test::source_dir() / "tests/app/kiosk/check_metrics.py").string() +
-                                            " " + prom.string() + " " + (dir / "out" / "log.txt").string());
+  const std::string checker = (test::source_dir() / "tests/app/kiosk/check_metrics.py").string();
+  const test::CliResult check =
+      run_command(python() + " " + checker + " " + prom.string() + " " + (dir / "out" / "log.txt").string());
   std::printf("%s", check.output.c_str());  // what was compared, in the test's log
   EXPECT_EQ(check.status, 0) << check.output << "\n(python3-prometheus-client installed? see packaging/deps-build.txt)";
   EXPECT_NE(check.output.find("check_metrics: ok"), std::string::npos) << check.output;
@@ -92,8 +93,9 @@ TEST(MetricsFile, TheWindowKiosksFileCountsTheFramesAndStrikesItsLogSays) {
                           (dir / "mallet.toml").string() + " > " + (dir / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "log.txt");
   ASSERT_TRUE(fs::exists(prom)) << "relative to the settings file's folder\n" << read_text(dir / "log.txt");
-  const test::CliResult check = run_command(python() + " " + (test::source_dir() / "tests/app/kiosk/check_metrics.py").string() +
-                                            " " + prom.string() + " " + (dir / "log.txt").string());
+  const std::string checker = (test::source_dir() / "tests/app/kiosk/check_metrics.py").string();
+  const test::CliResult check =
+      run_command(python() + " " + checker + " " + prom.string() + " " + (dir / "log.txt").string());
   std::printf("%s", check.output.c_str());
   EXPECT_EQ(check.status, 0) << check.output << "\n" << read_text(dir / "log.txt");
   // The first start of a kiosk with metrics: counted in its state folder, none before it.
