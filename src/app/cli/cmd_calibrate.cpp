@@ -66,13 +66,14 @@ PointPairs read_points_csv(const std::filesystem::path& path) {
   return parse_points_csv(text::read_file(path), path.string());
 }
 
-ScreenSize parse_screen_size(const std::string& text) {
+//! The screen's size in pixels for the errors, "1920x1080" (fractions allowed).
+Result<ScreenSize, std::string> parse_screen_size(const std::string& text) {
   const std::size_t x = text.find('x');
   double w = 0, h = 0;
   if (x == std::string::npos || !parse_double(std::string_view(text).substr(0, x), w) ||
       !parse_double(std::string_view(text).substr(x + 1), h) || !(w > 0 && h > 0 && w < 1e6 && h < 1e6))
-    throw FileError("--screen", 0, 0, "expected WIDTHxHEIGHT in pixels (e.g. 1920x1080), got \"" + text + "\"");
-  return {w, h};
+    return tl::unexpected("expected WIDTHxHEIGHT in pixels (e.g. 1920x1080), got \"" + text + "\"");
+  return ScreenSize{w, h};
 }
 
 void add_fit(CLI::App& calibrate) {
@@ -103,10 +104,17 @@ void add_fit(CLI::App& calibrate) {
       "exits 2 with nothing written.");
   cmd->add_option("--points", o->points, "Calibration points CSV (cam_x,cam_y,screen_x,screen_y)")->required();
   cmd->add_option("--out", o->out, "Calibration file to write (TOML)")->required();
-  cmd->add_option("--screen", o->screen, "Screen size WIDTHxHEIGHT in pixels, for the errors")->capture_default_str();
+  cmd->add_option("--screen", o->screen, "Screen size WIDTHxHEIGHT in pixels, for the errors")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            const Result<ScreenSize, std::string> size = parse_screen_size(value);
+            return size ? std::string() : size.error();
+          },
+          "WIDTHxHEIGHT"));
   cmd->add_option("--remote", o->remote, "Identity of the Wii Remote used (stored in CAL)");
   cmd->callback([o] {
-    const ScreenSize screen = parse_screen_size(o->screen);
+    const ScreenSize screen = parse_screen_size(o->screen).value();  // checked by --screen's validator
     const PointPairs pairs = read_points_csv(o->points);
     const auto result = fit_homography(pairs.camera, pairs.screen, screen);
     if (!result) throw FileError(o->points.string(), 0, 0, result.error());
