@@ -9,6 +9,7 @@
 #include "core/config/instruments_config.hpp"
 #include "core/file_error.hpp"
 #include "core/journal.hpp"
+#include "core/named.hpp"
 
 namespace mallet::audio {
 
@@ -19,10 +20,10 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   std::vector<ModalPreset> presets;
   std::vector<int> programs;
   for (const Instrument& inst : scene.instruments) {
-    const ModalPreset* found = config::find_preset(library, inst.voice);
+    const ModalPreset* found = find_named(library, inst.voice);
     if (!found)
       throw FileError(scene.file, 0, 0, "instrument " + inst.name + ": no voice \"" + inst.voice + "\" in " +
-                                            scene.instruments_file + " (known: " + config::preset_names(library) + ")");
+                                            scene.instruments_file + " (known: " + names_of(library) + ")");
     presets.push_back(*found);
     presets.back().max_sounding_modes = config.audio.max_modes;
     programs.push_back(inst.midi_program);
@@ -52,9 +53,8 @@ std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioCo
   try {
     auto output = std::make_unique<PortAudioOutput>(engine, config);
     output->start();
-    const std::string buf = fmt::format("audio: {}, {:.1f} ms", output->device().name.c_str(),
-                                        output->output_latency_s() * 1e3);
-    status = buf;
+    status = fmt::format("audio: {}, {:.1f} ms", output->device().name.c_str(),
+                         output->output_latency_s() * 1e3);
     return output;
   } catch (const std::exception& e) {  // the screen still plays, silently
     journal::error("{}; running without sound", e.what());

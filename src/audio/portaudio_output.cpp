@@ -29,7 +29,6 @@ std::mutex& pa_mutex() {
   return m;
 }
 
-
 std::string error_text(PaError e) {
   std::string text = Pa_GetErrorText(e);
   if (e == paUnanticipatedHostError) {

@@ -10,7 +10,6 @@
 
 #include <fmt/format.h>
 
-
 #include "core/atomic_file.hpp"
 #include "core/config/toml_reader.hpp"
 #include "core/ir_camera_settings.hpp"
@@ -44,8 +43,7 @@ std::optional<std::pair<std::string, std::string>> problem_of(const Calibration&
 }
 
 std::string number_text(double v) {
-  const std::string buf = fmt::format("{:.17g}", v);
-  return buf;
+  return fmt::format("{:.17g}", v);
 }
 
 // A TOML basic string.
@@ -57,8 +55,7 @@ std::string toml_string(std::string_view s) {
       out += '\\';
       out += ch;
     } else if (c < 0x20 || c == 0x7f) {
-      const std::string buf = fmt::format("\\u{:04x}", c);
-      out += buf;
+      out += fmt::format("\\u{:04x}", c);
     } else {
       out += ch;
     }

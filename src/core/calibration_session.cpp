@@ -17,8 +17,7 @@ bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 double distance(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 std::string px_text(double v) {
-  const std::string buf = fmt::format("{:.1f}", v);
-  return buf;
+  return fmt::format("{:.1f}", v);
 }
 
 // |H(camera) − target| in screen px; nothing where H sends the point to infinity.

@@ -36,8 +36,7 @@ std::array<double, 9> canonical(std::array<double, 9> m) {
 }
 
 std::string point_text(Vec2 p) {
-  const std::string buf = fmt::format("({:.6g}, {:.6g})", p.x, p.y);
-  return buf;
+  return fmt::format("({:.6g}, {:.6g})", p.x, p.y);
 }
 
 // Distance of one vertex from the line through the other two, over the longest side:

@@ -4,9 +4,11 @@
 
 namespace mallet::journal {
 
-void write(int priority, std::string_view text) {
+void write(int priority, fmt::string_view format, fmt::format_args args) {
   fmt::memory_buffer line;
-  fmt::format_to(std::back_inserter(line), "<{}>{}\n", priority, text);
+  fmt::format_to(std::back_inserter(line), "<{}>", priority);
+  fmt::vformat_to(std::back_inserter(line), format, args);
+  line.push_back('\n');
   std::fwrite(line.data(), 1, line.size(), stderr);
 }
 

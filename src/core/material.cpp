@@ -1,17 +1,11 @@
 #include "core/material.hpp"
 
+#include "core/named.hpp"
+
 namespace mallet {
 
-const Material* MaterialLibrary::find(std::string_view name) const {
-  for (const Material& m : materials_)
-    if (m.name == name) return &m;
-  return nullptr;
-}
+const Material* MaterialLibrary::find(std::string_view name) const { return find_named(materials_, name); }
 
-std::string MaterialLibrary::names() const {
-  std::string out;
-  for (const Material& m : materials_) out += (out.empty() ? "" : ", ") + m.name;
-  return out;
-}
+std::string MaterialLibrary::names() const { return names_of(materials_); }
 
 }  // namespace mallet

@@ -19,9 +19,8 @@ SavedCalibration load_saved_calibration(const std::filesystem::path& file) {
   }
   try {
     out.calibration = load_calibration(file);
-    const std::string buf = fmt::format("calibration: {} ({}, max error {:.1f} px)", file.c_str(),
-                                        out.calibration->created_utc.c_str(), out.calibration->max_error_screen_px);
-    out.status = buf;
+    out.status = fmt::format("calibration: {} ({}, max error {:.1f} px)", file.string(),
+                             out.calibration->created_utc, out.calibration->max_error_screen_px);
   } catch (const std::exception& e) {  // FileError, and whatever else reading it throws
     const std::optional<std::filesystem::path> bad = set_aside_as_bad(file);
     const std::string kept = bad ? "kept as " + bad->string() : "left in place (it could not be moved)";

@@ -53,8 +53,7 @@ constexpr int kMaxTextureSide = 8192;
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string str(const glm::dvec3& v) {
-  const std::string text = fmt::format("({:g}, {:g}, {:g})", v.x, v.y, v.z);
-  return text;
+  return fmt::format("({:g}, {:g}, {:g})", v.x, v.y, v.z);
 }
 
 // NaN for a zero vector, so the caller's finiteness check catches it (glm::normalize would

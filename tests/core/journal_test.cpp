@@ -4,7 +4,6 @@
 
 #include "core/journal.hpp"
 
-
 namespace mallet {
 namespace {
 

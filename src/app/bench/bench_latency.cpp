@@ -622,8 +622,7 @@ std::string load_average() {
 
 std::string cell(const std::optional<double>& v) {
   if (!v) return "nan";
-  const std::string b = fmt::format("{:.3f}", *v);
-  return b;
+  return fmt::format("{:.3f}", *v);
 }
 
 }  // namespace

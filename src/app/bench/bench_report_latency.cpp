@@ -26,8 +26,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 std::string ms(double v) {
-  const std::string b = fmt::format("{:.3f}", v);
-  return b;
+  return fmt::format("{:.3f}", v);
 }
 
 struct Measured {

@@ -138,10 +138,9 @@ std::string csv_header() {
 }
 
 std::string csv_row(const Minute& m) {
-  const std::string b = fmt::format("{:.4f},{:.2f},{},{},{:.2f},{},{},{},{},{},{},{:.2f},{},{}", m.hours, m.rss_mib,
-                                    m.fds, m.threads, m.vulkan_mib, m.strokes, m.strikes, m.actuator, m.note, m.lost,
-                                    m.frames, m.frame_p99_ms, m.state.c_str(), m.xruns);
-  return b;
+  return fmt::format("{:.4f},{:.2f},{},{},{:.2f},{},{},{},{},{},{},{:.2f},{},{}", m.hours, m.rss_mib,
+                     m.fds, m.threads, m.vulkan_mib, m.strokes, m.strikes, m.actuator, m.note, m.lost,
+                     m.frames, m.frame_p99_ms, m.state.c_str(), m.xruns);
 }
 
 double slope(const std::vector<double>& x, const std::vector<double>& y) {

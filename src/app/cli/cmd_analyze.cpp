@@ -9,6 +9,7 @@
 #include "app/offline/simulate.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
+#include "core/named.hpp"
 
 namespace mallet::app {
 
@@ -37,9 +38,7 @@ void register_analyze(CLI::App& app) {
     std::printf("%-14s %-9s %7s | %-39s | %-39s\n", "impact t (s)", "material", "v (m/s)",
                 "visual:   A (s)      B (1/s)     f (Hz)", "actuator: A         B (1/s)     f (Hz)");
     for (const ImpactAnalysis& a : results) {
-      const Material* m = nullptr;
-      for (const Material& candidate : scene.materials)
-        if (candidate.name == a.material) m = &candidate;
+      const Material* m = find_named(scene.materials, a.material);
       auto row = [](const DampedSineFit& fit, double scale) {
         if (!fit.ok) return fmt::format("{:<33}", "(too short to fit)");
         return fmt::format("{:<11.7g} {:10.6f} {:10.6f}", fit.amplitude / scale, fit.decay_per_s, fit.freq_hz);

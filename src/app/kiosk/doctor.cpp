@@ -73,8 +73,7 @@ std::size_t count_lines(const std::string& s) {
 }
 
 std::string ms_text(double s) {
-  const std::string buf = fmt::format("{:.1f} ms", s * 1e3);
-  return buf;
+  return fmt::format("{:.1f} ms", s * 1e3);
 }
 
 // ---- the devices (the command only) ----
@@ -158,8 +157,6 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
   }
 }
 
-std::string remote_identity(const wm::HidDeviceInfo& d) { return d.serial.empty() ? d.path : d.serial; }
-
 DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
   const std::string& source = config.input.source;
   if (source == "mouse" || source == "replay")
@@ -167,11 +164,7 @@ DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::
   wm::HidDeviceFinder finder;
   std::optional<wm::HidDeviceInfo> found;
   try {
-    for (const wm::HidDeviceInfo& d : finder.enumerate())
-      if (wm::matches_device(d, config.wiimote.device)) {
-        found = d;
-        break;
-      }
+    found = wm::first_matching(finder.enumerate(), config.wiimote.device);
   } catch (const std::exception& e) {
     return fail("wiimote", std::string("cannot list HID devices: ") + e.what(), "see the hidraw check");
   }

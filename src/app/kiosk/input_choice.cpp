@@ -56,12 +56,8 @@ void choose_input(KioskStage& stage, const InputDevices& devices) {
     stage.source = InputSource::replay;
     stage.input_why = "replay of " + stage.config.input.replay_file;
   } else if (want == "auto") {
-    std::optional<input::wiimote::HidDeviceInfo> found;
-    for (const auto& d : devices.finder.enumerate())
-      if (input::wiimote::matches_device(d, stage.config.wiimote.device)) {
-        found = d;
-        break;
-      }
+    const std::optional<input::wiimote::HidDeviceInfo> found =
+        input::wiimote::first_matching(devices.finder.enumerate(), stage.config.wiimote.device);
     if (!found) {
       stage.input_why = "no Wii Remote found at start-up";
       choose_mouse(stage, devices);

@@ -66,9 +66,4 @@ struct KioskStage {
   std::optional<study::StudyProtocol> visitor;
 };
 
-//! The remote's identity in a calibration file: its Bluetooth address, else its hidraw path.
-inline std::string remote_identity(const input::wiimote::HidDeviceInfo& d) {
-  return d.serial.empty() ? d.path : d.serial;
-}
-
 }  // namespace mallet::app

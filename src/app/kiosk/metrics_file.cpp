@@ -24,8 +24,7 @@ std::string material_label(const Scene& scene, int material) {
 }
 
 std::string seconds_text(Nanos ns) {
-  const std::string buf = fmt::format("{:g}", static_cast<double>(ns) / 1e9);
-  return buf;
+  return fmt::format("{:g}", static_cast<double>(ns) / 1e9);
 }
 
 }  // namespace

@@ -295,12 +295,10 @@ void WindowKiosk::build(KioskSetup setup) {
   apply_volume();
 }
 
-
 //! "off", or "10 ms ahead".
 std::string predict_text(const PredictionConfig& p) {
   if (!(p.horizon_ms > 0)) return "off";
-  const std::string buf = fmt::format("{:.0f} ms ahead", p.horizon_ms);
-  return buf;
+  return fmt::format("{:.0f} ms ahead", p.horizon_ms);
 }
 
 std::string WindowKiosk::timing_line() const {
@@ -311,12 +309,6 @@ std::string WindowKiosk::timing_line() const {
                      to_string(t.align), predict_text(t.predict), win_.window->present_clock().describe(),
                      t.display_latency_ms, audio_ms, c.audio.output_latency_ms >= 0 ? " (set)" : " (the device's)");
 }
-
-
-
-
-
-
 
 void WindowKiosk::poll_remote(Nanos now) {
   KioskStage& s = *stage_;
@@ -403,7 +395,6 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   calibration_.reset();
 }
 
-
 void WindowKiosk::apply_volume() {
   const double attract = states_ && states_->attract_volume() ? stage_->config.attract.volume : 1.0;
   stage_->rig.engine->set_acoustic_volume(volume_ * attract);
@@ -463,8 +454,6 @@ void WindowKiosk::next_wall_material() {
                   stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
 }
 
-
-
 void WindowKiosk::next_scene() {
   // Only the choices that loaded (the others are listed on the page with their reasons).
   const std::vector<std::filesystem::path>& choices = stage_->scene_choices;
@@ -505,7 +494,6 @@ void WindowKiosk::reload() {
     journal::warning("reload refused, the running configuration stays: {}", e.what());
   }
 }
-
 
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   render::Overlay& o = *win_.overlay;

@@ -89,13 +89,11 @@ std::uint32_t trajectory_row_line(std::string_view text, std::size_t index) {
 }
 
 std::string gigabytes(double bytes) {
-  const std::string buf = fmt::format("{:.1f} GB", bytes / 1e9);
-  return buf;
+  return fmt::format("{:.1f} GB", bytes / 1e9);
 }
 
 std::string g9(double v) {
-  const std::string buf = fmt::format("{:.9g}", v);
-  return buf;
+  return fmt::format("{:.9g}", v);
 }
 
 //! Files are written under temporary names and renamed only when all are complete.

@@ -17,6 +17,7 @@
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/named.hpp"
 #include "core/study/answer_script.hpp"
 #include "core/study/balanced_schedule.hpp"
 #include "core/study/protocol_loader.hpp"
@@ -153,10 +154,10 @@ StudyPlan plan_session(AppConfig config, Scene base, StudyProtocol protocol, con
   if (p.protocol.response == StudyResponse::strike && !p.protocol.answer_strike.voice.empty()) {
     const std::vector<ModalPreset> voices = config::load_instruments(p.base.instruments_file);
     const std::string& voice = p.protocol.answer_strike.voice;
-    if (!config::find_preset(voices, voice))
+    if (!find_named(voices, voice))
       throw FileError(p.protocol.answer_strike.voice_at, "answer_strike.sound: no voice \"" + voice + "\" in " +
                                                           p.base.instruments_file +
-                                                          " (known: " + config::preset_names(voices) + ", none)");
+                                                          " (known: " + names_of(voices) + ", none)");
   }
   p.schedule = balanced_schedule(p.protocol, participant);
   p.csv = csv;

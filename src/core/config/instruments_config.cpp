@@ -59,17 +59,4 @@ std::vector<ModalPreset> parse_instruments(std::string_view text, const std::str
   return read(parse_text(text, name), name);
 }
 
-const ModalPreset* find_preset(const std::vector<ModalPreset>& library, std::string_view name) {
-  const ModalPreset* found = nullptr;
-  for (const ModalPreset& p : library)
-    if (p.name == name) found = &p;
-  return found;
-}
-
-std::string preset_names(const std::vector<ModalPreset>& library) {
-  std::string names;
-  for (const ModalPreset& p : library) names += (names.empty() ? "" : ", ") + p.name;
-  return names;
-}
-
 }  // namespace mallet::config

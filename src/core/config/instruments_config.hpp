@@ -14,9 +14,4 @@ namespace mallet::config {
 std::vector<ModalPreset> load_instruments(const std::filesystem::path& path);
 std::vector<ModalPreset> parse_instruments(std::string_view text, const std::string& name);
 
-//! The preset named `name` in `library` (the last of that name), or null.
-const ModalPreset* find_preset(const std::vector<ModalPreset>& library, std::string_view name);
-//! The presets' names, "xylophone, glockenspiel, ...", for a message naming what is known.
-std::string preset_names(const std::vector<ModalPreset>& library);
-
 }  // namespace mallet::config

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/config/toml_reader.hpp"
+#include "core/named.hpp"
 
 namespace mallet::study {
 
@@ -47,26 +48,14 @@ StudyTiming read_timing(TableReader t, bool paired) {
   return timing;
 }
 
-//! The scene's material named `name`, or null; and the names, "wood, metal", for a message.
-const Material* material_named(const std::vector<Material>& materials, std::string_view name) {
-  for (const Material& m : materials)
-    if (m.name == name) return &m;
-  return nullptr;
-}
-std::string material_names(const std::vector<Material>& materials) {
-  std::string names;
-  for (const Material& m : materials) names += (names.empty() ? "" : ", ") + m.name;
-  return names;
-}
-
 Stimulus read_stimulus(TableReader t, const std::vector<Material>& materials) {
   Stimulus s;
   s.name = t.string("name");
   if (!is_plain_name(s.name)) t.fail("name", "\"" + s.name + "\" " + kPlain);
   const std::string material = t.string("material");
-  const Material* found = material_named(materials, material);
+  const Material* found = find_named(materials, material);
   if (!found)
-    t.fail("material", "unknown material \"" + material + "\" (the scene has: " + material_names(materials) + ")");
+    t.fail("material", "unknown material \"" + material + "\" (the scene has: " + names_of(materials) + ")");
   s.decay_scale = 1.0;
   t.read("decay_scale", s.decay_scale, 0.01, 100);
   s.material = *found;
@@ -96,11 +85,8 @@ Stimulus read_texture_stimulus(TableReader t) {
 
 int stimulus_index(TableReader& t, std::string_view key, const std::vector<Stimulus>& stimuli) {
   const std::string name = t.string(key);
-  for (std::size_t i = 0; i < stimuli.size(); ++i)
-    if (stimuli[i].name == name) return static_cast<int>(i);
-  std::string known;
-  for (const Stimulus& s : stimuli) known += (known.empty() ? "" : ", ") + s.name;
-  t.fail(key, "no [[stimulus]] named \"" + name + "\" (known: " + known + ")");
+  if (const Stimulus* found = find_named(stimuli, name)) return static_cast<int>(found - stimuli.data());
+  t.fail(key, "no [[stimulus]] named \"" + name + "\" (known: " + names_of(stimuli) + ")");
 }
 
 StimulusPair read_pair(TableReader t, const std::vector<Stimulus>& stimuli) {
@@ -140,9 +126,9 @@ AnswerStrike read_answer_strike(TableReader t, const std::vector<Material>& mate
   a.voice_at = t.place("sound");
   const std::string feel = t.string_or("feel", "none");
   if (feel != "none") {
-    const Material* found = material_named(materials, feel);
+    const Material* found = find_named(materials, feel);
     if (!found)
-      t.fail("feel", "expected \"none\" or a material of the scene (" + material_names(materials) + "), got \"" +
+      t.fail("feel", "expected \"none\" or a material of the scene (" + names_of(materials) + "), got \"" +
                          feel + "\"");
     a.feel = *found;
   }

@@ -12,8 +12,7 @@ bool VisitorOffer::offered(Nanos now) {
 }
 
 std::string visitor_session_id(std::uint64_t random) {
-  const std::string buf = fmt::format("visitor-{:08x}", static_cast<unsigned>(random & 0xffffffffu));
-  return buf;
+  return fmt::format("visitor-{:08x}", static_cast<unsigned>(random & 0xffffffffu));
 }
 
 std::string utc_date(std::time_t t) {

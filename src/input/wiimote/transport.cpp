@@ -19,8 +19,7 @@ std::string udev_hint() {
 std::string product_name(std::uint16_t product_id) {
   if (product_id == kWiiRemoteProductId) return "RVL-CNT-01";
   if (product_id == kWiiRemoteTrProductId) return "RVL-CNT-01-TR";
-  const std::string buf = fmt::format("0x{:04x}", static_cast<unsigned>(product_id));
-  return buf;
+  return fmt::format("0x{:04x}", static_cast<unsigned>(product_id));
 }
 
 bool matches_device(const HidDeviceInfo& device, std::string_view filter) {
@@ -32,6 +31,17 @@ bool matches_device(const HidDeviceInfo& device, std::string_view filter) {
     return it != text.end();
   };
   return contains(device.path) || contains(device.serial);
+}
+
+std::optional<HidDeviceInfo> first_matching(const std::vector<HidDeviceInfo>& devices, std::string_view filter) {
+  const auto it = std::find_if(devices.begin(), devices.end(),
+                               [filter](const HidDeviceInfo& d) { return matches_device(d, filter); });
+  if (it == devices.end()) return std::nullopt;
+  return *it;
+}
+
+std::string remote_identity(const HidDeviceInfo& device) {
+  return device.serial.empty() ? device.path : device.serial;
 }
 
 }  // namespace mallet::input::wiimote

@@ -4,6 +4,7 @@
 // tests. Byte 0 of every buffer is the report id, as hidraw takes and returns it.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,6 +55,11 @@ std::string product_name(std::uint16_t product_id);
 //! True when `filter` is empty or a substring of the device's path or serial
 //! (case-insensitive): how the operator names one remote among several.
 bool matches_device(const HidDeviceInfo& device, std::string_view filter);
+//! The first of `devices` that matches `filter` (matches_device), or nothing.
+std::optional<HidDeviceInfo> first_matching(const std::vector<HidDeviceInfo>& devices, std::string_view filter);
+//! A remote's identity in a calibration file and the logs: its Bluetooth address, else its
+//! hidraw path.
+std::string remote_identity(const HidDeviceInfo& device);
 
 //! An open device. Used by one thread at a time (the device's reading thread).
 class Transport {

@@ -19,8 +19,7 @@ constexpr Nanos kMaxIdleWaitNs = 50'000'000;
 Nanos ms_to_ns(double ms) { return static_cast<Nanos>(std::llround(ms * 1e6)); }
 
 std::string seconds_text(Nanos ns) {
-  const std::string buf = fmt::format("{:.1f} s", to_seconds(ns));
-  return buf;
+  return fmt::format("{:.1f} s", to_seconds(ns));
 }
 
 }  // namespace
@@ -131,9 +130,8 @@ void WiimoteDevice::step_disconnected(Nanos now) {
 
 void WiimoteDevice::try_connect(Nanos now) {
   const std::vector<HidDeviceInfo> seen = finder_.enumerate();
-  const auto it = std::find_if(seen.begin(), seen.end(),
-                               [&](const HidDeviceInfo& d) { return matches_device(d, config_.device); });
-  if (it == seen.end()) {
+  const std::optional<HidDeviceInfo> found = first_matching(seen, config_.device);
+  if (!found) {
     if (seen.empty()) {
       fail_attempt(now, "no Wii Remote found (is it paired and connected? `mallet wiimote list` shows what is seen)");
     } else {
@@ -142,13 +140,13 @@ void WiimoteDevice::try_connect(Nanos now) {
     }
     return;
   }
-  OpenResult opened = finder_.open(it->path);
+  OpenResult opened = finder_.open(found->path);
   if (!opened.transport) {
-    fail_attempt(now, opened.error.empty() ? "cannot open " + it->path : opened.error);
+    fail_attempt(now, opened.error.empty() ? "cannot open " + found->path : opened.error);
     return;
   }
   transport_ = std::move(opened.transport);
-  device_ = *it;
+  device_ = *found;
   ++connects_;
   link_ = LinkState::starting;
   last_rx_ns_ = now;
