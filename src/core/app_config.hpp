@@ -10,7 +10,9 @@
 #include "core/mallet.hpp"
 #include "core/modal_preset.hpp"
 #include "core/contact_predictor.hpp"
+#include "core/enum_names.hpp"
 #include "core/one_euro_filter.hpp"
+#include "core/present_clock.hpp"
 #include "core/visual_vibration.hpp"
 
 namespace mallet {
@@ -84,6 +86,7 @@ enum class CueAlign {
   asap,     //!< as soon as the strike is known (or at its predicted contact)
   picture,  //!< together with the first frame that shows the bounce
 };
+inline constexpr EnumNames<CueAlign, 2> kCueAlignNames{{{CueAlign::asap, "asap"}, {CueAlign::picture, "picture"}}};
 
 const char* to_string(CueAlign a);
 
@@ -110,7 +113,7 @@ struct AttractConfig {
 
 //! [render]: the screen. Values are names so the core stays free of Vulkan.
 struct RenderConfig {
-  std::string present_mode = "fifo";  //!< fifo (vsync), mailbox or immediate; fifo where not offered
+  PresentPacing present_mode = PresentPacing::fifo;  //!< fifo (vsync), mailbox or immediate; fifo where not offered
   std::string msaa = "auto";          //!< auto (CPU rasteriser: 4 for the cached instruments, 1 per frame; GPU: 4), 1, 2, 4 or 8
   bool shadow = true;                 //!< the mallet's analytic cast shadow
   std::string device;                 //!< a part of the Vulkan device's name; empty = the best one
@@ -156,6 +159,8 @@ enum class Quality {
   balanced,  //!< the shipped defaults
   exact,     //!< stimuli first: a lab's perceptual study
 };
+inline constexpr EnumNames<Quality, 3> kQualityNames{
+    {{Quality::fast, "fast"}, {Quality::balanced, "balanced"}, {Quality::exact, "exact"}}};
 
 struct AppConfig {
   Quality quality = Quality::balanced;  //!< the preset the knobs below started from

@@ -61,21 +61,7 @@ std::vector<Vec2> calibration_grid(const CalibrationSessionConfig& c) {
   return out;
 }
 
-const char* to_string(CalibrationStep step) {
-  switch (step) {
-    case CalibrationStep::dwelling: return "dwelling";
-    case CalibrationStep::dwell_reset: return "dwell_reset";
-    case CalibrationStep::unstable: return "unstable";
-    case CalibrationStep::still_on_last: return "still_on_last";
-    case CalibrationStep::settling: return "settling";
-    case CalibrationStep::ignored: return "ignored";
-    case CalibrationStep::target_measured: return "target_measured";
-    case CalibrationStep::round_rejected: return "round_rejected";
-    case CalibrationStep::accepted: return "accepted";
-    case CalibrationStep::failed: return "failed";
-  }
-  return "?";
-}
+const char* to_string(CalibrationStep step) { return name_in(kCalibrationStepNames, step); }
 
 CalibrationSession::CalibrationSession(CalibrationSessionConfig config)
     : CalibrationSession(config, calibration_grid(config)) {}

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "core/calibration_file.hpp"
+#include "core/enum_names.hpp"
 #include "core/geometry.hpp"
 #include "core/homography.hpp"
 #include "core/time.hpp"
@@ -97,6 +98,12 @@ enum class CalibrationStep {
   accepted,        //!< calibration() now returns the new calibration
   failed,          //!< out of rounds: failure() says why, last_fit() holds the errors
 };
+inline constexpr EnumNames<CalibrationStep, 10> kCalibrationStepNames{{
+    {CalibrationStep::dwelling, "dwelling"}, {CalibrationStep::dwell_reset, "dwell_reset"},
+    {CalibrationStep::unstable, "unstable"}, {CalibrationStep::still_on_last, "still_on_last"},
+    {CalibrationStep::settling, "settling"}, {CalibrationStep::ignored, "ignored"},
+    {CalibrationStep::target_measured, "target_measured"}, {CalibrationStep::round_rejected, "round_rejected"},
+    {CalibrationStep::accepted, "accepted"}, {CalibrationStep::failed, "failed"}}};
 
 const char* to_string(CalibrationStep step);
 

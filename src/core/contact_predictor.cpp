@@ -178,24 +178,7 @@ double ContactPredictor::Fit::sigma_vy_m_per_s(double tau_s, double noise_m) con
   return noise_m * std::sqrt(quadratic_form(inverse_, h, terms_)) / window_s_;
 }
 
-const char* to_string(PredictionVerdict v) {
-  switch (v) {
-    case PredictionVerdict::predicted: return "predicted";
-    case PredictionVerdict::off: return "off";
-    case PredictionVerdict::few_samples: return "few_samples";
-    case PredictionVerdict::poor_fit: return "poor_fit";
-    case PredictionVerdict::slow: return "slow";
-    case PredictionVerdict::turning: return "turning";
-    case PredictionVerdict::speeding_up: return "speeding_up";
-    case PredictionVerdict::no_crossing: return "no_crossing";
-    case PredictionVerdict::could_stop: return "could_stop";
-    case PredictionVerdict::after_next_sample: return "after_next_sample";
-    case PredictionVerdict::uncertain: return "uncertain";
-    case PredictionVerdict::grazing: return "grazing";
-    case PredictionVerdict::outside_zone: return "outside_zone";
-  }
-  return "?";
-}
+const char* to_string(PredictionVerdict v) { return name_in(kPredictionVerdictNames, v); }
 
 std::optional<PredictedContact> ContactPredictor::predict(const std::vector<ContactZone>& zones) {
   verdict_ = PredictionVerdict::off;

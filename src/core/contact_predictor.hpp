@@ -43,6 +43,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/geometry.hpp"
 #include "core/mallet.hpp"
 #include "core/time.hpp"
@@ -107,6 +108,14 @@ enum class PredictionVerdict {
   outside_zone,
   predicted,
 };
+inline constexpr EnumNames<PredictionVerdict, 13> kPredictionVerdictNames{{
+    {PredictionVerdict::predicted, "predicted"}, {PredictionVerdict::off, "off"},
+    {PredictionVerdict::few_samples, "few_samples"}, {PredictionVerdict::poor_fit, "poor_fit"},
+    {PredictionVerdict::slow, "slow"}, {PredictionVerdict::turning, "turning"},
+    {PredictionVerdict::speeding_up, "speeding_up"}, {PredictionVerdict::no_crossing, "no_crossing"},
+    {PredictionVerdict::could_stop, "could_stop"}, {PredictionVerdict::after_next_sample, "after_next_sample"},
+    {PredictionVerdict::uncertain, "uncertain"}, {PredictionVerdict::grazing, "grazing"},
+    {PredictionVerdict::outside_zone, "outside_zone"}}};
 const char* to_string(PredictionVerdict v);
 
 class ContactPredictor {

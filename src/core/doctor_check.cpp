@@ -15,14 +15,7 @@ constexpr std::int64_t kOldCalibrationDays = 90;  //!< a remote or a screen is o
 constexpr double kCalibrationErrorPx = 20.0;       //!< about a bar's half-width at 1080p
 }  // namespace
 
-const char* to_string(CheckLevel level) {
-  switch (level) {
-    case CheckLevel::ok: return "ok";
-    case CheckLevel::warn: return "warn";
-    case CheckLevel::fail: return "fail";
-  }
-  return "?";
-}
+const char* to_string(CheckLevel level) { return name_in(kCheckLevelNames, level); }
 
 std::string format_check(const DoctorCheck& c) {
   std::string line = fmt::format("{:<5} {:<12} {}", to_string(c.level), c.name, c.found);

@@ -8,10 +8,13 @@
 #include <vector>
 
 #include "core/calibration_file.hpp"
+#include "core/enum_names.hpp"
 
 namespace mallet {
 
 enum class CheckLevel { ok, warn, fail };
+inline constexpr EnumNames<CheckLevel, 3> kCheckLevelNames{{
+    {CheckLevel::ok, "ok"}, {CheckLevel::warn, "warn"}, {CheckLevel::fail, "fail"}}};
 const char* to_string(CheckLevel level);
 
 struct DoctorCheck {

@@ -30,15 +30,7 @@ std::string validate(const IrTrackerConfig& c) {
   return {};
 }
 
-const char* to_string(IrTrackerEvent event) {
-  switch (event) {
-    case IrTrackerEvent::none: return "none";
-    case IrTrackerEvent::regained: return "regained";
-    case IrTrackerEvent::lost: return "lost";
-    case IrTrackerEvent::jumped: return "jumped";
-  }
-  return "?";
-}
+const char* to_string(IrTrackerEvent event) { return name_in(kIrTrackerEventNames, event); }
 
 IrTracker::IrTracker(IrTrackerConfig config) : config_(config) {
   if (std::string why = validate(config_); !why.empty()) throw std::invalid_argument("IR tracker: " + why);

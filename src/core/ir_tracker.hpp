@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 
+#include "core/enum_names.hpp"
 #include "core/ir_dot.hpp"
 #include "core/time.hpp"
 
@@ -56,6 +57,9 @@ enum class IrTrackerEvent {
   lost,      //!< no accepted dot for lost_after_ms
   jumped,    //!< an implausible jump persisted; the tracker now follows the new dot
 };
+inline constexpr EnumNames<IrTrackerEvent, 4> kIrTrackerEventNames{{
+    {IrTrackerEvent::none, "none"}, {IrTrackerEvent::regained, "regained"}, {IrTrackerEvent::lost, "lost"},
+    {IrTrackerEvent::jumped, "jumped"}}};
 
 const char* to_string(IrTrackerEvent event);
 

@@ -24,15 +24,7 @@ std::string validate(const KioskStatesConfig& c) {
   return {};
 }
 
-const char* to_string(KioskState state) {
-  switch (state) {
-    case KioskState::attract: return "attract";
-    case KioskState::play: return "play";
-    case KioskState::calibration: return "calibration";
-    case KioskState::operator_page: return "operator";
-  }
-  return "?";
-}
+const char* to_string(KioskState state) { return name_in(kKioskStateNames, state); }
 
 std::string_view hint_text(KioskHint hint, SceneKind scene) {
   switch (hint) {

@@ -39,6 +39,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/enum_names.hpp"
 #include "core/geometry.hpp"
 #include "core/scene.hpp"
 #include "core/time.hpp"
@@ -59,7 +60,10 @@ struct KioskStatesConfig {
 std::string validate(const KioskStatesConfig& config);
 
 enum class KioskState { attract, play, calibration, operator_page };
-const char* to_string(KioskState state);  //!< "attract", "play", "calibration", "operator"
+inline constexpr EnumNames<KioskState, 4> kKioskStateNames{{
+    {KioskState::attract, "attract"}, {KioskState::play, "play"}, {KioskState::calibration, "calibration"},
+    {KioskState::operator_page, "operator"}}};
+const char* to_string(KioskState state);
 
 enum class InputSource { wiimote, mouse, replay };
 

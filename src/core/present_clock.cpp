@@ -8,22 +8,10 @@
 
 namespace mallet {
 
-const char* to_string(PresentPacing p) {
-  switch (p) {
-    case PresentPacing::fifo: return "fifo";
-    case PresentPacing::mailbox: return "mailbox";
-    case PresentPacing::immediate: return "immediate";
-  }
-  return "fifo";
-}
+const char* to_string(PresentPacing p) { return name_in(kPresentPacingNames, p, "fifo"); }
 
-bool parse_present_pacing(std::string_view text, PresentPacing& out) {
-  for (PresentPacing p : {PresentPacing::fifo, PresentPacing::mailbox, PresentPacing::immediate})
-    if (text == to_string(p)) {
-      out = p;
-      return true;
-    }
-  return false;
+std::optional<PresentPacing> parse_present_pacing(std::string_view text) {
+  return value_named(kPresentPacingNames, text);
 }
 
 namespace {

@@ -23,15 +23,18 @@
 #include <string>
 #include <string_view>
 
+#include "core/enum_names.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
 
 enum class PresentPacing { fifo, mailbox, immediate };
+inline constexpr EnumNames<PresentPacing, 3> kPresentPacingNames{
+    {{PresentPacing::fifo, "fifo"}, {PresentPacing::mailbox, "mailbox"}, {PresentPacing::immediate, "immediate"}}};
 
 const char* to_string(PresentPacing p);
 //! "fifo", "mailbox" or "immediate"; nothing for any other text.
-bool parse_present_pacing(std::string_view text, PresentPacing& out);
+std::optional<PresentPacing> parse_present_pacing(std::string_view text);
 
 class PresentClock {
  public:

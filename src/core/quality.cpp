@@ -41,22 +41,10 @@ void apply_quality(Quality q, AppConfig& config) {
   config.timing.predict.horizon_ms = k.predict_horizon_ms;
 }
 
-std::optional<Quality> parse_quality(std::string_view text) {
-  if (text == "fast") return Quality::fast;
-  if (text == "balanced") return Quality::balanced;
-  if (text == "exact") return Quality::exact;
-  return std::nullopt;
-}
+std::optional<Quality> parse_quality(std::string_view text) { return value_named(kQualityNames, text); }
 
-const char* to_string(CueAlign a) { return a == CueAlign::picture ? "picture" : "asap"; }
+const char* to_string(CueAlign a) { return name_in(kCueAlignNames, a); }
 
-const char* to_string(Quality q) {
-  switch (q) {
-    case Quality::fast: return "fast";
-    case Quality::balanced: return "balanced";
-    case Quality::exact: return "exact";
-  }
-  return "?";
-}
+const char* to_string(Quality q) { return name_in(kQualityNames, q); }
 
 }  // namespace mallet

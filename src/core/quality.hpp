@@ -78,7 +78,7 @@ namespace mallet {
 struct QualityKnobs {
   std::string msaa;
   bool shadow = true;
-  std::string present_mode;
+  PresentPacing present_mode = PresentPacing::fifo;
   int frames_per_buffer = 64;
   double schedule_ahead_ms = 0;
   int max_modes = kMaxModalModes;

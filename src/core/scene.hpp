@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/file_error.hpp"
 #include "core/material.hpp"
 #include "core/screen_to_world.hpp"
@@ -63,9 +64,9 @@ struct Camera {
 //!  wall        the second paper's wall to tap: one target whose instrument is "wall",
 //!              with a material the operator (or the attract loop) switches.
 enum class SceneKind { percussion, texture, wall };
-inline const char* to_string(SceneKind kind) {
-  return kind == SceneKind::texture ? "texture" : kind == SceneKind::wall ? "wall" : "percussion";
-}
+inline constexpr EnumNames<SceneKind, 3> kSceneKindNames{
+    {{SceneKind::percussion, "percussion"}, {SceneKind::texture, "texture"}, {SceneKind::wall, "wall"}}};
+inline const char* to_string(SceneKind kind) { return name_in(kSceneKindNames, kind, "percussion"); }
 
 //! The texture scene's stimulus: the relief under the disc, the Speed technique's law and
 //! the stripes on the actuator channel.

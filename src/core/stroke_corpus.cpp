@@ -10,17 +10,7 @@
 
 namespace mallet {
 
-const char* to_string(StrokeKind kind) {
-  switch (kind) {
-    case StrokeKind::strike: return "strike";
-    case StrokeKind::slow_approach: return "slow_approach";
-    case StrokeKind::stop_above: return "stop_above";
-    case StrokeKind::hover: return "hover";
-    case StrokeKind::slide: return "slide";
-    case StrokeKind::double_tap: return "double_tap";
-  }
-  return "?";
-}
+const char* to_string(StrokeKind kind) { return name_in(kStrokeKindNames, kind); }
 
 namespace {
 

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
 
@@ -34,6 +35,10 @@ enum class StrokeKind {
   slide,          //!< along the bars: on them after a strike (one contact), or just above (none)
   double_tap,     //!< two strikes on one bar, the hand rising 6–20 mm between them
 };
+inline constexpr EnumNames<StrokeKind, 6> kStrokeKindNames{{
+    {StrokeKind::strike, "strike"}, {StrokeKind::slow_approach, "slow_approach"},
+    {StrokeKind::stop_above, "stop_above"}, {StrokeKind::hover, "hover"}, {StrokeKind::slide, "slide"},
+    {StrokeKind::double_tap, "double_tap"}}};
 inline constexpr int kStrokeKinds = 6;
 const char* to_string(StrokeKind kind);
 

@@ -46,7 +46,7 @@ Vec2 TextureRelief::gradient_at(Vec2 p) const {
   return {dh_dr * dx / r, dh_dr * dy / r};
 }
 
-const char* to_string(ReliefShape s) { return s == ReliefShape::bump ? "bump" : "hole"; }
-const char* to_string(ReliefProfile p) { return p == ReliefProfile::gaussian ? "gaussian" : "cosine"; }
+const char* to_string(ReliefShape s) { return name_in(kReliefShapeNames, s); }
+const char* to_string(ReliefProfile p) { return name_in(kReliefProfileNames, p); }
 
 }  // namespace mallet

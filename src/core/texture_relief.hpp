@@ -11,12 +11,16 @@
 // with s = +1 for a bump, −1 for a hole, R the disc's radius and H its height (> 0).
 #include <string>
 
+#include "core/enum_names.hpp"
 #include "core/geometry.hpp"
 
 namespace mallet {
 
 enum class ReliefShape { bump, hole };
 enum class ReliefProfile { gaussian, cosine };
+inline constexpr EnumNames<ReliefShape, 2> kReliefShapeNames{{{ReliefShape::bump, "bump"}, {ReliefShape::hole, "hole"}}};
+inline constexpr EnumNames<ReliefProfile, 2> kReliefProfileNames{
+    {{ReliefProfile::gaussian, "gaussian"}, {ReliefProfile::cosine, "cosine"}}};
 
 struct TextureRelief {
   ReliefShape shape = ReliefShape::bump;

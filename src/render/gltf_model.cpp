@@ -25,6 +25,7 @@
 
 #include <fmt/format.h>
 
+#include "core/enum_names.hpp"
 #include "core/file_error.hpp"
 #include "render/gltf_source.hpp"
 
@@ -73,66 +74,33 @@ std::string named(const std::string& kind, std::size_t index, const std::string&
   return name.empty() ? kind + " " + std::to_string(index) : kind + " '" + name + "'";
 }
 
-std::string type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return std::to_string(type);
-  }
+//! A glTF constant's name ("VEC3"), or its number for one the specification does not define.
+template <std::size_t N>
+std::string code_name(const EnumNames<int, N>& names, int code) {
+  const char* name = name_in(names, code, nullptr);
+  return name ? name : std::to_string(code);
 }
 
-std::string component_type_name(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return "FLOAT";
-    default:
-      return std::to_string(component_type);
-  }
-}
+constexpr EnumNames<int, 7> kTypeNames{{
+    {TINYGLTF_TYPE_SCALAR, "SCALAR"}, {TINYGLTF_TYPE_VEC2, "VEC2"}, {TINYGLTF_TYPE_VEC3, "VEC3"},
+    {TINYGLTF_TYPE_VEC4, "VEC4"}, {TINYGLTF_TYPE_MAT2, "MAT2"}, {TINYGLTF_TYPE_MAT3, "MAT3"},
+    {TINYGLTF_TYPE_MAT4, "MAT4"}}};
 
-std::string mode_name(int mode) {
-  switch (mode) {
-    case TINYGLTF_MODE_POINTS:
-      return "POINTS";
-    case TINYGLTF_MODE_LINE:
-      return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP:
-      return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP:
-      return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES:
-      return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP:
-      return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN:
-      return "TRIANGLE_FAN";
-    default:
-      return std::to_string(mode);
-  }
-}
+std::string type_name(int type) { return code_name(kTypeNames, type); }
+
+constexpr EnumNames<int, 6> kComponentTypeNames{{
+    {TINYGLTF_COMPONENT_TYPE_BYTE, "BYTE"}, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, "UNSIGNED_BYTE"},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, "SHORT"}, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, "UNSIGNED_SHORT"},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, "UNSIGNED_INT"}, {TINYGLTF_COMPONENT_TYPE_FLOAT, "FLOAT"}}};
+
+std::string component_type_name(int component_type) { return code_name(kComponentTypeNames, component_type); }
+
+constexpr EnumNames<int, 7> kModeNames{{
+    {TINYGLTF_MODE_POINTS, "POINTS"}, {TINYGLTF_MODE_LINE, "LINES"}, {TINYGLTF_MODE_LINE_LOOP, "LINE_LOOP"},
+    {TINYGLTF_MODE_LINE_STRIP, "LINE_STRIP"}, {TINYGLTF_MODE_TRIANGLES, "TRIANGLES"},
+    {TINYGLTF_MODE_TRIANGLE_STRIP, "TRIANGLE_STRIP"}, {TINYGLTF_MODE_TRIANGLE_FAN, "TRIANGLE_FAN"}}};
+
+std::string mode_name(int mode) { return code_name(kModeNames, mode); }
 
 // tinygltf's messages end lines with '\n', may hold several and may quote raw bytes of
 // the file: one printable line for FileError.

@@ -54,7 +54,7 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
   wo.fullscreen = !windowed;
   wo.hide_cursor = !windowed;
   wo.monitor = r.monitor;
-  parse_present_pacing(r.present_mode, wo.present_mode);  // the loader refused any other name
+  wo.present_mode = r.present_mode;
   return wo;
 }
 

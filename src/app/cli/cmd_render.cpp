@@ -39,7 +39,7 @@ struct RenderCliOptions {
   bool window = false;
   int frames = 0;                       //!< window: stop after this many frames (0 = until closed)
   std::filesystem::path screenshot;     //!< window: the last presented frame, as PNG
-  std::string present_mode = "fifo";
+  PresentPacing present_mode = PresentPacing::fifo;
 };
 
 Nanos to_nanos(double seconds, const char* option) {
@@ -69,7 +69,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   render::WindowOptions wo;
   wo.width = static_cast<int>(ho.size.width);
   wo.height = static_cast<int>(ho.size.height);
-  parse_present_pacing(o.present_mode, wo.present_mode);  // CLI11 refused any other name
+  wo.present_mode = o.present_mode;
   wo.title = "Mallet — " + o.input.filename().string();
   wo.skip_unchanged = false;  // --frames counts frames drawn, a trajectory at rest too
   render::WindowTarget window(ctx, wo);
@@ -208,9 +208,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--frames", o->frames, "With --window: stop after this many frames (0 = until closed)")
       ->capture_default_str();
   cmd->add_option("--screenshot", o->screenshot, "With --window: write the last presented frame to this PNG");
-  cmd->add_option("--present-mode", o->present_mode, "With --window: fifo (vsync), mailbox or immediate")
-      ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}))
-      ->capture_default_str();
+  add_choice(*cmd, "--present-mode", o->present_mode, kPresentPacingNames,
+             "With --window: fifo (vsync), mailbox or immediate");
   cmd->callback([o, at, fps] {
     if (at->count() == 0 && fps->count() == 0) throw CLI::ValidationError("--at or --fps", "one of them is required");
     run_render(*o);

@@ -70,9 +70,8 @@ void register_simulate(CLI::App& app) {
   cmd->add_option("--display-hz", options->display_hz, "With --causal: the display's refresh rate (Hz)")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
-  cmd->add_option("--present-mode", options->present_mode, "With --causal: fifo, mailbox or immediate")
-      ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}))
-      ->capture_default_str();
+  add_choice(*cmd, "--present-mode", options->present_mode, kPresentPacingNames,
+             "With --causal: fifo, mailbox or immediate");
   cmd->callback([options, rate, space] {
     if (*rate != 0) options->sample_rate_hz = *rate;
     options->input_space = *space == "world" ? InputSpace::world : InputSpace::screen;

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/enum_names.hpp"
+
 namespace mallet::app {
 
 //! A flag's check for a number in (0, `most`] (no upper bound when `most` is 0), worded
@@ -16,6 +18,21 @@ CLI::Validator positive_at_most(double most = 0);
 //! A flag's check for a size in pixels, WIDTHxHEIGHT with each side 16..8192
 //! (core/pixel_size.hpp), worded as the parser words it.
 CLI::Validator pixel_size();
+
+//! A flag naming one of an enum's values by the table the settings read
+//! (core/enum_names.hpp): CLI11 refuses any other word, and `value` takes the one named.
+//! The help shows TEXT:{a,b,c}=default.
+template <typename E, std::size_t N>
+CLI::Option* add_choice(CLI::App& cmd, const std::string& flag, E& value, const EnumNames<E, N>& names,
+                        const std::string& help) {
+  std::vector<std::string> words;
+  for (const auto& [v, name] : names) words.emplace_back(name);
+  return cmd.add_option_function<std::string>(flag, [&value, &names](const std::string& word) {
+              value = *value_named(names, word);
+            }, help)
+      ->check(CLI::IsMember(words))
+      ->default_str(name_in(names, value));
+}
 
 //! The status the last command asked to exit with (0 unless it said otherwise).
 int exit_status();

@@ -180,10 +180,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
 
   // --- the contact solver, fed exactly as the kiosk feeds it
   std::optional<CausalTiming> causal;
-  PresentPacing pacing = PresentPacing::fifo;
-  if (!parse_present_pacing(options.present_mode, pacing))
-    throw FileError("--present-mode", 0, 0, "expected fifo, mailbox or immediate, got " + options.present_mode);
-  const PresentClock picture(options.display_hz, pacing);
+  const PresentClock picture(options.display_hz, options.present_mode);
   if (options.causal)
     causal = CausalTiming{static_cast<Nanos>(std::llround(options.input_delay_ms * 1e6)), &picture};
   const Replay replay(scene, config, trajectory, options.input_space, options.input.string(), causal);

@@ -57,7 +57,7 @@ struct SimulateOptions {
   bool causal = false;          //!< decide strikes as the live kiosk does
   double input_delay_ms = 0;    //!< --causal: a sample is known this long after its time
   double display_hz = 60;       //!< --causal: the frames' pacing ...
-  std::string present_mode = "fifo";  //!< ... and present mode
+  PresentPacing present_mode = PresentPacing::fifo;  //!< ... and present mode
 };
 
 struct SimulateResult {

@@ -12,9 +12,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   AppConfig c;
   TableReader top(root, file);
   // The preset first: it only sets defaults, so every knob the file names overrides it.
-  const std::string quality = top.string_or("quality", to_string(c.quality));
-  if (const std::optional<Quality> q = parse_quality(quality)) apply_quality(*q, c);
-  else top.fail("quality", "expected \"fast\", \"balanced\" or \"exact\", got \"" + quality + "\"");
+  apply_quality(top.choice_or("quality", kQualityNames, c.quality), c);
   if (auto t = top.optional_table("contact")) {
     c.contact.rearm_height_m = t->non_negative_or("rearm_height_m", c.contact.rearm_height_m);
     c.contact.min_impact_speed_m_per_s =
@@ -119,10 +117,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   }
   if (auto t = top.optional_table("timing")) {
     TimingConfig& g = c.timing;
-    const std::string align = t->string_or("align", to_string(g.align));
-    if (align == "asap") g.align = CueAlign::asap;
-    else if (align == "picture") g.align = CueAlign::picture;
-    else t->fail("align", "expected \"asap\" or \"picture\", got \"" + align + "\"");
+    g.align = t->choice_or("align", kCueAlignNames, g.align);
     t->read("display_latency_ms", g.display_latency_ms, 0, 200);
     double& audio = c.audio.output_latency_ms;
     audio = t->number_or("audio_output_latency_ms", audio);
@@ -152,9 +147,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   }
   if (auto t = top.optional_table("render")) {
     RenderConfig& r = c.render;
-    r.present_mode = t->string_or("present_mode", r.present_mode);
-    if (PresentPacing p; !parse_present_pacing(r.present_mode, p))
-      t->fail("present_mode", "expected \"fifo\", \"mailbox\" or \"immediate\", got \"" + r.present_mode + "\"");
+    r.present_mode = t->choice_or("present_mode", kPresentPacingNames, r.present_mode);
     r.msaa = t->string_or("msaa", r.msaa);
     if (r.msaa != "auto" && r.msaa != "1" && r.msaa != "2" && r.msaa != "4" && r.msaa != "8")
       t->fail("msaa", "expected \"auto\", \"1\", \"2\", \"4\" or \"8\", got \"" + r.msaa + "\"");

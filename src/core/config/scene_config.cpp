@@ -83,14 +83,8 @@ void read_texture(TableReader& top, Scene& scene) {
   TextureStimulus tex;
   {
     TableReader t = top.table("texture");
-    const std::string shape = t.string("shape");
-    if (shape == "bump") tex.relief.shape = ReliefShape::bump;
-    else if (shape == "hole") tex.relief.shape = ReliefShape::hole;
-    else t.fail("shape", "must be \"bump\" or \"hole\", got \"" + shape + "\"");
-    const std::string profile = t.string_or("profile", "gaussian");
-    if (profile == "gaussian") tex.relief.profile = ReliefProfile::gaussian;
-    else if (profile == "cosine") tex.relief.profile = ReliefProfile::cosine;
-    else t.fail("profile", "must be \"gaussian\" or \"cosine\", got \"" + profile + "\"");
+    tex.relief.shape = t.choice("shape", kReliefShapeNames);
+    tex.relief.profile = t.choice_or("profile", kReliefProfileNames, ReliefProfile::gaussian);
     tex.relief.center = {t.number("center_x_m"), t.number("center_y_m")};
     tex.relief.radius_m = t.positive("radius_m");
     tex.relief.height_m = t.positive("height_m");
@@ -171,11 +165,7 @@ Scene read(const toml::table& root, const std::string& file, const MaterialLibra
   Scene scene;
   scene.file = file;
   scene.name = top.string("name");
-  const std::string kind = top.string_or("kind", "percussion");
-  if (kind == "texture") scene.kind = SceneKind::texture;
-  else if (kind == "wall") scene.kind = SceneKind::wall;
-  else if (kind != "percussion")
-    top.fail("kind", "must be \"percussion\", \"texture\" or \"wall\", got \"" + kind + "\"");
+  scene.kind = top.choice_or("kind", kSceneKindNames, SceneKind::percussion);
   top.string_or("materials_file", "");  // resolved by the caller
   scene.instruments_file = top.string_or("instruments_file", "../instruments.toml");
   scene.mallet_radius_m = top.positive("mallet_radius_m");

@@ -91,35 +91,32 @@ double TableReader::number(std::string_view key) {
   return v;
 }
 
-double TableReader::number_or(std::string_view key, double fallback) {
-  return has(key) ? number(key) : (used_.emplace(key), fallback);
+template <typename T>
+T TableReader::scalar(std::string_view key, const char* expected) {
+  const toml::node& node = required(key);
+  const toml::value<T>* value = node.as<T>();
+  if (!value) fail_at(&node, key, std::string("expected ") + expected + ", got " + describe_value(node));
+  return value->get();
 }
 
-std::int64_t TableReader::integer(std::string_view key) {
-  const toml::node& node = required(key);
-  if (!node.is_integer()) fail_at(&node, key, "expected an integer, got " + describe_value(node));
-  return node.as_integer()->get();
+double TableReader::number_or(std::string_view key, double fallback) {
+  return or_fallback(key, fallback, &TableReader::number);
 }
+
+std::int64_t TableReader::integer(std::string_view key) { return scalar<std::int64_t>(key, "an integer"); }
 
 std::int64_t TableReader::integer_or(std::string_view key, std::int64_t fallback) {
-  return has(key) ? integer(key) : (used_.emplace(key), fallback);
+  return or_fallback(key, fallback, &TableReader::integer);
 }
 
-std::string TableReader::string(std::string_view key) {
-  const toml::node& node = required(key);
-  if (!node.is_string()) fail_at(&node, key, "expected a string, got " + describe_value(node));
-  return node.as_string()->get();
-}
+std::string TableReader::string(std::string_view key) { return scalar<std::string>(key, "a string"); }
 
 std::string TableReader::string_or(std::string_view key, std::string fallback) {
-  return has(key) ? string(key) : (used_.emplace(key), std::move(fallback));
+  return or_fallback(key, std::move(fallback), &TableReader::string);
 }
 
 bool TableReader::boolean_or(std::string_view key, bool fallback) {
-  if (!has(key)) return used_.emplace(key), fallback;
-  const toml::node& node = required(key);
-  if (!node.is_boolean()) fail_at(&node, key, "expected true or false, got " + describe_value(node));
-  return node.as_boolean()->get();
+  return or_fallback(key, fallback, [](TableReader& t, std::string_view k) { return t.scalar<bool>(k, "true or false"); });
 }
 
 template <typename T, typename Get>

@@ -5,6 +5,7 @@
 // Only the config loaders include this (toml++ is heavy to compile).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include <toml++/toml.h>
 
+#include "core/enum_names.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::config {
@@ -60,6 +62,20 @@ class TableReader {
   double positive_or(std::string_view key, double fallback);
   double non_negative_or(std::string_view key, double fallback);
 
+  //! A word from a fixed set, typed once: `key`'s string read through `names` (the _or
+  //! form: `fallback` when the key is absent); any other word is refused with the words
+  //! allowed: expected "a", "b" or "c", got "x".
+  template <typename E, std::size_t N>
+  E choice(std::string_view key, const EnumNames<E, N>& names) {
+    const std::string word = string(key);
+    if (const std::optional<E> value = value_named(names, word)) return *value;
+    fail(key, "expected " + quoted_names(names) + ", got \"" + word + "\"");
+  }
+  template <typename E, std::size_t N>
+  E choice_or(std::string_view key, const EnumNames<E, N>& names, E fallback) {
+    return or_fallback(key, fallback, [&names](TableReader& t, std::string_view k) { return t.choice(k, names); });
+  }
+
   //! Range checks with the value quoted in the message.
   void require_positive(std::string_view key, double value) const;
   void require_non_negative(std::string_view key, double value) const;
@@ -80,6 +96,15 @@ class TableReader {
 
  private:
   const toml::node& required(std::string_view key);
+  //! `key`'s value of TOML type T, refused as not `expected` ("an integer").
+  template <typename T>
+  T scalar(std::string_view key, const char* expected);
+  //! `reader(key)` when the table has `key`, else `fallback` (the key counts as asked for).
+  template <typename T, typename Reader>
+  T or_fallback(std::string_view key, T fallback, Reader reader) {
+    if (!has(key)) return used_.emplace(key), fallback;
+    return std::invoke(reader, *this, key);
+  }
   //! The array at `key`, each element read by `get` (nothing: refused as not `element`).
   template <typename T, typename Get>
   std::vector<T> array_of(std::string_view key, const char* elements, const char* element, Get get);

@@ -72,10 +72,7 @@ Stimulus read_texture_stimulus(TableReader t) {
   s.name = t.string("name");
   if (!is_plain_name(s.name)) t.fail("name", "\"" + s.name + "\" " + kPlain);
   TextureRelief relief;
-  const std::string shape = t.string("relief");
-  if (shape == "bump") relief.shape = ReliefShape::bump;
-  else if (shape == "hole") relief.shape = ReliefShape::hole;
-  else t.fail("relief", "expected \"bump\" or \"hole\", got \"" + shape + "\"");
+  relief.shape = t.choice("relief", kReliefShapeNames);
   relief.height_m = t.number("height_m");
   t.require_range("height_m", relief.height_m, 0.0002, 0.05);
   s.relief = relief;
@@ -231,19 +228,13 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   p.name = top.string("name");
   if (!is_plain_name(p.name)) top.fail("name", "\"" + p.name + "\" " + kPlain);
 
-  const std::string task = top.string("task");
-  if (task == "2afc_harder") p.task = StudyTask::two_afc_harder;
-  else if (task == "name_material") p.task = StudyTask::name_material;
-  else if (task == "texture_slope") p.task = StudyTask::texture_slope;
-  else top.fail("task", "expected \"2afc_harder\", \"name_material\" or \"texture_slope\", got \"" + task + "\"");
+  p.task = top.choice("task", kStudyTaskNames);
   if (!p.texture() && bar_count == 0)
-    top.fail("task", "\"" + task + "\" strikes bars, and the scene has none (a texture scene? task = "
-                     "\"texture_slope\" crosses its disc)");
+    top.fail("task", "\"" + std::string(task_name(p.task)) +
+                         "\" strikes bars, and the scene has none (a texture scene? task = \"texture_slope\" "
+                         "crosses its disc)");
   if (p.texture()) {
-    const std::string question = top.string("question");
-    if (question == "steeper") p.question = TextureQuestion::steeper;
-    else if (question != "bump_or_hole")
-      top.fail("question", "expected \"bump_or_hole\" or \"steeper\", got \"" + question + "\"");
+    p.question = top.choice("question", kTextureQuestionNames);
   } else if (top.has("question")) {
     top.fail("question", "only task = \"texture_slope\" asks one");
   }
@@ -257,11 +248,7 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
   }
   if (p.conditions.empty()) top.fail("conditions", "lists no condition");
 
-  const std::string procedure = top.string_or("procedure", "constant");
-  if (procedure == "staircase") p.procedure = StudyProcedure::staircase;
-  else if (procedure == "quest") p.procedure = StudyProcedure::quest;
-  else if (procedure != "constant")
-    top.fail("procedure", "expected \"constant\", \"staircase\" or \"quest\", got \"" + procedure + "\"");
+  p.procedure = top.choice_or("procedure", kStudyProcedureNames, StudyProcedure::constant);
   const bool adaptive = p.procedure != StudyProcedure::constant;
   if (adaptive && p.task != StudyTask::two_afc_harder)
     top.fail("procedure", "an adaptive procedure needs task = \"2afc_harder\" (it adapts a difference)");
@@ -272,7 +259,8 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
       top.fail("repetitions", "must be even for 2afc_harder and steeper, so each pair is shown in both orders equally often");
     p.repetitions = static_cast<int>(reps);
   } else if (top.has("repetitions")) {
-    top.fail("repetitions", "an adaptive protocol's trials end by its own stop rule ([" + procedure + "]); remove it");
+    top.fail("repetitions", "an adaptive protocol's trials end by its own stop rule ([" +
+                                std::string(procedure_name(p.procedure)) + "]); remove it");
   }
 
   const std::int64_t seed = top.integer("seed");
@@ -292,11 +280,9 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
     p.reference_bar = static_cast<int>(bar);
   }
   if (auto timing = top.optional_table("timing")) p.timing = read_timing(*timing, p.paired());
-  const std::string response = top.string_or("response", "keys");
-  if (response == "strike" && p.texture())
+  p.response = top.choice_or("response", kStudyResponseNames, StudyResponse::keys);
+  if (p.response == StudyResponse::strike && p.texture())
     top.fail("response", "a texture_slope trial has no bars to strike: its answers are keys");
-  if (response == "strike") p.response = StudyResponse::strike;
-  else if (response != "keys") top.fail("response", "expected \"keys\" or \"strike\", got \"" + response + "\"");
   if (auto answer = top.optional_table("answer_strike")) {
     if (p.response != StudyResponse::strike)
       top.fail("answer_strike", "only response = \"strike\" uses it");

@@ -4,29 +4,12 @@
 
 namespace mallet::study {
 
-std::string_view task_name(StudyTask task) {
-  switch (task) {
-    case StudyTask::two_afc_harder: return "2afc_harder";
-    case StudyTask::name_material: return "name_material";
-    case StudyTask::texture_slope: return "texture_slope";
-  }
-  return "?";
-}
+std::string_view task_name(StudyTask task) { return name_in(kStudyTaskNames, task); }
 
-std::string_view condition_name(StudyCondition condition) {
-  switch (condition) {
-    case StudyCondition::visual_only: return "visual_only";
-    case StudyCondition::tactile_only: return "tactile_only";
-    case StudyCondition::both: return "both";
-    case StudyCondition::none: return "none";
-  }
-  return "?";
-}
+std::string_view condition_name(StudyCondition condition) { return name_in(kStudyConditionNames, condition); }
 
 std::optional<StudyCondition> condition_from_name(std::string_view name) {
-  for (StudyCondition c : kAllConditions)
-    if (condition_name(c) == name) return c;
-  return std::nullopt;
+  return value_named(kStudyConditionNames, name);
 }
 
 std::vector<std::string> StudyProtocol::answer_choices() const {
@@ -40,17 +23,10 @@ std::vector<std::string> StudyProtocol::answer_choices() const {
   return out;
 }
 
-std::string_view response_name(StudyResponse response) {
-  return response == StudyResponse::strike ? "strike" : "keys";
-}
+std::string_view response_name(StudyResponse response) { return name_in(kStudyResponseNames, response); }
 
 std::string_view procedure_name(StudyProcedure procedure) {
-  switch (procedure) {
-    case StudyProcedure::constant: return "constant";
-    case StudyProcedure::staircase: return "staircase";
-    case StudyProcedure::quest: return "quest";
-  }
-  return "constant";
+  return name_in(kStudyProcedureNames, procedure, "constant");
 }
 
 }  // namespace mallet::study

@@ -12,6 +12,7 @@
 
 #include "core/file_error.hpp"
 #include "core/material.hpp"
+#include "core/enum_names.hpp"
 #include "core/study/quest.hpp"
 #include "core/study/staircase.hpp"
 #include "core/texture_relief.hpp"
@@ -26,10 +27,15 @@ enum class StudyTask {
   //! (a texture scene); `question` says what is asked.
   texture_slope,
 };
+inline constexpr EnumNames<StudyTask, 3> kStudyTaskNames{{{StudyTask::two_afc_harder, "2afc_harder"},
+                                                         {StudyTask::name_material, "name_material"},
+                                                         {StudyTask::texture_slope, "texture_slope"}}};
 
 //! What a texture_slope trial asks: after one crossing, "bump or hole"; after two (of
 //! reliefs of the same shape), "which was steeper" (answer 1 or 2: the higher one).
 enum class TextureQuestion { bump_or_hole, steeper };
+inline constexpr EnumNames<TextureQuestion, 2> kTextureQuestionNames{
+    {{TextureQuestion::bump_or_hole, "bump_or_hole"}, {TextureQuestion::steeper, "steeper"}}};
 
 //! What a condition keeps of the stimulus: the visual vibration (Eq. 1, the material's
 //! visual triple), the actuator signal (Eq. 1, its actuator triple), both or neither. In a
@@ -37,6 +43,9 @@ enum class TextureQuestion { bump_or_hole, steeper };
 //! slope) and the tactile one the vibrotactile stripes on the actuator.
 enum class StudyCondition { visual_only, tactile_only, both, none };
 
+inline constexpr EnumNames<StudyCondition, 4> kStudyConditionNames{
+    {{StudyCondition::visual_only, "visual_only"}, {StudyCondition::tactile_only, "tactile_only"},
+     {StudyCondition::both, "both"}, {StudyCondition::none, "none"}}};
 inline constexpr StudyCondition kAllConditions[] = {StudyCondition::visual_only, StudyCondition::tactile_only,
                                                     StudyCondition::both, StudyCondition::none};
 
@@ -78,11 +87,15 @@ struct StudyTiming {
 //! How the pairs' differences are chosen: a fixed set shown `repetitions` times each (the
 //! method of constant stimuli), or per condition an adaptive track (adaptive_schedule.hpp).
 enum class StudyProcedure { constant, staircase, quest };
+inline constexpr EnumNames<StudyProcedure, 3> kStudyProcedureNames{
+    {{StudyProcedure::constant, "constant"}, {StudyProcedure::staircase, "staircase"}, {StudyProcedure::quest, "quest"}}};
 std::string_view procedure_name(StudyProcedure procedure);
 
 //! How the participant answers: keys (1/2, a material's letter), or by striking one of the
 //! answer bars shown beside the stimulus bar with the same mallet.
 enum class StudyResponse { keys, strike };
+inline constexpr EnumNames<StudyResponse, 2> kStudyResponseNames{
+    {{StudyResponse::keys, "keys"}, {StudyResponse::strike, "strike"}}};
 std::string_view response_name(StudyResponse response);
 
 //! What an answer strike gives, stated in the protocol so that answers do not

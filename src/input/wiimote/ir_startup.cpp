@@ -33,22 +33,7 @@ IrStartupStep next(IrStartupStep step) {
 
 }  // namespace
 
-std::string_view to_string(IrStartupStep step) {
-  switch (step) {
-    case IrStartupStep::idle: return "idle";
-    case IrStartupStep::pixel_clock: return "IR pixel clock (0x13)";
-    case IrStartupStep::logic: return "IR logic (0x1a)";
-    case IrStartupStep::camera_on: return "camera on (write 0xb00030 = 0x01)";
-    case IrStartupStep::sensitivity1: return "sensitivity block 1 (write 9 bytes at 0xb00000)";
-    case IrStartupStep::sensitivity2: return "sensitivity block 2 (write 2 bytes at 0xb0001a)";
-    case IrStartupStep::mode: return "IR mode (write 0xb00033)";
-    case IrStartupStep::camera_ready: return "camera ready (write 0xb00030 = 0x08)";
-    case IrStartupStep::reporting_mode: return "reporting mode (0x12)";
-    case IrStartupStep::running: return "running";
-    case IrStartupStep::failed: return "failed";
-  }
-  return "?";
-}
+std::string_view to_string(IrStartupStep step) { return name_in(kIrStartupStepNames, step); }
 
 IrStartup::IrStartup(IrStartupConfig config) : config_(config) {}
 

@@ -29,6 +29,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/ir_camera_settings.hpp"
 #include "core/time.hpp"
 #include "input/wiimote/reports.hpp"
@@ -71,6 +72,15 @@ enum class IrStartupStep : std::uint8_t {
   running,         //!< IR data flows; 0x20 sends the reporting mode again
   failed,          //!< see error()
 };
+inline constexpr EnumNames<IrStartupStep, 11> kIrStartupStepNames{{
+    {IrStartupStep::idle, "idle"}, {IrStartupStep::pixel_clock, "IR pixel clock (0x13)"},
+    {IrStartupStep::logic, "IR logic (0x1a)"}, {IrStartupStep::camera_on, "camera on (write 0xb00030 = 0x01)"},
+    {IrStartupStep::sensitivity1, "sensitivity block 1 (write 9 bytes at 0xb00000)"},
+    {IrStartupStep::sensitivity2, "sensitivity block 2 (write 2 bytes at 0xb0001a)"},
+    {IrStartupStep::mode, "IR mode (write 0xb00033)"},
+    {IrStartupStep::camera_ready, "camera ready (write 0xb00030 = 0x08)"},
+    {IrStartupStep::reporting_mode, "reporting mode (0x12)"}, {IrStartupStep::running, "running"},
+    {IrStartupStep::failed, "failed"}}};
 
 //! "reporting mode (12 06 33)" etc.
 std::string_view to_string(IrStartupStep step);

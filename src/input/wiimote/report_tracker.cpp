@@ -4,18 +4,7 @@
 
 namespace mallet::input::wiimote {
 
-const char* to_string(ReportOutcome::Kind kind) {
-  switch (kind) {
-    case ReportOutcome::Kind::ir: return "ir";
-    case ReportOutcome::Kind::status: return "status";
-    case ReportOutcome::Kind::ack: return "ack";
-    case ReportOutcome::Kind::read_data: return "read_data";
-    case ReportOutcome::Kind::other: return "other";
-    case ReportOutcome::Kind::malformed: return "malformed";
-    case ReportOutcome::Kind::timeout: return "timeout";
-  }
-  return "?";
-}
+const char* to_string(ReportOutcome::Kind kind) { return name_in(kReportKindNames, kind); }
 
 ReportTracker::ReportTracker(IrTrackerConfig tracking) : tracker_(tracking) {}
 

@@ -8,6 +8,7 @@
 #include <optional>
 #include <span>
 
+#include "core/enum_names.hpp"
 #include "core/ir_tracker.hpp"
 #include "input/wiimote/reports.hpp"
 
@@ -31,6 +32,10 @@ struct ReportOutcome {
   std::optional<StatusReport> status;
   std::optional<ReportError> error;
 };
+inline constexpr EnumNames<ReportOutcome::Kind, 7> kReportKindNames{{
+    {ReportOutcome::Kind::ir, "ir"}, {ReportOutcome::Kind::status, "status"}, {ReportOutcome::Kind::ack, "ack"},
+    {ReportOutcome::Kind::read_data, "read_data"}, {ReportOutcome::Kind::other, "other"},
+    {ReportOutcome::Kind::malformed, "malformed"}, {ReportOutcome::Kind::timeout, "timeout"}}};
 
 const char* to_string(ReportOutcome::Kind kind);
 

@@ -39,14 +39,7 @@ WiimoteDeviceConfig device_config(const AppConfig& app) {
   return c;
 }
 
-const char* to_string(LinkState state) {
-  switch (state) {
-    case LinkState::searching: return "searching";
-    case LinkState::starting: return "starting";
-    case LinkState::running: return "running";
-  }
-  return "?";
-}
+const char* to_string(LinkState state) { return name_in(kLinkStateNames, state); }
 
 WiimoteDevice::WiimoteDevice(DeviceFinder& finder, Clock& clock, WiimoteDeviceConfig config)
     : finder_(finder),

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/app_config.hpp"
+#include "core/enum_names.hpp"
 #include "core/ir_tracker.hpp"
 #include "input/clock.hpp"
 #include "input/wiimote/ir_startup.hpp"
@@ -65,6 +66,8 @@ enum class LinkState : std::uint8_t {
   starting,   //!< open, IR camera start-up in progress
   running,    //!< IR reports flow
 };
+inline constexpr EnumNames<LinkState, 3> kLinkStateNames{{
+    {LinkState::searching, "searching"}, {LinkState::starting, "starting"}, {LinkState::running, "running"}}};
 
 const char* to_string(LinkState state);
 

@@ -64,7 +64,7 @@ TEST(SecondPaperScenes, BadSceneFilesNameTheFileTheLineAndTheProblem) {
   };
   // The common prefix has 3 lines; the body starts on line 4.
   const std::vector<Case> cases = {
-      {"kind = \"texture\"\n[texture]\nshape = \"dome\"\n", "must be \"bump\" or \"hole\"", 6},
+      {"kind = \"texture\"\n[texture]\nshape = \"dome\"\n", "shape: expected \"bump\" or \"hole\", got \"dome\"", 6},
       {"kind = \"texture\"\n[texture]\nshape = \"hole\"\ncenter_x_m = 0\ncenter_y_m = 0\nradius_m = -1\nheight_m = 0.01\n",
        "radius_m", 9},
       {"kind = \"texture\"\n[texture]\nshape = \"bump\"\ncenter_x_m = 0\ncenter_y_m = 0\nradius_m = 0.05\nheight_m = "
@@ -73,7 +73,7 @@ TEST(SecondPaperScenes, BadSceneFilesNameTheFileTheLineAndTheProblem) {
       {"kind = \"wall\"\n[wall]\nmaterials = [\"rubber\", \"granite\"]\nx_min_m = -0.1\nx_max_m = 0.1\ntop_y_m = 0\n"
        "bottom_y_m = -0.05\n",
        "unknown material \"granite\"", 6},
-      {"kind = \"stage\"\n", "must be \"percussion\", \"texture\" or \"wall\"", 4},
+      {"kind = \"stage\"\n", "kind: expected \"percussion\", \"texture\" or \"wall\", got \"stage\"", 4},
   };
   for (const Case& c : cases) {
     const fs::path p = write_scene(dir, c.body);
