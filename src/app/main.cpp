@@ -18,9 +18,8 @@ int main(int argc, char** argv) {
       "mallet"};
   app.set_version_flag("--version", std::string(MALLET_VERSION));
   app.require_subcommand(1);
-  app.footer(
-      "Exit status: 0 ok, 1 failure (I/O, device), 2 bad input.\n"
-      "Run `mallet <command> --help` for each command's options and file formats.");
+  app.footer(R"(Exit status: 0 ok, 1 failure (I/O, device), 2 bad input.
+Run `mallet <command> --help` for each command's options and file formats.)");
 
   mallet::app::register_commands(app);
 

@@ -6,12 +6,35 @@
 
 namespace mallet::render {
 
+namespace {
+
+//! Memory for `req` of a type with `properties`, owned and counted from the moment it exists.
+vk::Memory allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags properties,
+                    const char* what) {
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, properties);
+  VkDeviceMemory mem;
+  check(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem), what);
+  return vk::Memory(ctx.device(), mem, {mai.allocationSize});
+}
+
+}  // namespace
+
+vk::ImageView make_image_view(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                              const char* what) {
+  const VkImageViewCreateInfo vci{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = image,
+                                  .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = format,
+                                  .subresourceRange = {aspect, 0, 1, 0, 1}};
+  VkImageView view;
+  check(vkCreateImageView(device, &vci, nullptr, &view), what);
+  return vk::ImageView(device, view);
+}
+
 GpuBuffer make_host_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage) {
   VkDevice dev = ctx.device();
-  VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  bci.size = size > 0 ? size : 4;
-  bci.usage = usage;
-  bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  const VkBufferCreateInfo bci{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size > 0 ? size : 4,
+                               .usage = usage, .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
   VkBuffer raw;
   check(vkCreateBuffer(dev, &bci, nullptr, &raw), "creating a buffer");
   GpuBuffer out;
@@ -19,15 +42,10 @@ GpuBuffer make_host_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageF
   out.size = bci.size;
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(dev, raw, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VkDeviceMemory mem;
-  check(vkAllocateMemory(dev, &mai, nullptr, &mem), "allocating buffer memory");
-  out.memory = vk::Memory(dev, mem, mai.allocationSize);
-  check(vkBindBufferMemory(dev, raw, mem, 0), "binding buffer memory");
-  check(vkMapMemory(dev, mem, 0, VK_WHOLE_SIZE, 0, &out.mapped), "mapping buffer memory");
+  out.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                        "allocating buffer memory");
+  check(vkBindBufferMemory(dev, raw, out.memory.get(), 0), "binding buffer memory");
+  check(vkMapMemory(dev, out.memory.get(), 0, VK_WHOLE_SIZE, 0, &out.mapped), "mapping buffer memory");
   return out;
 }
 
@@ -40,17 +58,11 @@ GpuBuffer make_host_buffer(const Context& ctx, std::span<const std::byte> data, 
 GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                     VkSampleCountFlagBits samples, VkImageAspectFlags aspect) {
   VkDevice dev = ctx.device();
-  VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = VK_IMAGE_TYPE_2D;
-  ici.format = format;
-  ici.extent = {extent.width, extent.height, 1};
-  ici.mipLevels = 1;
-  ici.arrayLayers = 1;
-  ici.samples = samples;
-  ici.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ici.usage = usage;
-  ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkImageCreateInfo ici{.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                              .format = format, .extent = {extent.width, extent.height, 1}, .mipLevels = 1,
+                              .arrayLayers = 1, .samples = samples, .tiling = VK_IMAGE_TILING_OPTIMAL,
+                              .usage = usage, .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+                              .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
   VkImage raw;
   check(vkCreateImage(dev, &ici, nullptr, &raw), "creating an image");
   GpuImage out;
@@ -60,21 +72,9 @@ GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkIm
   out.samples = samples;
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(dev, raw, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory mem;
-  check(vkAllocateMemory(dev, &mai, nullptr, &mem), "allocating image memory");
-  out.memory = vk::Memory(dev, mem, mai.allocationSize);
-  check(vkBindImageMemory(dev, raw, mem, 0), "binding image memory");
-  VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vci.image = raw;
-  vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vci.format = format;
-  vci.subresourceRange = {aspect, 0, 1, 0, 1};
-  VkImageView view;
-  check(vkCreateImageView(dev, &vci, nullptr, &view), "creating an image view");
-  out.view = vk::ImageView(dev, view);
+  out.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "allocating image memory");
+  check(vkBindImageMemory(dev, raw, out.memory.get(), 0), "binding image memory");
+  out.view = make_image_view(dev, raw, format, aspect, "creating an image view");
   return out;
 }
 
@@ -105,17 +105,13 @@ GpuImage make_texture(const Context& ctx, VkExtent2D extent, VkFormat format,
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
                 VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                 VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = src_stage;
-  b.srcAccessMask = src_access;
-  b.dstStageMask = dst_stage;
-  b.dstAccessMask = dst_access;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  const VkImageMemoryBarrier2 b{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+                                .srcStageMask = src_stage, .srcAccessMask = src_access,
+                                .dstStageMask = dst_stage, .dstAccessMask = dst_access,
+                                .oldLayout = from, .newLayout = to,
+                                .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                .image = image, .subresourceRange = {aspect, 0, 1, 0, 1}};
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;

@@ -31,6 +31,10 @@ struct GpuImage {
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
+//! A 2D view of one level and layer of `image` (`what` names the step in an error).
+vk::ImageView make_image_view(VkDevice device, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                              const char* what);
+
 GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                     VkSampleCountFlagBits samples, VkImageAspectFlags aspect);
 

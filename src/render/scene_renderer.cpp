@@ -383,19 +383,16 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     ds.depthWriteEnable = depth == Depth::test_and_write ? VK_TRUE : VK_FALSE;
     // Redrawn instruments meet their own cached depth: equal passes, what they hid fails.
     ds.depthCompareOp = depth == Depth::test_only ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
-    VkPipelineColorBlendAttachmentState att{};
-    att.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                         VK_COLOR_COMPONENT_A_BIT;
-    if (blend) {
-      att.blendEnable = VK_TRUE;
-      att.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-      att.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-      att.colorBlendOp = VK_BLEND_OP_ADD;
-      att.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-      att.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-      att.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
-    const std::vector<VkPipelineColorBlendAttachmentState> atts(formats.size(), att);
+    constexpr VkColorComponentFlags kRgba =
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    constexpr VkPipelineColorBlendAttachmentState kOpaque{.colorWriteMask = kRgba};
+    // Straight alpha over what is drawn: colour = a·src + (1 − a)·dst.
+    constexpr VkPipelineColorBlendAttachmentState kAlphaOver{
+        .blendEnable = VK_TRUE, .srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA,
+        .dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, .colorBlendOp = VK_BLEND_OP_ADD,
+        .srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE, .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+        .alphaBlendOp = VK_BLEND_OP_ADD, .colorWriteMask = kRgba};
+    const std::vector<VkPipelineColorBlendAttachmentState> atts(formats.size(), blend ? kAlphaOver : kOpaque);
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<std::uint32_t>(atts.size());
     cb.pAttachments = atts.data();

@@ -8,6 +8,7 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include "render/gpu_resources.hpp"
 #include "render/vk_error.hpp"
 
 namespace mallet::render {
@@ -211,14 +212,8 @@ void WindowTarget::create_swapchain() {
   images_.resize(n);
   vkGetSwapchainImagesKHR(ctx_.device(), raw, &n, images_.data());
   for (VkImage image : images_) {
-    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vci.image = image;
-    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vci.format = format_;
-    vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view;
-    check(vkCreateImageView(ctx_.device(), &vci, nullptr, &view), "creating a swapchain image view");
-    views_.emplace_back(ctx_.device(), view);
+    views_.push_back(
+        make_image_view(ctx_.device(), image, format_, VK_IMAGE_ASPECT_COLOR_BIT, "creating a swapchain image view"));
     rendered_.push_back(ctx_.make_semaphore());
   }
   kept_.assign(images_.size(), false);  // nothing drawn into them yet

@@ -13,6 +13,7 @@
 
 #include "audio/audio_setup.hpp"
 #include "app/bench/bench_commands.hpp"
+#include "app/bench/first_sample_latency.hpp"
 #include "core/data_paths.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/fluidsynth_route.hpp"
@@ -173,38 +174,11 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
     for (double ahead : {0.0, 5.0}) {
       AppConfig config;
       config.audio.schedule_ahead_ms = ahead;
-      audio::AudioRig rig = audio::make_audio_rig(scene, config, fs);
-      std::vector<float> out(static_cast<std::size_t>(2 * block));
-      double worst = 0, best = 1e9;
-      std::uniform_real_distribution<double> within(0.0, 1.0);
-      for (int k = 0; k < 200; ++k) {
-        // The impact happened somewhere in the previous block and is posted now.
-        const std::int64_t start = rig.engine->position();
-        const Nanos t = static_cast<Nanos>((static_cast<double>(start) - within(rng) * block) / fs * 1e9);
-        Impact i;
-        i.t_ns = t;
-        i.target = 3;
-        i.material = scene.targets[3].material;
-        i.note = scene.targets[3].note;
-        i.speed_m_per_s = 1.0;
-        rig.engine->post(i);
-        std::int64_t first = -1;
-        for (int b = 0; b < 40 && first < 0; ++b) {
-          const std::int64_t base = rig.engine->position();
-          rig.engine->process(out.data(), block);
-          for (int f = 0; f < block && first < 0; ++f)
-            if (out[static_cast<std::size_t>(2 * f + 1)] != 0.0f) first = base + f;
-        }
-        const double ms = (static_cast<double>(first) / fs - static_cast<double>(t) * 1e-9) * 1e3;
-        worst = std::max(worst, ms);
-        best = std::min(best, ms);
-        // Let every voice retire (bounded), so the next impact's first sample is its own.
-        for (int b = 0; b < 100000 && rig.engine->counters().active_voices > 0; ++b)
-          rig.engine->process(out.data(), block);
-      }
+      const FirstSampleLatency l = first_sample_latency(scene, config, fs, block, 3, 200, rng);
       latency_rows.push_back({std::to_string(block) + "-frame blocks, schedule_ahead_ms = " + std::to_string(int(ahead)),
-                              worst, "min " + std::to_string(best) + " ms, jitter " + std::to_string(worst - best) +
-                                         " ms (+ the device's output latency)"});
+                              l.worst_ms, "min " + std::to_string(l.best_ms) + " ms, jitter " +
+                                              std::to_string(l.worst_ms - l.best_ms) +
+                                              " ms (+ the device's output latency)"});
     }
   }
   print_rows("Impact → first output sample, 200 random impact times", "max ms", latency_rows);

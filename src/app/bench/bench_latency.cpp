@@ -781,30 +781,29 @@ void add_bench_latency(CLI::App& bench) {
   auto o = std::make_shared<latency::LatencyOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "latency", "Measured: true contact → actuator, note and picture on the real windowed kiosk (Xvfb + JACK)");
-  cmd->footer(
-      "Starts its own X server (Xvfb, Debian package xvfb) and JACK server (jackd2, dummy driver), runs\n"
-      "`mallet run --windowed` under them once per source (mouse, remote), quality preset (balanced, exact;\n"
-      "--quick: balanced) and [timing] align (asap, picture), strikes a metal and a wood bar with the X pointer (XTest; a straight\n"
-      "downswing at 1.0-2.0 m/s, 20 strokes per run, 6 with --quick) and measures, per strike, from the true\n"
-      "contact (the injected path crossing the bar's contact plane) to:\n"
-      "  actuator, note  the strike's first sample on each channel, recorded by a JACK client of the bench's\n"
-      "                  own. JACK's dummy driver is paced by a real-time timer, so its sample clock is wall\n"
-      "                  time; ALSA's file plugin (the other card-free path) is not paced: PortAudio writes into\n"
-      "                  it as fast as it can, so sample indices there carry no wall time.\n"
-      "  picture         the first frame in the X server's framebuffer showing the mallet at the bar (where the\n"
-      "                  bounce starts; the bench's scene copy has no visual vibration so nothing lifts it).\n"
-      "Output: a table on stdout and OUT/latency.csv (OUT defaults to the current directory), one row per\n"
-      "source x preset x align x cue (OUT/latency_strikes.csv has every stroke):\n"
-      "  source,preset,align,cue,median_ms,p99_ms,max_ms,strikes,false_strikes,missed_strikes\n"
-      "cue: actuator, note, picture (cue time - true contact), and the signed asynchronies actuator-picture\n"
-      "and note-actuator (per strike, first named minus second named; their max_ms is the value of largest\n"
-      "magnitude, sign kept). strikes: true contacts the kiosk logged a strike for within +-50 ms;\n"
-      "false_strikes: logged strikes with no true contact within +-50 ms; missed_strikes: true contacts with\n"
-      "none. A value that could not be measured is nan. source: \"mouse\" (the window system's pointer) or\n"
-      "\"remote\" (a recording of 100 Hz IR reports the bench writes, played by the kiosk as a live Wii Remote:\n"
-      "[input] source = \"replay\"); the evdev mouse cannot be injected without /dev/uinput.\n"
-      "Everything it starts is stopped on exit, on errors and on Ctrl+C. Exit status 1 when a server or the\n"
-      "kiosk cannot run here (the message names what is missing).");
+  cmd->footer(R"(Starts its own X server (Xvfb, Debian package xvfb) and JACK server (jackd2, dummy driver), runs
+`mallet run --windowed` under them once per source (mouse, remote), quality preset (balanced, exact;
+--quick: balanced) and [timing] align (asap, picture), strikes a metal and a wood bar with the X pointer (XTest; a straight
+downswing at 1.0-2.0 m/s, 20 strokes per run, 6 with --quick) and measures, per strike, from the true
+contact (the injected path crossing the bar's contact plane) to:
+  actuator, note  the strike's first sample on each channel, recorded by a JACK client of the bench's
+                  own. JACK's dummy driver is paced by a real-time timer, so its sample clock is wall
+                  time; ALSA's file plugin (the other card-free path) is not paced: PortAudio writes into
+                  it as fast as it can, so sample indices there carry no wall time.
+  picture         the first frame in the X server's framebuffer showing the mallet at the bar (where the
+                  bounce starts; the bench's scene copy has no visual vibration so nothing lifts it).
+Output: a table on stdout and OUT/latency.csv (OUT defaults to the current directory), one row per
+source x preset x align x cue (OUT/latency_strikes.csv has every stroke):
+  source,preset,align,cue,median_ms,p99_ms,max_ms,strikes,false_strikes,missed_strikes
+cue: actuator, note, picture (cue time - true contact), and the signed asynchronies actuator-picture
+and note-actuator (per strike, first named minus second named; their max_ms is the value of largest
+magnitude, sign kept). strikes: true contacts the kiosk logged a strike for within +-50 ms;
+false_strikes: logged strikes with no true contact within +-50 ms; missed_strikes: true contacts with
+none. A value that could not be measured is nan. source: "mouse" (the window system's pointer) or
+"remote" (a recording of 100 Hz IR reports the bench writes, played by the kiosk as a live Wii Remote:
+[input] source = "replay"); the evdev mouse cannot be injected without /dev/uinput.
+Everything it starts is stopped on exit, on errors and on Ctrl+C. Exit status 1 when a server or the
+kiosk cannot run here (the message names what is missing).)");
   cmd->add_option("--out", o->out, "Output directory for latency.csv (default: the current directory)")
       ->capture_default_str();
   cmd->add_flag("--quick", o->quick, "The balanced preset only, 6 strokes per run (a check that it works; ~1 min)");

@@ -256,17 +256,16 @@ void add_bench_render(CLI::App& bench) {
   auto device = std::make_shared<std::string>();
   auto kiosk_cpu_s = std::make_shared<double>(10.0);
   CLI::App* cmd = bench.add_subcommand("render", "Offscreen renderer: ms per frame, shadow and antialiasing costs");
-  cmd->footer(
-      "Prints, per size: the floor (clear + read-back), the scene without and with the mallet's\n"
-      "analytic shadow, the scene drawn whole every frame (without the cached background of the\n"
-      "static instruments), and each antialiasing option (MSAA 1/2/4/8x) with its image error against\n"
-      "a 4x-supersampled reference of the same frame (RMS in 1/255 units; share of pixels off by\n"
-      "more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache.\n"
-      "Then the real kiosk's CPU at 1920x1080, fullscreen on its own Xvfb with its sound on its own\n"
-      "JACK server: % of one core in the attract mode with nobody there, during play (an XTest\n"
-      "pointer sweeping over the bars) and still (the pointer at rest: no frame is drawn), with the\n"
-      "frame budget ([render] max_fps = the refresh) and without it (mallet run --no-frame-cap);\n"
-      "needs Xvfb and jackd (--kiosk-cpu-seconds 0: skip it).");
+  cmd->footer(R"(Prints, per size: the floor (clear + read-back), the scene without and with the mallet's
+analytic shadow, the scene drawn whole every frame (without the cached background of the
+static instruments), and each antialiasing option (MSAA 1/2/4/8x) with its image error against
+a 4x-supersampled reference of the same frame (RMS in 1/255 units; share of pixels off by
+more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache.
+Then the real kiosk's CPU at 1920x1080, fullscreen on its own Xvfb with its sound on its own
+JACK server: % of one core in the attract mode with nobody there, during play (an XTest
+pointer sweeping over the bars) and still (the pointer at rest: no frame is drawn), with the
+frame budget ([render] max_fps = the refresh) and without it (mallet run --no-frame-cap);
+needs Xvfb and jackd (--kiosk-cpu-seconds 0: skip it).)");
   cmd->add_option("--scene", *scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--frames", *frames, "Frames timed per row (median reported)")->capture_default_str()
       ->check(CLI::Range(10, 100000));

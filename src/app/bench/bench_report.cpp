@@ -118,10 +118,9 @@ void add_bench_report(CLI::App& bench) {
   auto o = std::make_shared<ReportOptions>();
   o->scene = default_scene();
   CLI::App* cmd = bench.add_subcommand("report", "Every speed/accuracy trade in one run: report.md + PNG plots");
-  cmd->footer(
-      "Writes OUT/report.md, one OUT/<knob>.dat and (with gnuplot installed) OUT/<knob>.png per knob:\n"
-      "time against error, the Pareto front drawn, the fast/balanced/exact presets marked; the\n"
-      "synthesis peers side by side; the latency budget. --quick: tiny workloads (for tests, not numbers).");
+  cmd->footer(R"(Writes OUT/report.md, one OUT/<knob>.dat and (with gnuplot installed) OUT/<knob>.png per knob:
+time against error, the Pareto front drawn, the fast/balanced/exact presets marked; the
+synthesis peers side by side; the latency budget. --quick: tiny workloads (for tests, not numbers).)");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "Output directory")->capture_default_str();
   cmd->add_flag("--quick", o->quick, "Tiny workloads: checks that it runs, numbers meaningless");

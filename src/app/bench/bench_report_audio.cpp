@@ -14,6 +14,7 @@
 
 #include "audio/audio_setup.hpp"
 #include "app/bench/bench_report.hpp"
+#include "app/bench/first_sample_latency.hpp"
 #include "app/bench/exact_reference.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/denormals.hpp"
@@ -270,36 +271,10 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     TradeTable ahead{"schedule", "schedule_ahead_ms at 64-frame blocks", "worst impact → first sample, ms",
                      "jitter, ms", false, {}, ""};
     std::mt19937 rng(7);
-    auto latency = [&](int block, double ahead_ms, double& worst, double& best) {
+    auto latency = [&](int block, double ahead_ms) {
       AppConfig c;
       c.audio.schedule_ahead_ms = ahead_ms;
-      audio::AudioRig rig = audio::make_audio_rig(scene, c, kFs);
-      std::vector<float> buf(static_cast<std::size_t>(2 * block));
-      std::uniform_real_distribution<double> within(0.0, 1.0);
-      worst = 0;
-      best = 1e9;
-      for (int k = 0; k < (o.quick ? 10 : 100); ++k) {
-        const std::int64_t start = rig.engine->position();
-        const Nanos t = static_cast<Nanos>((static_cast<double>(start) - within(rng) * block) / kFs * 1e9);
-        Impact i;
-        i.t_ns = t;
-        i.target = 0;
-        i.material = scene.targets[0].material;
-        i.note = scene.targets[0].note;
-        i.speed_m_per_s = 1.0;
-        rig.engine->post(i);
-        std::int64_t first = -1;
-        for (int b = 0; b < 4000 && first < 0; ++b) {
-          const std::int64_t base = rig.engine->position();
-          rig.engine->process(buf.data(), block);
-          for (int f = 0; f < block && first < 0; ++f)
-            if (buf[static_cast<std::size_t>(2 * f + 1)] != 0.0f) first = base + f;
-        }
-        const double ms = (static_cast<double>(first) / kFs - static_cast<double>(t) * 1e-9) * 1e3;
-        worst = std::max(worst, ms);
-        best = std::min(best, ms);
-        for (int b = 0; b < 100000 && rig.engine->counters().active_voices > 0; ++b) rig.engine->process(buf.data(), block);
-      }
+      return first_sample_latency(scene, c, kFs, block, 0, o.quick ? 10 : 100, rng);
     };
     for (int block : {16, 32, 64, 128, 256, 512, 1024, 2048}) {
       AppConfig c;
@@ -318,10 +293,9 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
         }
         for (int f = 0; f < frames; f += block) rig.engine->process(buf.data(), block);
       });
-      double worst = 0, best = 0;
-      latency(block, 0.0, worst, best);
+      const FirstSampleLatency l = latency(block, 0.0);
       const std::string presets = presets_where([&](const QualityKnobs& k) { return k.frames_per_buffer == block; });
-      blocks.points.push_back({std::to_string(block) + " frames", ns, worst, presets, ""});
+      blocks.points.push_back({std::to_string(block) + " frames", ns, l.worst_ms, presets, ""});
     }
     blocks.note = "Smaller blocks: more callbacks per second (fixed cost per call), less waiting for the next one.";
     std::vector<double> aheads = {0.0, 1.0, 1.5, 5.0, 10.0, 12.0, 20.0};
@@ -330,10 +304,9 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
         aheads.push_back(quality_knobs(q).schedule_ahead_ms);
     std::sort(aheads.begin(), aheads.end());
     for (double a : aheads) {
-      double worst = 0, best = 0;
-      latency(64, a, worst, best);
+      const FirstSampleLatency l = latency(64, a);
       const std::string presets = presets_where([&](const QualityKnobs& k) { return k.schedule_ahead_ms == a; });
-      ahead.points.push_back({fmt::format("{:g} ms", a), worst, worst - best, presets,
+      ahead.points.push_back({fmt::format("{:g} ms", a), l.worst_ms, l.worst_ms - l.best_ms, presets,
                               a > 0 && a < 64.0 / kFs * 1e3 ? "shorter than one block: late strikes" : ""});
     }
     ahead.note = "A constant delay of at least one block makes every strike sound exactly that late (jitter = one sample). Here each impact is posted at its own time (as a 1000 Hz mouse would); the 100 Hz camera reveals a contact up to 10 ms after it happens, so the exact preset takes 12 ms (see the latency budget: with 5 ms, most strikes came late).";

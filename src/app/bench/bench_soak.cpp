@@ -358,26 +358,25 @@ namespace mallet::app {
 void add_bench_soak(CLI::App& bench) {
   auto o = std::make_shared<soak::SoakOptions>();
   CLI::App* cmd = bench.add_subcommand("soak", "Hours of the real windowed kiosk with a scripted visitor, watched for growth and lost strikes");
-  cmd->footer(
-      "Starts its own X server (Xvfb) and JACK server (jackd2, dummy driver, 1024-frame cycles) and runs\n"
-      "`mallet run --windowed` (960x540, the shipped scene, quality as shipped) under them. A scripted\n"
-      "visitor strikes a bar every --strike-every seconds with the X pointer (XTest), bar after bar,\n"
-      "0.5-2.5 m/s, for two minutes, then leaves for one (the attract mode's ghost plays after 20 s). Every --sample-every seconds a row of\n"
-      "OUT/soak.csv (OUT defaults to the current directory):\n"
-      "  hours,rss_mib,fds,threads,vulkan_mib,strokes,strikes,actuator_found,note_found,lost_strikes,frames,\n"
-      "  frame_p99_ms,visitor,jack_xruns\n"
-      "rss_mib, fds, threads: the kiosk process (/proc); vulkan_mib: its mallet_vulkan_device_memory_bytes;\n"
-      "strokes: the visitor's since the last row; strikes: the strikes the kiosk logged (visitor's and\n"
-      "ghost's) whose audio window was recorded since the last row; actuator_found, note_found: of those, the\n"
-      "ones whose onset was found on that channel by a JACK client of the bench's own; lost_strikes: strikes\n"
-      "missing on either channel; frames, frame_p99_ms: drawn since the last row and their p99 (from the\n"
-      "kiosk's mallet_frame_seconds histogram, as Prometheus' histogram_quantile); visitor: play or away\n"
-      "(mid-row); jack_xruns: cycles of the bench's JACK server that came late (this machine's load). Each lost\n"
-      "strike gets a line of OUT/lost_strikes.csv:\n"
-      "  hours,t_s,note_found,actuator_found,late_jack_cycles_near,ms_since_previous,ms_to_next\n"
-      "At the end: OUT/soak.svg (a panel per figure), OUT/kiosk.log (everything the kiosk printed) and the\n"
-      "growth per hour of each figure (least squares). Exit status 0: no strike lost and the kiosk ran to the\n"
-      "end; 1 otherwise, or when a server or the kiosk cannot run here. Ctrl+C ends it early, with the rows so far.");
+  cmd->footer(R"(Starts its own X server (Xvfb) and JACK server (jackd2, dummy driver, 1024-frame cycles) and runs
+`mallet run --windowed` (960x540, the shipped scene, quality as shipped) under them. A scripted
+visitor strikes a bar every --strike-every seconds with the X pointer (XTest), bar after bar,
+0.5-2.5 m/s, for two minutes, then leaves for one (the attract mode's ghost plays after 20 s). Every --sample-every seconds a row of
+OUT/soak.csv (OUT defaults to the current directory):
+  hours,rss_mib,fds,threads,vulkan_mib,strokes,strikes,actuator_found,note_found,lost_strikes,frames,
+  frame_p99_ms,visitor,jack_xruns
+rss_mib, fds, threads: the kiosk process (/proc); vulkan_mib: its mallet_vulkan_device_memory_bytes;
+strokes: the visitor's since the last row; strikes: the strikes the kiosk logged (visitor's and
+ghost's) whose audio window was recorded since the last row; actuator_found, note_found: of those, the
+ones whose onset was found on that channel by a JACK client of the bench's own; lost_strikes: strikes
+missing on either channel; frames, frame_p99_ms: drawn since the last row and their p99 (from the
+kiosk's mallet_frame_seconds histogram, as Prometheus' histogram_quantile); visitor: play or away
+(mid-row); jack_xruns: cycles of the bench's JACK server that came late (this machine's load). Each lost
+strike gets a line of OUT/lost_strikes.csv:
+  hours,t_s,note_found,actuator_found,late_jack_cycles_near,ms_since_previous,ms_to_next
+At the end: OUT/soak.svg (a panel per figure), OUT/kiosk.log (everything the kiosk printed) and the
+growth per hour of each figure (least squares). Exit status 0: no strike lost and the kiosk ran to the
+end; 1 otherwise, or when a server or the kiosk cannot run here. Ctrl+C ends it early, with the rows so far.)");
   cmd->add_option("--hours", o->hours, "How long (hours, fractions allowed)")->required()->check(CLI::Range(0.001, 336.0));
   cmd->add_option("--out", o->out, "Output directory (default: the current directory)")->capture_default_str();
   cmd->add_option("--strike-every", o->strike_every_s, "Seconds between two strokes of the scripted visitor")

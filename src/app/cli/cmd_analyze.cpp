@@ -23,11 +23,10 @@ void register_analyze(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Fit Eq. 1 to what `mallet simulate` wrote and compare with the material table");
-  cmd->footer(
-      "Fit Eq. 1, Q(t) = a·e^(−B·t)·sin(2π·f·t + φ), to each impact that `mallet simulate`\n"
-      "wrote into DIR (cursor.csv's offset column for the visual vibration, the actuator\n"
-      "channel of audio.wav for the actuator) and print the fitted A, B, f next to the\n"
-      "scene's material table. A_fit = a / v (visual, seconds) or a / (gain·v) (actuator).");
+  cmd->footer(R"(Fit Eq. 1, Q(t) = a·e^(−B·t)·sin(2π·f·t + φ), to each impact that `mallet simulate`
+wrote into DIR (cursor.csv's offset column for the visual vibration, the actuator
+channel of audio.wav for the actuator) and print the fitted A, B, f next to the
+scene's material table. A_fit = a / v (visual, seconds) or a / (gain·v) (actuator).)");
   cmd->add_option("--dir", o->dir, "Directory written by mallet simulate")->required()->check(CLI::ExistingDirectory);
   cmd->add_option("--scene", o->scene, "Scene the simulation used (for its material table)")->capture_default_str();
   add_settings_options(*cmd, o->config, o->config_dir);  // those the simulation used (gain, routing)

@@ -115,24 +115,22 @@ void register_audio(CLI::App& app) {
   audio->require_subcommand(1);
 
   CLI::App* devices = audio->add_subcommand("devices", "List the audio outputs PortAudio sees (ALSA)");
-  devices->footer(
-      "Columns: PortAudio index, name, host API, output channels, default sample rate and\n"
-      "PortAudio's default low output latency. Set [audio].device to an index or a part of a\n"
-      "name. With no output device it says so and exits 1.");
+  devices->footer(R"(Columns: PortAudio index, name, host API, output channels, default sample rate and
+PortAudio's default low output latency. Set [audio].device to an index or a part of a
+name. With no output device it says so and exits 1.)");
   devices->callback([] { print_devices(); });
 
   auto o = std::make_shared<AudioTestOptions>();
   o->scene = default_scene();
   CLI::App* test = audio->add_subcommand("test", "Play one test strike on one channel to check the wiring");
-  test->footer(
-      "Opens the configured output ([audio] in --config), plays one strike 50 ms after the start\n"
-      "and keeps the stream running for --seconds:\n"
-      "  --channel actuator  Eq. 1 of the bar's material on [audio.routing].actuator (default 1),\n"
-      "                      the speaker channel silent — the stick's voice coil should buzz\n"
-      "  --channel acoustic  the bar's note on [audio.routing].acoustic (default 0), the actuator\n"
-      "                      silent — the speaker should ring\n"
-      "Prints the device, the output latency PortAudio reports and what was played.\n"
-      "Bad input exits 2; a device that cannot be opened exits 1.");
+  test->footer(R"(Opens the configured output ([audio] in --config), plays one strike 50 ms after the start
+and keeps the stream running for --seconds:
+  --channel actuator  Eq. 1 of the bar's material on [audio.routing].actuator (default 1),
+                      the speaker channel silent — the stick's voice coil should buzz
+  --channel acoustic  the bar's note on [audio.routing].acoustic (default 0), the actuator
+                      silent — the speaker should ring
+Prints the device, the output latency PortAudio reports and what was played.
+Bad input exits 2; a device that cannot be opened exits 1.)");
   test->add_option("--channel", o->channel, "Which signal to play")
       ->required()
       ->check(CLI::IsMember({"actuator", "acoustic"}));

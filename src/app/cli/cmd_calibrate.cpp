@@ -85,23 +85,22 @@ void add_fit(CLI::App& calibrate) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = calibrate.add_subcommand("fit", "Fit the camera -> screen homography to point pairs; write CAL");
-  cmd->footer(
-      "FILE.csv: a header naming the columns cam_x,cam_y,screen_x,screen_y (any order), then one\n"
-      "calibration point per line: cam_x,cam_y = the LED's raw IR camera position in pixels\n"
-      "(x 0..1023, y 0..767, not mirrored, as `mallet wiimote decode` prints it); screen_x,screen_y\n"
-      "= where the target was shown, normalised 0..1 with the origin top-left. Blank lines and\n"
-      "lines starting with # are skipped. At least 4 points, with at least 4 of them having no 3\n"
-      "on one line (e.g. the 4 corners); more points are fitted in least squares.\n"
-      "Prints the 3x3 matrix and each point's reprojection error in screen pixels (--screen) and\n"
-      "camera pixels, then writes CAL atomically (temporary file + rename: a failed write leaves\n"
-      "the old CAL as it was). CAL is TOML:\n"
-      "  format_version = 1, created_utc, created_by, remote (optional)\n"
-      "  [camera_to_screen] matrix = [9 numbers, row-major 3x3 H] with\n"
-      "    [screen_x*w, screen_y*w, w] = H . [cam_x, cam_y, 1]\n"
-      "  screen_width_px, screen_height_px, points, rms_error_screen_px, max_error_screen_px,\n"
-      "  rms_error_camera_px, max_error_camera_px\n"
-      "Bad input (a malformed line: FILE:LINE: problem; degenerate points: one line saying why)\n"
-      "exits 2 with nothing written.");
+  cmd->footer(R"(FILE.csv: a header naming the columns cam_x,cam_y,screen_x,screen_y (any order), then one
+calibration point per line: cam_x,cam_y = the LED's raw IR camera position in pixels
+(x 0..1023, y 0..767, not mirrored, as `mallet wiimote decode` prints it); screen_x,screen_y
+= where the target was shown, normalised 0..1 with the origin top-left. Blank lines and
+lines starting with # are skipped. At least 4 points, with at least 4 of them having no 3
+on one line (e.g. the 4 corners); more points are fitted in least squares.
+Prints the 3x3 matrix and each point's reprojection error in screen pixels (--screen) and
+camera pixels, then writes CAL atomically (temporary file + rename: a failed write leaves
+the old CAL as it was). CAL is TOML:
+  format_version = 1, created_utc, created_by, remote (optional)
+  [camera_to_screen] matrix = [9 numbers, row-major 3x3 H] with
+    [screen_x*w, screen_y*w, w] = H . [cam_x, cam_y, 1]
+  screen_width_px, screen_height_px, points, rms_error_screen_px, max_error_screen_px,
+  rms_error_camera_px, max_error_camera_px
+Bad input (a malformed line: FILE:LINE: problem; degenerate points: one line saying why)
+exits 2 with nothing written.)");
   cmd->add_option("--points", o->points, "Calibration points CSV (cam_x,cam_y,screen_x,screen_y)")->required();
   cmd->add_option("--out", o->out, "Calibration file to write (TOML)")->required();
   cmd->add_option("--screen", o->screen, "Screen size WIDTHxHEIGHT in pixels, for the errors")
@@ -146,12 +145,11 @@ void add_map(CLI::App& calibrate) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = calibrate.add_subcommand("map", "Map one camera point to the screen through a calibration");
-  cmd->footer(
-      "Prints `screen_x screen_y` on one line, separated by a space, normalised 0..1 with the\n"
-      "origin top-left (values outside 0..1 are off screen), with 17 significant digits so that\n"
-      "they read back as the same doubles. CAM_X CAM_Y are raw IR camera pixels.\n"
-      "CAL is the file `mallet calibrate fit` writes (see `mallet calibrate fit --help`).\n"
-      "A bad CAL (FILE:LINE:COLUMN: key: problem) or a point the map sends to infinity exits 2.");
+  cmd->footer(R"(Prints `screen_x screen_y` on one line, separated by a space, normalised 0..1 with the
+origin top-left (values outside 0..1 are off screen), with 17 significant digits so that
+they read back as the same doubles. CAM_X CAM_Y are raw IR camera pixels.
+CAL is the file `mallet calibrate fit` writes (see `mallet calibrate fit --help`).
+A bad CAL (FILE:LINE:COLUMN: key: problem) or a point the map sends to infinity exits 2.)");
   cmd->add_option("--calibration", o->calibration, "Calibration file (from `mallet calibrate fit`)")->required();
   cmd->add_option("CAM_X", o->cam_x, "Camera x (pixels)")->required();
   cmd->add_option("CAM_Y", o->cam_y, "Camera y (pixels)")->required();
@@ -170,9 +168,8 @@ void add_map(CLI::App& calibrate) {
 void register_calibrate(CLI::App& app) {
   CLI::App* calibrate = app.add_subcommand("calibrate", "Camera -> screen calibration (homography) for the Wii Remote");
   calibrate->require_subcommand(1);
-  calibrate->footer(
-      "fit: point pairs (CSV) -> calibration file; map: one camera point -> screen through it.\n"
-      "Run `mallet calibrate fit --help` for both file formats.");
+  calibrate->footer(R"(fit: point pairs (CSV) -> calibration file; map: one camera point -> screen through it.
+Run `mallet calibrate fit --help` for both file formats.)");
   add_fit(*calibrate);
   add_map(*calibrate);
 }

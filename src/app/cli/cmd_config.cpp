@@ -21,15 +21,14 @@ void register_config(CLI::App& app) {
   cmd->require_subcommand(1);
   auto o = std::make_shared<ConfigShowOptions>();
   CLI::App* show = cmd->add_subcommand("show", "Print the merged settings, each key with the file it came from");
-  show->footer(
-      "Reads the settings file (default: the operator's mallet.toml, /etc/mallet/mallet.toml when\n"
-      "installed) and merges the drop-ins of --config-dir over it (default: the file's name + .d,\n"
-      "/etc/mallet/mallet.toml.d): every *.toml there, in lexical order of the names, key by key\n"
-      "(a table merges, any other value - an array too - is replaced). Prints the merged TOML on\n"
-      "stdout, each key followed by `# from FILE:LINE`; keys no file sets keep their built-in\n"
-      "defaults and are not listed. A drop-in that cannot be read or whose values are refused is\n"
-      "left out, with FILE:LINE: problem on stderr, as the kiosk leaves it out.\n"
-      "Exit status: 0; 2 when the settings file or a drop-in was refused.");
+  show->footer(R"(Reads the settings file (default: the operator's mallet.toml, /etc/mallet/mallet.toml when
+installed) and merges the drop-ins of --config-dir over it (default: the file's name + .d,
+/etc/mallet/mallet.toml.d): every *.toml there, in lexical order of the names, key by key
+(a table merges, any other value - an array too - is replaced). Prints the merged TOML on
+stdout, each key followed by `# from FILE:LINE`; keys no file sets keep their built-in
+defaults and are not listed. A drop-in that cannot be read or whose values are refused is
+left out, with FILE:LINE: problem on stderr, as the kiosk leaves it out.
+Exit status: 0; 2 when the settings file or a drop-in was refused.)");
   add_settings_options(*show, o->config, o->config_dir);
   show->callback([o] {
     const config::LoadedSettings s = operator_settings(o->config, o->config_dir);

@@ -14,24 +14,23 @@ void register_doctor(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   o->config = default_settings();
   CLI::App* cmd = app.add_subcommand("doctor", "Check everything a kiosk needs, one line per check, with the fix");
-  cmd->footer(
-      "Checks, in this order, each printed as `ok`, `warn` or `fail`, what was found and how to fix it:\n"
-      "  vulkan       the device and driver; a 1080p (or the display's size) frame is drawn and timed:\n"
-      "               a software renderer on a large display warns, slower than 60 Hz fails\n"
-      "  audio        the output the kiosk opens ([audio] device): name, sample rate, output latency,\n"
-      "               the channel routing against the device's channels\n"
-      "  wiimote      paired and connected, its IR camera's start-up answered, the battery\n"
-      "               (no remote: fail with [input] source = \"wiimote\", warn with \"auto\")\n"
-      "  settings     mallet.toml and its drop-ins, the start scene and [scenes] choices\n"
-      "  models       every glTF model the scenes draw\n"
-      "  soundfont    when [audio] acoustic = \"midi\"\n"
-      "  hidraw       the udev rule, the mallet user's groups, hidraw nodes that cannot be opened\n"
-      "  calibration  present, its age, its largest error, made with the remote connected now\n"
-      "  disk         free space where the kiosk writes its state and results\n"
-      "  service      mallet.service enabled, running, restarts in the last 24 h (the journal)\n"
-      "  watchdog     the last time the systemd watchdog stopped the kiosk, and why\n"
-      "The operator page shows the same checks (Ctrl+Alt+O, then D).\n"
-      "Exit status: 0 when no check fails, 1 otherwise.");
+  cmd->footer(R"(Checks, in this order, each printed as `ok`, `warn` or `fail`, what was found and how to fix it:
+  vulkan       the device and driver; a 1080p (or the display's size) frame is drawn and timed:
+               a software renderer on a large display warns, slower than 60 Hz fails
+  audio        the output the kiosk opens ([audio] device): name, sample rate, output latency,
+               the channel routing against the device's channels
+  wiimote      paired and connected, its IR camera's start-up answered, the battery
+               (no remote: fail with [input] source = "wiimote", warn with "auto")
+  settings     mallet.toml and its drop-ins, the start scene and [scenes] choices
+  models       every glTF model the scenes draw
+  soundfont    when [audio] acoustic = "midi"
+  hidraw       the udev rule, the mallet user's groups, hidraw nodes that cannot be opened
+  calibration  present, its age, its largest error, made with the remote connected now
+  disk         free space where the kiosk writes its state and results
+  service      mallet.service enabled, running, restarts in the last 24 h (the journal)
+  watchdog     the last time the systemd watchdog stopped the kiosk, and why
+The operator page shows the same checks (Ctrl+Alt+O, then D).
+Exit status: 0 when no check fails, 1 otherwise.)");
   add_settings_options(*cmd, o->config, o->config_dir);
   cmd->add_option("--device", o->device, "Vulkan device (substring of its name; default [render] device)");
   cmd->add_flag("--json", *json, "The same checks as JSON: {\"checks\": [{name, status, found, fix}...], ok, warn, fail}");

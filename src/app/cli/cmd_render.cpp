@@ -167,16 +167,15 @@ void run_render(const RenderCliOptions& o) {
 void register_render(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Render frames of a trajectory offscreen (Vulkan) to PNG");
-  cmd->footer(
-      "  mallet render --input TRAJ.csv --at SECONDS --size 1280x720 --out frame.png\n"
-      "  mallet render --input TRAJ.csv --fps 60 --from S --to S --out-dir DIR   (DIR/frame_000000.png ...)\n"
-      "The trajectory is replayed through the contact solver, so the mallet's position, its\n"
-      "contacts and the visual vibration (Eq. 1, evaluated at each frame's time on the int64 ns\n"
-      "clock) are the real ones at that moment. Times are on the trajectory's clock (its t column).\n"
-      "Runs on any Vulkan 1.3 device, lavapipe included (no display needed).\n"
-      "  mallet render --input TRAJ.csv --window [--fps 60 --from S --to S | --at S] [--frames N --screenshot F]\n"
-      "shows the same frames in a window through the swapchain (needs a display).\n"
-      "Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).");
+  cmd->footer(R"(  mallet render --input TRAJ.csv --at SECONDS --size 1280x720 --out frame.png
+  mallet render --input TRAJ.csv --fps 60 --from S --to S --out-dir DIR   (DIR/frame_000000.png ...)
+The trajectory is replayed through the contact solver, so the mallet's position, its
+contacts and the visual vibration (Eq. 1, evaluated at each frame's time on the int64 ns
+clock) are the real ones at that moment. Times are on the trajectory's clock (its t column).
+Runs on any Vulkan 1.3 device, lavapipe included (no display needed).
+  mallet render --input TRAJ.csv --window [--fps 60 --from S --to S | --at S] [--frames N --screenshot F]
+shows the same frames in a window through the swapchain (needs a display).
+Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).)");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--input", o->input, "Trajectory CSV (t,x,y)")->required();
   add_settings_options(*cmd, o->config, o->config_dir);

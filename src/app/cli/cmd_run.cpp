@@ -33,20 +33,19 @@ void register_run(CLI::App& app) {
   o->config = default_settings();  // the operator's mallet.toml (/etc/mallet when installed)
   o->visitor_sessions = visitor_sessions();  // the study's, for [study] visitor_protocol
   CLI::App* cmd = app.add_subcommand("run", "Run the kiosk (fullscreen; headless without a display)");
-  cmd->footer(
-      "With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,\n"
-      "sound and the actuator signal play on the configured audio device, and the attract mode's\n"
-      "ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close\n"
-      "it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, R\n"
-      "recalibrate, S next scene of [scenes] choices, M the wall's next material, L next language,\n"
-      "Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the\n"
-      "settings and the scene (a bad file is refused, the old ones stay). Each strike and a\n"
-      "heartbeat a minute are logged on stderr (journald priorities);\n"
-      "under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.\n"
-      "Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs\n"
-      "offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,\n"
-      "and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])\n"
-      "and DIR/log.txt (one line per strike), then exits 0.");
+  cmd->footer(R"(With a display: fullscreen and borderless (--windowed: a window), the mouse is the mallet,
+sound and the actuator signal play on the configured audio device, and the attract mode's
+ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close
+it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, R
+recalibrate, S next scene of [scenes] choices, M the wall's next material, L next language,
+Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the
+settings and the scene (a bad file is refused, the old ones stay). Each strike and a
+heartbeat a minute are logged on stderr (journald priorities);
+under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.
+Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs
+offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,
+and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])
+and DIR/log.txt (one line per strike), then exits 0.)");
   cmd->add_option("--scene", o->scene,
                   "Scene file (default: [scenes] start of the settings, a file in the scenes/ folder next to "
                   "them: percussion.toml)")

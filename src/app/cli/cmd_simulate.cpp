@@ -14,35 +14,34 @@ void register_simulate(CLI::App& app) {
   options->scene = default_scene();
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Replay a trajectory through the contact solver; write events, cursor trace and audio");
-  cmd->footer(
-      "Writes the exact stimuli of a session:\n"
-      "  DIR/events.csv  t,target,instrument,material,note,velocity\n"
-      "                  one row per impact; t = exact contact time (s), velocity = normal\n"
-      "                  impact speed (m/s)\n"
-      "  DIR/cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset  at --trace-rate, world metres;\n"
-      "                  cursor = the displayed mallet head (held on the surface while the hand\n"
-      "                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement\n"
-      "                  texture scenes add gain,stripe_phase: cursor = the cursor after the Speed\n"
-      "                  technique, gain = its gain, stripe_phase = the stripes' phase (rad)\n"
-      "  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,\n"
-      "                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample\n"
-      "                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.\n"
-      "With --causal the strikes are decided as the live kiosk decides them: each sample is\n"
-      "known only from its own time plus --input-delay-ms, contact prediction and [timing]\n"
-      "align follow the settings, and the frames are paced by --display-hz and --present-mode.\n"
-      "events.csv then adds after its columns  contact_t,sound_t,shown_t,predicted:\n"
-      "  contact_t  the contact as the kiosk estimated it (seen, or predicted) (s)\n"
-      "  sound_t    when both channels start in audio.wav (s)\n"
-      "  shown_t    the present time of the first frame that shows the bounce (s)\n"
-      "  predicted  1 when the strike was scheduled from a prediction, else 0\n"
-      "Without --causal every output is the exact stimulus, as before.\n"
-      "TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen\n"
-      "(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.\n"
-      "A t past one hour is refused (FILE:LINE, exit 2) unless --allow-long: the outputs grow\n"
-      "with it (1.4 GB of audio.wav per hour at 48 kHz), and a t in milliseconds looks like that.\n"
-      "Bad input prints FILE:LINE: problem and exits 2 with nothing written.\n"
-      "SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and exits\n"
-      "130 or 143.");
+  cmd->footer(R"(Writes the exact stimuli of a session:
+  DIR/events.csv  t,target,instrument,material,note,velocity
+                  one row per impact; t = exact contact time (s), velocity = normal
+                  impact speed (m/s)
+  DIR/cursor.csv  t,hand_x,hand_y,cursor_x,cursor_y,offset  at --trace-rate, world metres;
+                  cursor = the displayed mallet head (held on the surface while the hand
+                  is below it, plus the visual vibration); offset = Eq. 1 visual displacement
+                  texture scenes add gain,stripe_phase: cursor = the cursor after the Speed
+                  technique, gain = its gain, stripe_phase = the stripes' phase (rad)
+  DIR/audio.wav   32-bit float, channels as [audio.routing] says (default 0 = acoustic,
+                  1 = actuator); sample 0 is t = 0; each impact starts on its own sample
+                  on both channels: the note ([audio].acoustic: modal or midi) and Eq. 1.
+With --causal the strikes are decided as the live kiosk decides them: each sample is
+known only from its own time plus --input-delay-ms, contact prediction and [timing]
+align follow the settings, and the frames are paced by --display-hz and --present-mode.
+events.csv then adds after its columns  contact_t,sound_t,shown_t,predicted:
+  contact_t  the contact as the kiosk estimated it (seen, or predicted) (s)
+  sound_t    when both channels start in audio.wav (s)
+  shown_t    the present time of the first frame that shows the bounce (s)
+  predicted  1 when the strike was scheduled from a prediction, else 0
+Without --causal every output is the exact stimulus, as before.
+TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen
+(0..1, origin top-left) or, with --input-space world, the mallet centre in metres.
+A t past one hour is refused (FILE:LINE, exit 2) unless --allow-long: the outputs grow
+with it (1.4 GB of audio.wav per hour at 48 kHz), and a t in milliseconds looks like that.
+Bad input prints FILE:LINE: problem and exits 2 with nothing written.
+SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and exits
+130 or 143.)");
   cmd->add_option("--scene", options->scene, "Scene file")->capture_default_str()->check(CLI::ExistingFile);
   cmd->add_option("--input", options->input, "Trajectory CSV (t,x,y)")->required();
   cmd->add_option("--out", options->out_dir, "Output directory (created if needed)")->required();

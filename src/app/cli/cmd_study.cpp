@@ -35,25 +35,24 @@ struct SummaryFlags {
 void add_summary(CLI::App& study) {
   auto o = std::make_shared<SummaryFlags>();
   CLI::App* cmd = study.add_subcommand("summary", "Per-condition accuracy and a psychometric fit of results CSVs");
-  cmd->footer(
-      "Reads every results file named, and every *.csv in each folder named (in name order), as\n"
-      "one set of rows. Prints, per condition: trials, correct answers, accuracy and mean response\n"
-      "time; then, for 2AFC rows (those with a difference_pct), the maximum-likelihood fit of\n"
-      "  P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold)))\n"
-      "with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference,\n"
-      "pooled over the participants; then, with more than one participant, each one's fit (not the\n"
-      "visitor micro-study's sessions, visitor-*: they are pooled only, and counted as completed or\n"
-      "abandoned).\n"
-      "Fewer than 3 distinct differences in a condition: \"not enough levels\", no fit.\n"
-      "Each fit has 95% confidence intervals for its threshold and slope (threshold_95ci,\n"
-      "slope_95ci): the parametric bootstrap, --bootstrap resamples drawn from the fitted curve and\n"
-      "fitted again, bias-corrected percentiles; seeded by --seed, the participant and the\n"
-      "condition, so the same data gives the same intervals.\n"
-      "--plots DIR: psychometric.png (pooled curves, points sized by trials), thresholds.png (each\n"
-      "participant's threshold and interval), response_times.png; each with its .dat and .gp\n"
-      "(gnuplot-nox draws them; without it the data is still written).\n"
-      "--report FILE.md: a short markdown report of all of it, embedding the plots.\n"
-      "A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: problem.");
+  cmd->footer(R"(Reads every results file named, and every *.csv in each folder named (in name order), as
+one set of rows. Prints, per condition: trials, correct answers, accuracy and mean response
+time; then, for 2AFC rows (those with a difference_pct), the maximum-likelihood fit of
+  P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold)))
+with x the pair's difference in Eq. 1's B (%): threshold = the 75%-correct difference,
+pooled over the participants; then, with more than one participant, each one's fit (not the
+visitor micro-study's sessions, visitor-*: they are pooled only, and counted as completed or
+abandoned).
+Fewer than 3 distinct differences in a condition: "not enough levels", no fit.
+Each fit has 95% confidence intervals for its threshold and slope (threshold_95ci,
+slope_95ci): the parametric bootstrap, --bootstrap resamples drawn from the fitted curve and
+fitted again, bias-corrected percentiles; seeded by --seed, the participant and the
+condition, so the same data gives the same intervals.
+--plots DIR: psychometric.png (pooled curves, points sized by trials), thresholds.png (each
+participant's threshold and interval), response_times.png; each with its .dat and .gp
+(gnuplot-nox draws them; without it the data is still written).
+--report FILE.md: a short markdown report of all of it, embedding the plots.
+A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: problem.)");
   cmd->add_option("--results", o->results, "Results CSVs written by `mallet study`, or folders of them")
       ->required()
       ->expected(1, -1);
@@ -131,17 +130,16 @@ void add_visitors(CLI::App& study) {
   o->scene = default_scene();
   o->out_dir = "visitor-study";
   CLI::App* cmd = study.add_subcommand("visitors", "Simulate the kiosk's visitor micro-study headless");
-  cmd->footer(
-      "mallet study visitors --protocol config/study/visitor.toml --visitors N [--out-dir DIR]\n"
-      "Runs N simulated visitors through a visitor protocol (one with a [visitor] table) on a\n"
-      "simulated clock, as the kiosk runs a visitor who accepted its offer: the consent screen,\n"
-      "agreed by striking \"1\" (Yes), then the protocol's [visitor] trials, answered by the simulated\n"
-      "observer striking the answer bars through the kiosk's strike route. Each visitor is a random\n"
-      "session id (visitor-XXXXXXXX, from --seed) and the date; rows are appended to\n"
-      "DIR/visitors-YYYY-MM-DD.csv as the kiosk appends them. --abandon-after N: every second visitor\n"
-      "walks away after N trials (the kiosk waits the protocol's answer_timeout_s); --decline-every K:\n"
-      "every K-th visitor strikes \"2\" (No) at the consent screen and nothing is written for them.\n"
-      "Prints one line per visitor. Bad input: exit 2 with FILE:LINE: problem.");
+  cmd->footer(R"(mallet study visitors --protocol config/study/visitor.toml --visitors N [--out-dir DIR]
+Runs N simulated visitors through a visitor protocol (one with a [visitor] table) on a
+simulated clock, as the kiosk runs a visitor who accepted its offer: the consent screen,
+agreed by striking "1" (Yes), then the protocol's [visitor] trials, answered by the simulated
+observer striking the answer bars through the kiosk's strike route. Each visitor is a random
+session id (visitor-XXXXXXXX, from --seed) and the date; rows are appended to
+DIR/visitors-YYYY-MM-DD.csv as the kiosk appends them. --abandon-after N: every second visitor
+walks away after N trials (the kiosk waits the protocol's answer_timeout_s); --decline-every K:
+every K-th visitor strikes "2" (No) at the consent screen and nothing is written for them.
+Prints one line per visitor. Bad input: exit 2 with FILE:LINE: problem.)");
   cmd->add_option("--protocol", o->protocol, "Visitor protocol (TOML with a [visitor] table)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -188,37 +186,36 @@ void register_study(CLI::App& app) {
   o->config = default_settings();
   CLI::App* cmd = app.add_subcommand("study", "Run a perception study protocol (2AFC harder / name the material)");
   cmd->require_subcommand(0, 1);
-  cmd->footer(
-      "mallet study --protocol FILE.toml --participant ID [--windowed] [--out CSV]   (a participant)\n"
-      "mallet study --protocol FILE.toml --participant ID --headless [--answers FILE] [--out CSV]\n"
-      "mallet study summary --results CSV\n"
-      "mallet study visitors --protocol FILE.toml --visitors N   (the kiosk's visitor study, simulated)\n"
-      "Runs a psychophysics protocol (config/study/example.toml documents one): every condition\n"
-      "(visual_only, tactile_only, both, none) x pair or stimulus, `repetitions` times, in an order\n"
-      "shuffled per participant (seeded by the protocol's seed and the ID: the same ID gets the same\n"
-      "order) with each 2AFC pair shown in both orders equally often.\n"
-      "With a display (and no --headless): fullscreen (--windowed: a window), in real time. Each trial's\n"
-      "taps are shown by the bounce on the screen and played on the actuator (and the note, if the\n"
-      "protocol has sound) through the audio device (silent if none); then a prompt asks \"Which tap\n"
-      "felt harder? Press 1 or 2\" or \"Which material? R rubber, W wood, ...\" (the first letters of\n"
-      "the protocol's materials, or 1-9 when two share one). Keys pressed during the taps are ignored;\n"
-      "the response time runs from the end of the last tap (rows marked source=keys). Esc, Q or\n"
-      "closing the window stops: answered trials are kept, and the same command resumes.\n"
-      "A protocol with response = \"strike\" (config/study/strike.toml) is answered with the same\n"
-      "mallet on answer bars labelled \"1\" and \"2\" (or the materials' names) beside the stimulus bar;\n"
-      "an answer strike sounds a neutral click and no actuator signal (the protocol's [answer_strike]),\n"
-      "and its response time runs to the contact the strike route finds (rows marked source=strike;\n"
-      "headless, the simulated observer or the script strikes its answers through the same route).\n"
-      "The actuator_peak column is the signal sent, rendered by the same engine offline.\n"
-      "--headless, or without a display: on a simulated clock,\n"
-      "through the kiosk's own audio engine and bounce; answers come from --answers (one a line:\n"
-      "1 or 2, or a material name, optionally followed by a response time in ms) or, without it, from\n"
-      "a simulated observer (rows marked source=simulated). One CSV row per trial, fsync'd before the\n"
-      "next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then\n"
-      "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak, then\n"
-      "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct.\n"
-      "Run again with the same participant to resume: trials already in the CSV are skipped; an\n"
-      "incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.");
+  cmd->footer(R"(mallet study --protocol FILE.toml --participant ID [--windowed] [--out CSV]   (a participant)
+mallet study --protocol FILE.toml --participant ID --headless [--answers FILE] [--out CSV]
+mallet study summary --results CSV
+mallet study visitors --protocol FILE.toml --visitors N   (the kiosk's visitor study, simulated)
+Runs a psychophysics protocol (config/study/example.toml documents one): every condition
+(visual_only, tactile_only, both, none) x pair or stimulus, `repetitions` times, in an order
+shuffled per participant (seeded by the protocol's seed and the ID: the same ID gets the same
+order) with each 2AFC pair shown in both orders equally often.
+With a display (and no --headless): fullscreen (--windowed: a window), in real time. Each trial's
+taps are shown by the bounce on the screen and played on the actuator (and the note, if the
+protocol has sound) through the audio device (silent if none); then a prompt asks "Which tap
+felt harder? Press 1 or 2" or "Which material? R rubber, W wood, ..." (the first letters of
+the protocol's materials, or 1-9 when two share one). Keys pressed during the taps are ignored;
+the response time runs from the end of the last tap (rows marked source=keys). Esc, Q or
+closing the window stops: answered trials are kept, and the same command resumes.
+A protocol with response = "strike" (config/study/strike.toml) is answered with the same
+mallet on answer bars labelled "1" and "2" (or the materials' names) beside the stimulus bar;
+an answer strike sounds a neutral click and no actuator signal (the protocol's [answer_strike]),
+and its response time runs to the contact the strike route finds (rows marked source=strike;
+headless, the simulated observer or the script strikes its answers through the same route).
+The actuator_peak column is the signal sent, rendered by the same engine offline.
+--headless, or without a display: on a simulated clock,
+through the kiosk's own audio engine and bounce; answers come from --answers (one a line:
+1 or 2, or a material name, optionally followed by a response time in ms) or, without it, from
+a simulated observer (rows marked source=simulated). One CSV row per trial, fsync'd before the
+next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then
+protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak, then
+actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct.
+Run again with the same participant to resume: trials already in the CSV are skipped; an
+incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.)");
   cmd->add_option("--protocol", o->protocol, "Protocol file (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--participant", o->participant, "Participant ID (letters, digits, _ - .)");
   cmd->add_option("--out", o->out, "Results CSV, appended to (default: the protocol's `output`)");

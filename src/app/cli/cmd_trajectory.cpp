@@ -25,11 +25,10 @@ void register_trajectory(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("trajectory", "Script a trajectory that strikes bars at exact times and speeds");
-  cmd->footer(
-      "Writes a TRAJ.csv (t,x,y) for `mallet simulate`: the ghost player of the attract mode\n"
-      "strikes each target (ids from `mallet scene describe`) in turn, the k-th at\n"
-      "start + k·interval seconds, crossing the bar's surface at exactly that time with exactly\n"
-      "--speed m/s downwards, sampled at --rate Hz.");
+  cmd->footer(R"(Writes a TRAJ.csv (t,x,y) for `mallet simulate`: the ghost player of the attract mode
+strikes each target (ids from `mallet scene describe`) in turn, the k-th at
+start + k·interval seconds, crossing the bar's surface at exactly that time with exactly
+--speed m/s downwards, sampled at --rate Hz.)");
   cmd->add_option("--scene", o->scene, "Scene file")->capture_default_str();
   cmd->add_option("--targets", o->targets, "Target ids to strike, in order (e.g. 0,2,4,7)")->required()->delimiter(',');
   cmd->add_option("--start", o->start_s, "Time of the first strike (s)")

@@ -51,22 +51,21 @@ void add_decode(CLI::App& wiimote) {
   auto file = std::make_shared<std::string>();
   CLI::App* cmd = wiimote.add_subcommand(
       "decode", "Decode raw input reports (hex, one per line) into the IR camera's four dots");
-  cmd->footer(
-      "Input (--hex FILE, or - for stdin): one raw input report per line, in hex, byte 0 =\n"
-      "the report id exactly as hidraw delivers it, e.g.  33 00 00 80 80 80 00 00 00 ...\n"
-      "Bytes are two hex digits each, optionally separated by spaces; blank lines and\n"
-      "everything after '#' are ignored.\n"
-      "Output (stdout): one line per report that carries IR (0x33 extended; 0x36, 0x37\n"
-      "basic), its four camera slots in order separated by single spaces:\n"
-      "  x,y,size   extended mode: raw camera coordinates x 0..1023, y 0..767 (no\n"
-      "             mirroring: orientation belongs to calibration), size 0..15\n"
-      "  x,y,?      basic mode, which sends no size\n"
-      "  -          empty slot (the camera sends y = 1023; any y > 767 is empty)\n"
-      "A dot at exactly 0,0 is printed as sent; some remotes report it spuriously.\n"
-      "Other valid input reports (status, acks, data without IR) print nothing.\n"
-      "A malformed line (bad hex, unknown report id, wrong length for its id) prints\n"
-      "nothing to stdout, reports the FIRST such line as FILE:LINE[:COL]: problem on\n"
-      "stderr and exits 2.");
+  cmd->footer(R"(Input (--hex FILE, or - for stdin): one raw input report per line, in hex, byte 0 =
+the report id exactly as hidraw delivers it, e.g.  33 00 00 80 80 80 00 00 00 ...
+Bytes are two hex digits each, optionally separated by spaces; blank lines and
+everything after '#' are ignored.
+Output (stdout): one line per report that carries IR (0x33 extended; 0x36, 0x37
+basic), its four camera slots in order separated by single spaces:
+  x,y,size   extended mode: raw camera coordinates x 0..1023, y 0..767 (no
+             mirroring: orientation belongs to calibration), size 0..15
+  x,y,?      basic mode, which sends no size
+  -          empty slot (the camera sends y = 1023; any y > 767 is empty)
+A dot at exactly 0,0 is printed as sent; some remotes report it spuriously.
+Other valid input reports (status, acks, data without IR) print nothing.
+A malformed line (bad hex, unknown report id, wrong length for its id) prints
+nothing to stdout, reports the FIRST such line as FILE:LINE[:COL]: problem on
+stderr and exits 2.)");
   cmd->add_option("--hex", *file, "File of hex reports, one per line (- = stdin)")->required();
   cmd->callback([file] {
     std::string text;
@@ -82,12 +81,11 @@ void add_decode(CLI::App& wiimote) {
 
 void add_list(CLI::App& wiimote) {
   CLI::App* cmd = wiimote.add_subcommand("list", "List the Wii Remotes connected now (hidraw path, product, serial)");
-  cmd->footer(
-      "Lists every HID device of vendor 057e (Nintendo) with product 0306 (RVL-CNT-01) or\n"
-      "0330 (RVL-CNT-01-TR): its /dev/hidraw path, product, serial (on Bluetooth: the\n"
-      "remote's address) and name. A remote must be paired and connected to be listed.\n"
-      "When none is found it says so, with the pairing and udev-rule hints, and still exits 0:\n"
-      "\"none found\" is an answer, not a failure.");
+  cmd->footer(R"(Lists every HID device of vendor 057e (Nintendo) with product 0306 (RVL-CNT-01) or
+0330 (RVL-CNT-01-TR): its /dev/hidraw path, product, serial (on Bluetooth: the
+remote's address) and name. A remote must be paired and connected to be listed.
+When none is found it says so, with the pairing and udev-rule hints, and still exits 0:
+"none found" is an answer, not a failure.)");
   cmd->callback([] {
     const std::string out = format_device_list(wm::HidTransport::enumerate());
     std::fwrite(out.data(), 1, out.size(), stdout);
@@ -140,28 +138,27 @@ void add_monitor(CLI::App& wiimote) {
   auto cli = std::make_shared<MonitorCli>();
   CLI::App* cmd = wiimote.add_subcommand(
       "monitor", "Watch a live remote: connection, IR report rate, battery, the tracked LED and the four dots");
-  cmd->footer(
-      "Finds a remote (the first one, or [wiimote].device / --device), runs the IR camera's\n"
-      "start-up and prints one line about every 0.1 s, times since the start:\n"
-      "     1.200 s  running    100.0 Hz  battery 0xc8  tracking  led 512,384  dots 512,384,3 - - -\n"
-      "  link       searching (no remote: why, and when it retries), starting (IR start-up\n"
-      "             step), running\n"
-      "  Hz         IR reports per second over the last second (a remote sends ~100)\n"
-      "  battery    raw level of the last status report (0xc8 ~ fresh cells; LOW when the\n"
-      "             remote flags it); asked once per connection, ? until it answers\n"
-      "  tracking   the stick's LED is tracked (or lost), led = its raw camera position\n"
-      "  dots       the camera's four slots as `wiimote decode` prints them\n"
-      "Tracking changes are printed as they happen (\"tracking lost\", \"tracking regained at\n"
-      "x,y\"). A remote that goes silent for [wiimote].silence_timeout_ms (3 s) is dropped and\n"
-      "looked for again, forever, every 0.5 s doubling to 5 s.\n"
-      "Runs until --seconds have passed or Ctrl+C, then prints a summary. Exit 0 if a remote\n"
-      "was connected, 1 if none was (the reason on stderr: none found, no permission (with\n"
-      "the udev rule to install), IR start-up failed).\n"
-      "--record FILE saves every raw report with its reception time (monotonic ns) in the\n"
-      "replay format (\"# mallet-wiimote-replay 1\", then one `T_NS HEX` line per report);\n"
-      "--replay FILE plays such a file back through the same parser and tracker instead of\n"
-      "a live remote, lines at the recorded times, as fast as it can (a malformed line\n"
-      "exits 2).");
+  cmd->footer(R"(Finds a remote (the first one, or [wiimote].device / --device), runs the IR camera's
+start-up and prints one line about every 0.1 s, times since the start:
+     1.200 s  running    100.0 Hz  battery 0xc8  tracking  led 512,384  dots 512,384,3 - - -
+  link       searching (no remote: why, and when it retries), starting (IR start-up
+             step), running
+  Hz         IR reports per second over the last second (a remote sends ~100)
+  battery    raw level of the last status report (0xc8 ~ fresh cells; LOW when the
+             remote flags it); asked once per connection, ? until it answers
+  tracking   the stick's LED is tracked (or lost), led = its raw camera position
+  dots       the camera's four slots as `wiimote decode` prints them
+Tracking changes are printed as they happen ("tracking lost", "tracking regained at
+x,y"). A remote that goes silent for [wiimote].silence_timeout_ms (3 s) is dropped and
+looked for again, forever, every 0.5 s doubling to 5 s.
+Runs until --seconds have passed or Ctrl+C, then prints a summary. Exit 0 if a remote
+was connected, 1 if none was (the reason on stderr: none found, no permission (with
+the udev rule to install), IR start-up failed).
+--record FILE saves every raw report with its reception time (monotonic ns) in the
+replay format ("# mallet-wiimote-replay 1", then one `T_NS HEX` line per report);
+--replay FILE plays such a file back through the same parser and tracker instead of
+a live remote, lines at the recorded times, as fast as it can (a malformed line
+exits 2).)");
   cmd->add_option("--seconds", cli->options.seconds, "Stop after this many seconds (0 = until Ctrl+C)");
   cmd->add_option("--record", cli->options.record, "Save every raw report (replay format) to FILE")->type_name("FILE");
   cmd->add_option("--replay", cli->replay, "Play a recording instead of a live remote")

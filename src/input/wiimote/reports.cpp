@@ -305,40 +305,44 @@ IrSlots decode_basic_ir(std::span<const std::uint8_t, 10> ir) {
   return slots;
 }
 
+namespace {
+
+//! A report that carries the camera's dots: read as its wire layout, the dots decoded in the
+//! format its IR field's size says (12 bytes: extended, 10: basic).
+template <typename Wire>
+Parsed<IrReport> parse_ir_as(std::span<const std::uint8_t> report, InputReportId id) {
+  Wire w{};
+  if (auto err = load(report, id, w)) return tl::unexpected(*err);
+  IrReport r;
+  r.id = id;
+  r.buttons = be16(w.buttons);
+  if constexpr (sizeof w.ir == 12) {
+    r.format = IrFormat::extended;
+    r.slots = decode_extended_ir(std::span<const std::uint8_t, 12>(w.ir));
+  } else {
+    r.format = IrFormat::basic;
+    r.slots = decode_basic_ir(std::span<const std::uint8_t, 10>(w.ir));
+  }
+  return r;
+}
+
+//! Any report parsed, as the variant of all of them.
+template <typename Report>
+Parsed<InputReport> as_input(Parsed<Report> parsed) {
+  return parsed.map([](Report& r) { return InputReport{std::move(r)}; });
+}
+
+}  // namespace
+
 Parsed<IrReport> parse_ir(std::span<const std::uint8_t> report) {
   ReportError e;
   e.got_size = report.size();
   if (report.empty()) return tl::unexpected(e);
   e.id = report[0];
-  IrReport r;
   switch (report[0]) {
-    case 0x33: {
-      WireButtonsAccelIr12 w{};
-      if (auto err = load(report, InputReportId::buttons_accel_ir12, w)) return tl::unexpected(*err);
-      r.id = InputReportId::buttons_accel_ir12;
-      r.format = IrFormat::extended;
-      r.buttons = be16(w.buttons);
-      r.slots = decode_extended_ir(std::span<const std::uint8_t, 12>(w.ir));
-      return r;
-    }
-    case 0x36: {
-      WireButtonsIr10Ext9 w{};
-      if (auto err = load(report, InputReportId::buttons_ir10_ext9, w)) return tl::unexpected(*err);
-      r.id = InputReportId::buttons_ir10_ext9;
-      r.format = IrFormat::basic;
-      r.buttons = be16(w.buttons);
-      r.slots = decode_basic_ir(std::span<const std::uint8_t, 10>(w.ir));
-      return r;
-    }
-    case 0x37: {
-      WireButtonsAccelIr10Ext6 w{};
-      if (auto err = load(report, InputReportId::buttons_accel_ir10_ext6, w)) return tl::unexpected(*err);
-      r.id = InputReportId::buttons_accel_ir10_ext6;
-      r.format = IrFormat::basic;
-      r.buttons = be16(w.buttons);
-      r.slots = decode_basic_ir(std::span<const std::uint8_t, 10>(w.ir));
-      return r;
-    }
+    case 0x33: return parse_ir_as<WireButtonsAccelIr12>(report, InputReportId::buttons_accel_ir12);
+    case 0x36: return parse_ir_as<WireButtonsIr10Ext9>(report, InputReportId::buttons_ir10_ext9);
+    case 0x37: return parse_ir_as<WireButtonsAccelIr10Ext6>(report, InputReportId::buttons_accel_ir10_ext6);
     default:
       e.kind = input_report_size(report[0]) == 0 ? ReportError::Kind::unknown_id : ReportError::Kind::wrong_id;
       return tl::unexpected(e);
@@ -356,28 +360,12 @@ Parsed<InputReport> parse_input(std::span<const std::uint8_t> report) {
     return tl::unexpected(e);
   }
   switch (report[0]) {
-    case 0x20: {
-      auto p = parse_status(report);
-      if (!p) return tl::unexpected(p.error());
-      return InputReport{*p};
-    }
-    case 0x21: {
-      auto p = parse_read_data(report);
-      if (!p) return tl::unexpected(p.error());
-      return InputReport{*p};
-    }
-    case 0x22: {
-      auto p = parse_ack(report);
-      if (!p) return tl::unexpected(p.error());
-      return InputReport{*p};
-    }
+    case 0x20: return as_input(parse_status(report));
+    case 0x21: return as_input(parse_read_data(report));
+    case 0x22: return as_input(parse_ack(report));
     case 0x33:
     case 0x36:
-    case 0x37: {
-      auto p = parse_ir(report);
-      if (!p) return tl::unexpected(p.error());
-      return InputReport{*p};
-    }
+    case 0x37: return as_input(parse_ir(report));
     default:
       if (report.size() != size) {
         e.kind = ReportError::Kind::wrong_length;
