@@ -3,10 +3,8 @@
 // the peers (STK's ModalBar, FluidSynth) side by side. A program that prints a table;
 // no test times anything.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -14,6 +12,7 @@
 #include "audio/audio_setup.hpp"
 #include "app/bench/bench_commands.hpp"
 #include "app/bench/first_sample_latency.hpp"
+#include "app/bench/voice_cost.hpp"
 #include "core/data_paths.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/fluidsynth_route.hpp"
@@ -22,31 +21,10 @@
 #include "core/config/scene_config.hpp"
 #include "core/vibration.hpp"
 
-#ifdef MALLET_HAVE_STK
-#include <stk/ModalBar.h>
-#include <stk/Stk.h>
-#endif
 
 namespace mallet::app {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-//! Median over `runs` of the nanoseconds per unit of `body(units)`.
-double median_ns_per_unit(int runs, double units, const std::function<void()>& body) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    const auto a = Clock::now();
-    body();
-    const auto b = Clock::now();
-    t.push_back(static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count()) / units);
-  }
-  std::nth_element(t.begin(), t.begin() + static_cast<long>(t.size() / 2), t.end());
-  return t[t.size() / 2];
-}
-
-volatile double g_sink;  // keeps the optimiser from removing the measured work
 
 struct Row {
   std::string what;
@@ -73,67 +51,23 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
 
   // Eq. 1 evaluated directly (exp + sin per sample): the exact reference.
   const VibrationParams metal{2.0, 90.0, 300.0};
-  voice.push_back({"Eq. 1 direct (exp+sin per sample, reference)",
-                   median_ns_per_unit(runs, n, [&] {
-                     double acc = 0;
-                     for (int i = 0; i < n; ++i) acc += decaying_sine_unit_seconds(metal, i / double(fs));
-                     g_sink = acc;
-                   }),
-                   "exact"});
+  voice.push_back({"Eq. 1 direct (exp+sin per sample, reference)", direct_eq1_ns(metal, n, fs, runs), "exact"});
   audio::DampedOscillator osc;
   double osc_error = 0;
   osc.start(2.0, 90.0, 300.0, 0.0, fs);
   for (int i = 0; i < fs; ++i)
     osc_error = std::max(osc_error, std::fabs(osc.tick() - 2.0 * decaying_sine_unit_seconds(metal, i / double(fs))));
-  voice.push_back({"actuator voice (re-seeded double rotator)",
-                   median_ns_per_unit(runs, n, [&] {
-                     osc.start(2.0, 0.0, 300.0, 0.0, fs);  // undamped: never goes quiet
-                     std::vector<double> buf(64);
-                     for (int i = 0; i < n; i += 64) osc.add_to(buf.data(), 64);
-                     g_sink = buf[7];
-                   }),
+  voice.push_back({"actuator voice (re-seeded double rotator)", rotator_ns(300.0, n, fs, runs),
                    "max |error| vs exact over 1 s: " + std::to_string(osc_error)});
-
-  for (const ModalPreset& p : presets) {
-    audio::ModalBarVoice bar;
+  for (const ModalPreset& p : presets)
     voice.push_back({"modal bar voice: " + p.name + " (" + std::to_string(p.modes.size()) + " modes)",
-                     median_ns_per_unit(runs, n, [&] {
-                       bar.strike(p, 523.25, 1.5, 0.0, fs);
-                       std::vector<double> buf(64);
-                       for (int i = 0; i < n; i += 64) bar.add_to(buf.data(), 64);
-                       g_sink = buf[7];
-                     }),
-                     ""});
-  }
-#ifdef MALLET_HAVE_STK
-  {
-    stk::Stk::setSampleRate(fs);
-    stk::Stk::setRawwavePath("/usr/share/stk/rawwaves/");
-    stk::ModalBar stk_bar;
-    stk_bar.setPreset(1);  // STK's "Vibraphone"-style presets: 0 marimba, 1 vibraphone, ...
-    voice.push_back({"peer: STK ModalBar (4 modes + strike sample)",
-                     median_ns_per_unit(runs, n, [&] {
-                       stk_bar.noteOn(523.25, 0.8);
-                       double acc = 0;
-                       for (int i = 0; i < n; ++i) acc += stk_bar.tick();
-                       g_sink = acc;
-                     }),
-                     "libstk " });
-  }
-#else
-  voice.push_back({"peer: STK ModalBar", 0, "not built (install libstk-dev and stk)"});
-#endif
-  {
-    const int notes = 16;
-    audio::FluidSynthRoute route(AppConfig{}.audio.soundfont, fs, {13, 9});
-    std::vector<double> buf(64);
-    const double per_voice_frame = median_ns_per_unit(runs, double(n) * notes, [&] {
-      for (int k = 0; k < notes; ++k) route.note_on(k % 2, 72 + k, 1.5);
-      for (int i = 0; i < n; i += 64) route.render(buf.data(), 64);
-      g_sink = buf[0];
-    });
-    voice.push_back({"peer: FluidSynth (16 notes, per voice-frame)", per_voice_frame, "TimGM6mb"});
-  }
+                     modal_bar_ns(p, 523.25, n, fs, runs), ""});
+  if (const std::optional<double> stk = stk_modal_bar_ns(n, fs, runs))
+    voice.push_back({"peer: STK ModalBar (4 modes + strike sample)", *stk, "libstk "});
+  else
+    voice.push_back({"peer: STK ModalBar", 0, "not built (install libstk-dev and stk)"});
+  voice.push_back(
+      {"peer: FluidSynth (16 notes, per voice-frame)", fluidsynth_ns_per_voice_frame(n, fs, runs), "TimGM6mb"});
   print_rows("Cost of one voice at 48 kHz (median of 7 runs)", "ns/sample", voice);
 
   // The engine with many voices: the share of one core a 64-frame callback takes.

@@ -14,6 +14,8 @@
 
 namespace mallet::app::latency {
 
+void CloseDisplay::operator()(Display* display) const { XCloseDisplay(display); }
+
 namespace {
 
 //! Xlib's default error handler exits the process; a refused request (a window that just
@@ -80,31 +82,27 @@ VirtualDisplay::VirtualDisplay(int width, int height) {
 
 FakePointer::FakePointer(const std::string& display) : display_(open_display(display)) {
   int event = 0, error = 0, major = 0, minor = 0;
-  if (!XTestQueryExtension(display_, &event, &error, &major, &minor)) {
-    XCloseDisplay(display_);
+  if (!XTestQueryExtension(display_.get(), &event, &error, &major, &minor))
     throw std::runtime_error("the X server " + display + " has no XTEST extension");
-  }
 }
 
-FakePointer::~FakePointer() { XCloseDisplay(display_); }
-
 std::optional<PixelBox> FakePointer::find_window(int width, int height) {
-  const Window root = DefaultRootWindow(display_);
+  const Window root = DefaultRootWindow(display_.get());
   Window root_ret = 0, parent = 0, *children = nullptr;
   unsigned int n = 0;
-  if (!XQueryTree(display_, root, &root_ret, &parent, &children, &n)) return std::nullopt;
+  if (!XQueryTree(display_.get(), root, &root_ret, &parent, &children, &n)) return std::nullopt;
   std::optional<PixelBox> found;
   for (unsigned int i = 0; i < n && !found; ++i) {
     XWindowAttributes a;
-    if (!XGetWindowAttributes(display_, children[i], &a)) continue;
+    if (!XGetWindowAttributes(display_.get(), children[i], &a)) continue;
     if (a.map_state != IsViewable || a.width != width || a.height != height) continue;
     int x = 0, y = 0;
     Window child = 0;
-    XTranslateCoordinates(display_, children[i], root, 0, 0, &x, &y, &child);
+    XTranslateCoordinates(display_.get(), children[i], root, 0, 0, &x, &y, &child);
     if (x != 0 || y != 0) {  // no window manager here: we may place it ourselves
-      XMoveWindow(display_, children[i], 0, 0);
-      XSync(display_, False);
-      XTranslateCoordinates(display_, children[i], root, 0, 0, &x, &y, &child);
+      XMoveWindow(display_.get(), children[i], 0, 0);
+      XSync(display_.get(), False);
+      XTranslateCoordinates(display_.get(), children[i], root, 0, 0, &x, &y, &child);
     }
     found = PixelBox{x, y, a.width, a.height};
   }
@@ -113,17 +111,17 @@ std::optional<PixelBox> FakePointer::find_window(int width, int height) {
 }
 
 Nanos FakePointer::move_to(int x, int y) {
-  XTestFakeMotionEvent(display_, -1, x, y, CurrentTime);
-  XFlush(display_);
+  XTestFakeMotionEvent(display_.get(), -1, x, y, CurrentTime);
+  XFlush(display_.get());
   return monotonic_now();
 }
 
 ScreenReader::ScreenReader(const std::string& display) : display_(open_display(display)) {}
-ScreenReader::~ScreenReader() { XCloseDisplay(display_); }
 
 bool ScreenReader::grab(const PixelBox& box, Grab& out) {
   out.sent = monotonic_now();
-  XImage* image = XGetImage(display_, DefaultRootWindow(display_), box.x, box.y, static_cast<unsigned>(box.width),
+  Display* d = display_.get();
+  XImage* image = XGetImage(d, DefaultRootWindow(d), box.x, box.y, static_cast<unsigned>(box.width),
                             static_cast<unsigned>(box.height), AllPlanes, ZPixmap);
   out.received = monotonic_now();
   if (!image) return false;

@@ -22,6 +22,13 @@ typedef struct _XDisplay Display;  // Xlib's, without its macros in every includ
 
 namespace mallet::app::latency {
 
+//! A connection to the X server of the bench's own, closed when its owner goes (also when
+//! the owner's constructor throws after opening it).
+struct CloseDisplay {
+  void operator()(Display* display) const;
+};
+using DisplayConnection = std::unique_ptr<Display, CloseDisplay>;
+
 //! Xvfb on a free display number (-displayfd), one screen of the given size, no TCP.
 class VirtualDisplay {
  public:
@@ -44,9 +51,6 @@ struct PixelBox {
 class FakePointer {
  public:
   explicit FakePointer(const std::string& display);
-  ~FakePointer();
-  FakePointer(const FakePointer&) = delete;
-  FakePointer& operator=(const FakePointer&) = delete;
 
   //! The viewable top-level window of this size (the kiosk's), moved to the screen's
   //! origin if it is not there; its box in screen pixels. Nothing when there is none.
@@ -55,7 +59,7 @@ class FakePointer {
   Nanos move_to(int x, int y);
 
  private:
-  Display* display_ = nullptr;
+  DisplayConnection display_;
 };
 
 //! One strip of the screen grabbed: the time the request went out, the time the reply
@@ -69,14 +73,11 @@ struct Grab {
 class ScreenReader {
  public:
   explicit ScreenReader(const std::string& display);
-  ~ScreenReader();
-  ScreenReader(const ScreenReader&) = delete;
-  ScreenReader& operator=(const ScreenReader&) = delete;
   //! False when the server refused (the box is off the screen).
   bool grab(const PixelBox& box, Grab& out);
 
  private:
-  Display* display_ = nullptr;
+  DisplayConnection display_;
 };
 
 //! Where the mallet head (the white sphere) is in a strip: the lowest row, in screen

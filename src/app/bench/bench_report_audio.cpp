@@ -2,7 +2,6 @@
 // block size, schedule-ahead) its cost against its error, measured against long-double
 // references; and the peers (STK's ModalBar, FluidSynth) in the same run.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "audio/audio_setup.hpp"
 #include "app/bench/bench_report.hpp"
 #include "app/bench/first_sample_latency.hpp"
+#include "app/bench/voice_cost.hpp"
 #include "app/bench/exact_reference.hpp"
 #include "audio/damped_oscillator.hpp"
 #include "audio/denormals.hpp"
@@ -24,30 +24,12 @@
 #include "core/quality.hpp"
 #include "core/vibration.hpp"
 
-#ifdef MALLET_HAVE_STK
-#include <stk/ModalBar.h>
-#include <stk/Stk.h>
-
 #include <fmt/format.h>
-#endif
 
 namespace mallet::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr int kFs = 48000;
-volatile double g_sink;
-
-double median_ns_per_unit(int runs, double units, const std::function<void()>& body) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    const auto a = Clock::now();
-    body();
-    t.push_back(std::chrono::duration<double, std::nano>(Clock::now() - a).count() / units);
-  }
-  std::nth_element(t.begin(), t.begin() + static_cast<long>(t.size() / 2), t.end());
-  return t[t.size() / 2];
-}
 
 //! The note's reference over n samples at kFs (exact_reference.hpp).
 std::vector<long double> note_reference(const ModalPreset& p, double f0, double v, int n) {
@@ -107,22 +89,13 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     std::vector<double> x(static_cast<std::size_t>(m));
     for (int i = 0; i < m; ++i) x[static_cast<std::size_t>(i)] = decaying_sine_unit_seconds(metal, i / double(kFs));
     const double direct_err = max_err(x);
-    const double direct_ns = median_ns_per_unit(runs, n, [&] {
-      double acc = 0;
-      for (int i = 0; i < n; ++i) acc += decaying_sine_unit_seconds(metal, i / double(kFs));
-      g_sink = acc;
-    });
+    const double direct_ns = direct_eq1_ns(metal, n, kFs, runs);
     audio::DampedOscillator osc;
     osc.start(1.0, 90.0, 300.0, 0.0, kFs);
     std::fill(x.begin(), x.end(), 0.0);
     osc.add_to(x.data(), m);
     const double rot_err = max_err(x);
-    const double rot_ns = median_ns_per_unit(runs, n, [&] {
-      osc.start(1.0, 0.0, 300.0, 0.0, kFs);
-      std::vector<double> buf(64);
-      for (int i = 0; i < n; i += 64) osc.add_to(buf.data(), 64);
-      g_sink = buf[7];
-    });
+    const double rot_ns = rotator_ns(300.0, n, kFs, runs);
     // A float two-pole resonator y[n] = 2r·cos(ω)·y[n−1] − r²·y[n−2] (the classic cheap way).
     auto resonator = [&](int count, double* into) {
       const float r = static_cast<float>(std::exp(-90.0 / kFs)), w = static_cast<float>(2 * std::numbers::pi * 300.0 / kFs);
@@ -143,7 +116,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     const double res_ns = median_ns_per_unit(runs, n, [&] {
       audio::ScopedFlushDenormals ftz;  // as on the audio thread: its decay goes subnormal after ≈1 s
       resonator(n, res_buf.data());
-      g_sink = res_buf[static_cast<std::size_t>(n - 1)];
+      keep(res_buf[static_cast<std::size_t>(n - 1)]);
     });
     t.points.push_back({"exp + sin per sample (double)", direct_ns, direct_err, "", "Eq. 1 evaluated directly"});
     t.points.push_back({"re-seeded double rotator", rot_ns, rot_err, "fast balanced exact", "the engine's DampedOscillator"});
@@ -178,12 +151,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
       voice.add_to(x.data(), m);
       double err = 0;
       for (int i = 0; i < m; ++i) err = std::max(err, std::fabs(x[static_cast<std::size_t>(i)] - static_cast<double>(ref[static_cast<std::size_t>(i)])));
-      const double ns = median_ns_per_unit(runs, n, [&] {
-        voice.strike(p, 523.25, 1.5, 0.0, kFs);
-        std::vector<double> buf(64);
-        for (int i = 0; i < n; i += 64) voice.add_to(buf.data(), 64);
-        g_sink = buf[7];
-      });
+      const double ns = modal_bar_ns(p, 523.25, n, kFs, runs);
       const std::string presets = presets_where(
           [&](const QualityKnobs& q) { return k == std::min<int>(q.max_modes, static_cast<int>(glock->modes.size())); });
       t.points.push_back({std::to_string(k) + (k == 1 ? " mode" : " modes"), ns, std::max(err, 1e-16), presets, ""});
@@ -198,42 +166,16 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     TextTable peers{"Synthesis peers, same process, same run (ratios are the headline)",
                     {"voice", "ns per sample", "× ours"}, {}, ""};
     ModalPreset p = *glock;
-    audio::ModalBarVoice voice;
-    const double ours = median_ns_per_unit(runs, n, [&] {
-      voice.strike(p, 523.25, 1.5, 0.0, kFs);
-      std::vector<double> buf(64);
-      for (int i = 0; i < n; i += 64) voice.add_to(buf.data(), 64);
-      g_sink = buf[7];
-    });
+    const double ours = modal_bar_ns(p, 523.25, n, kFs, runs);
     peers.rows.push_back({"ours: modal bar voice, " + p.name + " (" + std::to_string(p.modes.size()) + " modes)",
                           fmt::format("{:.2f}", ours), "1.00"});
-#ifdef MALLET_HAVE_STK
-    {
-      stk::Stk::setSampleRate(kFs);
-      stk::Stk::setRawwavePath("/usr/share/stk/rawwaves/");
-      stk::ModalBar bar;
-      bar.setPreset(1);
-      const double ns = median_ns_per_unit(runs, n, [&] {
-        bar.noteOn(523.25, 0.8);
-        double acc = 0;
-        for (int i = 0; i < n; ++i) acc += bar.tick();
-        g_sink = acc;
-      });
+    if (const std::optional<double> ns = stk_modal_bar_ns(n, kFs, runs))
       peers.rows.push_back(
-          {"STK ModalBar (4 modes + strike sample)", fmt::format("{:.2f}", ns), fmt::format("{:.2f}", ns / ours)});
-    }
-#else
-    out.skipped.push_back("STK ModalBar: not built (install libstk-dev and stk)");
-#endif
+          {"STK ModalBar (4 modes + strike sample)", fmt::format("{:.2f}", *ns), fmt::format("{:.2f}", *ns / ours)});
+    else
+      out.skipped.push_back("STK ModalBar: not built (install libstk-dev and stk)");
     try {
-      const int notes = 16;
-      audio::FluidSynthRoute route(AppConfig{}.audio.soundfont, kFs, {13, 9});
-      std::vector<double> buf(64);
-      const double ns = median_ns_per_unit(runs, double(n) * notes, [&] {
-        for (int k = 0; k < notes; ++k) route.note_on(k % 2, 72 + k, 1.5);
-        for (int i = 0; i < n; i += 64) route.render(buf.data(), 64);
-        g_sink = buf[0];
-      });
+      const double ns = fluidsynth_ns_per_voice_frame(n, kFs, runs);
       peers.rows.push_back({"FluidSynth, per voice-frame (16 notes, TimGM6mb)", fmt::format("{:.2f}", ns),
                             fmt::format("{:.2f}", ns / ours)});
     } catch (const std::exception& e) {
@@ -248,12 +190,7 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
       audio::ModalBarVoice high;
       high.strike(p, note_hz, 1.5, 0.0, kFs);
       const int sounding = high.active_modes();
-      const double ns = median_ns_per_unit(runs, n, [&] {
-        high.strike(p, note_hz, 1.5, 0.0, kFs);
-        std::vector<double> buf(64);
-        for (int i = 0; i < n; i += 64) high.add_to(buf.data(), 64);
-        g_sink = buf[7];
-      });
+      const double ns = modal_bar_ns(p, note_hz, n, kFs, runs);
       band.rows.push_back({fmt::format("{:.1f} Hz", note_hz),
                            std::to_string(sounding) + " of " + std::to_string(p.modes.size()),
                            fmt::format("{:.2f}", ns)});
