@@ -31,6 +31,8 @@ Run `mallet <command> --help` for each command's options and file formats.)");
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::RuntimeError& e) {  // a command's own status (finish_with): it said why
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;
@@ -41,8 +43,6 @@ Run `mallet <command> --help` for each command's options and file formats.)");
     std::fprintf(stderr, "mallet: %s\n", e.what());
     return 1;
   }
-  const int status = mallet::app::exit_status();
-  if (status == 0)
-    for (const std::string& line : mallet::app::lines_when_done()) std::fprintf(stderr, "%s\n", line.c_str());
-  return status;
+  for (const std::string& line : mallet::app::lines_when_done()) std::fprintf(stderr, "%s\n", line.c_str());
+  return 0;
 }

@@ -365,20 +365,12 @@ int PortAudioOutput::render(void* output, unsigned long frames, unsigned long st
   return paContinue;
 }
 
-bool PortAudioOutput::stream_lost_locked(std::string& why) {
+Check PortAudioOutput::stream_alive_locked() {
   auto* stream = static_cast<PaStream*>(stream_);
-  if (!stream) {
-    why = "no stream";
-    return true;
-  }
-  if (stream_finished_.load(std::memory_order_relaxed)) {
-    why = "the stream ended";
-    return true;
-  }
-  if (const PaError active = Pa_IsStreamActive(stream); active != 1) {
-    why = active == 0 ? "the stream stopped" : error_text(active);
-    return true;
-  }
+  if (!stream) return refused("no stream");
+  if (stream_finished_.load(std::memory_order_relaxed)) return refused("the stream ended");
+  if (const PaError active = Pa_IsStreamActive(stream); active != 1)
+    return refused(active == 0 ? "the stream stopped" : error_text(active));
   const auto now = std::chrono::steady_clock::now();
   const std::uint64_t callbacks = callbacks_.load(std::memory_order_relaxed);
   const auto stall = std::max<std::chrono::steady_clock::duration>(
@@ -388,11 +380,11 @@ bool PortAudioOutput::stream_lost_locked(std::string& why) {
     watched_callbacks_ = callbacks;
     last_progress_ = now;
   } else if (now - last_progress_ > stall) {
-    why = "no audio callback for " +
-          std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now - last_progress_).count()) + " ms";
-    return true;
+    return refused("no audio callback for " +
+                   std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now - last_progress_).count()) +
+                   " ms");
   }
-  return false;
+  return {};
 }
 
 // While the device is gone the engine still consumes impacts and lets voices decay, at
@@ -426,23 +418,22 @@ void PortAudioOutput::supervise() {
     const auto now = Clock::now();
 
     if (!lost) {
-      std::string why;
-      bool gone = false;
+      Check alive;
       std::string name;
       {
         std::lock_guard lock(pa_mutex());
-        gone = stream_lost_locked(why);
+        alive = stream_alive_locked();
         name = device_.name;
-        if (gone) close_locked(true);  // joins the audio thread: the engine is ours now
+        if (!alive) close_locked(true);  // joins the audio thread: the engine is ours now
       }
-      if (gone) {
+      if (!alive) {
         lost = true;
         retry_failure_logged = false;
         attempts = 0;
         device_ok_.store(false, std::memory_order_relaxed);
         losses_.fetch_add(1, std::memory_order_relaxed);
         journal::warning("audio: output \"{}\" lost ({}); running silent, retrying to open \"{}\"", name.c_str(),
-                         why.c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
+                         alive.error().c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
         backoff = options_.first_retry;
         retry_at = now + backoff;
         silent_since = now;

@@ -60,6 +60,7 @@
 
 #include "audio/engine.hpp"
 #include "core/app_config.hpp"
+#include "core/result.hpp"
 
 namespace mallet::audio {
 
@@ -156,7 +157,8 @@ class PortAudioOutput {
 
   void supervise();
   void render_silent(std::int64_t frames);
-  bool stream_lost_locked(std::string& why);
+  //! Passes while the stream plays; else fails with why it was lost.
+  Check stream_alive_locked();
 
   AudioEngine& engine_;
   AudioConfig config_;

@@ -29,26 +29,26 @@ std::optional<double> screen_error_px(const Homography& h, Vec2 camera, Vec2 tar
 
 }  // namespace
 
-std::string validate(const CalibrationSessionConfig& c) {
+Check validate(const CalibrationSessionConfig& c) {
   auto seconds_ok = [](double s) { return std::isfinite(s) && s > 0 && from_seconds(s).has_value(); };
   auto px_ok = [](double v) { return std::isfinite(v) && v > 0; };
-  if (c.columns < 2) return "columns must be >= 2";
-  if (c.rows < 2) return "rows must be >= 2";
-  if (!(c.margin_x >= 0 && c.margin_x < 0.5)) return "margin_x must be >= 0 and < 0.5";
-  if (!(c.margin_y >= 0 && c.margin_y < 0.5)) return "margin_y must be >= 0 and < 0.5";
-  if (!seconds_ok(c.dwell_s)) return "dwell_s must be a finite number of seconds > 0";
-  if (!px_ok(c.dwell_radius_camera_px)) return "dwell_radius_camera_px must be a finite number > 0";
-  if (!px_ok(c.max_std_dev_camera_px)) return "max_std_dev_camera_px must be a finite number > 0";
-  if (!seconds_ok(c.max_gap_s)) return "max_gap_s must be a finite number of seconds > 0";
-  if (c.min_dwell_samples < 1) return "min_dwell_samples must be >= 1";
+  if (c.columns < 2) return refused("columns must be >= 2");
+  if (c.rows < 2) return refused("rows must be >= 2");
+  if (!(c.margin_x >= 0 && c.margin_x < 0.5)) return refused("margin_x must be >= 0 and < 0.5");
+  if (!(c.margin_y >= 0 && c.margin_y < 0.5)) return refused("margin_y must be >= 0 and < 0.5");
+  if (!seconds_ok(c.dwell_s)) return refused("dwell_s must be a finite number of seconds > 0");
+  if (!px_ok(c.dwell_radius_camera_px)) return refused("dwell_radius_camera_px must be a finite number > 0");
+  if (!px_ok(c.max_std_dev_camera_px)) return refused("max_std_dev_camera_px must be a finite number > 0");
+  if (!seconds_ok(c.max_gap_s)) return refused("max_gap_s must be a finite number of seconds > 0");
+  if (c.min_dwell_samples < 1) return refused("min_dwell_samples must be >= 1");
   if (!(std::isfinite(c.settle_s) && c.settle_s >= 0 && from_seconds(c.settle_s).has_value()))
-    return "settle_s must be a finite number of seconds >= 0";
+    return refused("settle_s must be a finite number of seconds >= 0");
   if (!(std::isfinite(c.min_separation_camera_px) && c.min_separation_camera_px >= 0))
-    return "min_separation_camera_px must be a finite number >= 0";
-  if (!px_ok(c.max_error_screen_px)) return "max_error_screen_px must be a finite number > 0";
-  if (c.repeat_worst < 1) return "repeat_worst must be >= 1";
-  if (c.max_repeat_rounds < 0) return "max_repeat_rounds must be >= 0";
-  if (!px_ok(c.screen.width_px) || !px_ok(c.screen.height_px)) return "screen size must be > 0";
+    return refused("min_separation_camera_px must be a finite number >= 0");
+  if (!px_ok(c.max_error_screen_px)) return refused("max_error_screen_px must be a finite number > 0");
+  if (c.repeat_worst < 1) return refused("repeat_worst must be >= 1");
+  if (c.max_repeat_rounds < 0) return refused("max_repeat_rounds must be >= 0");
+  if (!px_ok(c.screen.width_px) || !px_ok(c.screen.height_px)) return refused("screen size must be > 0");
   return {};
 }
 
@@ -68,7 +68,7 @@ CalibrationSession::CalibrationSession(CalibrationSessionConfig config)
 
 CalibrationSession::CalibrationSession(CalibrationSessionConfig config, std::vector<Vec2> targets)
     : config_(config), targets_(std::move(targets)) {
-  if (const std::string problem = validate(config_); !problem.empty()) throw std::invalid_argument(problem);
+  if (const Check problem = validate(config_); !problem) throw std::invalid_argument(problem.error());
   if (targets_.size() < 4) throw std::invalid_argument("a calibration needs at least 4 targets");
   if (!std::all_of(targets_.begin(), targets_.end(), finite))
     throw std::invalid_argument("calibration targets must be finite");

@@ -47,6 +47,7 @@
 #include "core/enum_names.hpp"
 #include "core/geometry.hpp"
 #include "core/homography.hpp"
+#include "core/result.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
@@ -77,8 +78,8 @@ struct CalibrationSessionConfig {
   ScreenSize screen;                       //!< the screen the errors are measured on
 };
 
-//! Empty when `config` is usable; otherwise one line naming the bad key and why.
-std::string validate(const CalibrationSessionConfig& config);
+//! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
+Check validate(const CalibrationSessionConfig& config);
 
 //! The config's target grid, reading order, normalised screen coordinates.
 std::vector<Vec2> calibration_grid(const CalibrationSessionConfig& config);
@@ -117,7 +118,7 @@ class CalibrationSession {
     std::uint64_t rounds_rejected = 0;
   };
 
-  //! Throws std::invalid_argument when validate(config) is not empty, or (second form) when
+  //! Throws std::invalid_argument when validate(config) fails, or (second form) when
   //! fewer than 4 targets are given or one is not finite.
   explicit CalibrationSession(CalibrationSessionConfig config = {});
   CalibrationSession(CalibrationSessionConfig config, std::vector<Vec2> targets);

@@ -26,6 +26,7 @@
 
 #include "core/enum_names.hpp"
 #include "core/ir_dot.hpp"
+#include "core/result.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
@@ -39,8 +40,8 @@ struct IrTrackerConfig {
   double lost_after_ms = 150.0;    //!< no accepted dot for this long = tracking lost
 };
 
-//! Empty when `config` is usable; otherwise one line naming the bad key and why.
-std::string validate(const IrTrackerConfig& config);
+//! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
+Check validate(const IrTrackerConfig& config);
 
 //! The tracked LED in raw camera coordinates.
 struct IrPoint {
@@ -83,7 +84,7 @@ class IrTracker {
     std::uint64_t regained = 0;
   };
 
-  //! Throws std::invalid_argument when validate(config) is not empty.
+  //! Throws std::invalid_argument when validate(config) fails.
   explicit IrTracker(IrTrackerConfig config = {});
 
   IrTrackerUpdate update(const IrFrame& frame);

@@ -14,13 +14,13 @@ bool positive_seconds(double s) { return std::isfinite(s) && s > 0 && from_secon
 
 }  // namespace
 
-std::string validate(const KioskStatesConfig& c) {
-  if (!positive_seconds(c.idle_after_s)) return "idle_after_s must be a finite number of seconds > 0";
+Check validate(const KioskStatesConfig& c) {
+  if (!positive_seconds(c.idle_after_s)) return refused("idle_after_s must be a finite number of seconds > 0");
   if (!std::isfinite(c.dead_band_screen_units) || c.dead_band_screen_units < 0)
-    return "dead_band_screen_units must be a finite number >= 0";
+    return refused("dead_band_screen_units must be a finite number >= 0");
   if (!std::isfinite(c.lost_hint_after_s) || c.lost_hint_after_s < 0 || !from_seconds(c.lost_hint_after_s))
-    return "lost_hint_after_s must be a finite number of seconds >= 0";
-  if (!positive_seconds(c.close_notice_s)) return "close_notice_s must be a finite number of seconds > 0";
+    return refused("lost_hint_after_s must be a finite number of seconds >= 0");
+  if (!positive_seconds(c.close_notice_s)) return refused("close_notice_s must be a finite number of seconds > 0");
   return {};
 }
 
@@ -41,7 +41,7 @@ std::string_view hint_text(KioskHint hint, SceneKind scene) {
 }
 
 KioskStates::KioskStates(KioskStatesConfig config, Nanos now_ns) : config_(config) {
-  if (const std::string problem = validate(config_); !problem.empty()) throw std::invalid_argument(problem);
+  if (const Check problem = validate(config_); !problem) throw std::invalid_argument(problem.error());
   idle_after_ns_ = *from_seconds(config_.idle_after_s);
   lost_hint_ns_ = *from_seconds(config_.lost_hint_after_s);
   close_notice_ns_ = *from_seconds(config_.close_notice_s);

@@ -41,6 +41,7 @@
 
 #include "core/enum_names.hpp"
 #include "core/geometry.hpp"
+#include "core/result.hpp"
 #include "core/scene.hpp"
 #include "core/time.hpp"
 
@@ -56,8 +57,8 @@ struct KioskStatesConfig {
   double close_notice_s = 4.0;     //!< how long a refused window close shows its notice
 };
 
-//! Empty when `config` is usable; otherwise one line naming the bad key and why.
-std::string validate(const KioskStatesConfig& config);
+//! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
+Check validate(const KioskStatesConfig& config);
 
 enum class KioskState { attract, play, calibration, operator_page };
 inline constexpr EnumNames<KioskState, 4> kKioskStateNames{{
@@ -85,7 +86,7 @@ std::string_view hint_text(KioskHint hint, SceneKind scene = SceneKind::percussi
 
 class KioskStates {
  public:
-  //! Starts in Attract at `now_ns`. Throws std::invalid_argument when validate(config) is not empty.
+  //! Starts in Attract at `now_ns`. Throws std::invalid_argument when validate(config) fails.
   explicit KioskStates(KioskStatesConfig config = {}, Nanos now_ns = 0);
 
   // Events. Each returns whether the state changed.

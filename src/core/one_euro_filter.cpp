@@ -6,11 +6,11 @@
 
 namespace mallet {
 
-std::string validate(const OneEuroConfig& c) {
+Check validate(const OneEuroConfig& c) {
   if (!std::isfinite(c.min_cutoff_hz) || !(c.min_cutoff_hz > 0))
-    return "min_cutoff_hz must be a finite number > 0";
-  if (!std::isfinite(c.beta_per_m) || c.beta_per_m < 0) return "beta_per_m must be a finite number >= 0";
-  if (!std::isfinite(c.d_cutoff_hz) || !(c.d_cutoff_hz > 0)) return "d_cutoff_hz must be a finite number > 0";
+    return refused("min_cutoff_hz must be a finite number > 0");
+  if (!std::isfinite(c.beta_per_m) || c.beta_per_m < 0) return refused("beta_per_m must be a finite number >= 0");
+  if (!std::isfinite(c.d_cutoff_hz) || !(c.d_cutoff_hz > 0)) return refused("d_cutoff_hz must be a finite number > 0");
   return {};
 }
 
@@ -20,7 +20,7 @@ double one_euro_alpha(double cutoff_hz, double dt_s) {
 }
 
 OneEuroFilter::OneEuroFilter(OneEuroConfig config) : config_(config) {
-  if (std::string why = validate(config_); !why.empty()) throw std::invalid_argument("1€ filter: " + why);
+  if (const Check why = validate(config_); !why) throw std::invalid_argument("1€ filter: " + why.error());
 }
 
 void OneEuroFilter::reset() {

@@ -32,6 +32,7 @@
 
 #include "core/geometry.hpp"
 #include "core/pointer_sample.hpp"
+#include "core/result.hpp"
 #include "core/time.hpp"
 
 namespace mallet {
@@ -45,14 +46,14 @@ struct OneEuroConfig {
   bool derivative_from_raw = false;  //!< speed from the raw previous sample (C++ reference)
 };
 
-//! Empty when `config` is usable; otherwise one line naming the bad key and why.
-std::string validate(const OneEuroConfig& config);
+//! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
+Check validate(const OneEuroConfig& config);
 
 class OneEuroFilter {
  public:
   using Counters = SampleCounters;
 
-  //! Throws std::invalid_argument when validate(config) is not empty.
+  //! Throws std::invalid_argument when validate(config) fails.
   explicit OneEuroFilter(OneEuroConfig config = {});
 
   //! Feeds a raw sample; returns the filtered position (the last one if this sample was

@@ -17,14 +17,14 @@ std::string percent(double fraction) { return std::to_string(static_cast<int>(st
 
 }  // namespace
 
-std::string validate(const SensitivityTunerConfig& c) {
-  if (c.settle_frames < 0) return "settle_frames must be >= 0";
-  if (c.frames_per_preset < 1) return "frames_per_preset must be >= 1";
-  if (!(c.min_seen_fraction > 0 && c.min_seen_fraction <= 1)) return "min_seen_fraction must be > 0 and <= 1";
+Check validate(const SensitivityTunerConfig& c) {
+  if (c.settle_frames < 0) return refused("settle_frames must be >= 0");
+  if (c.frames_per_preset < 1) return refused("frames_per_preset must be >= 1");
+  if (!(c.min_seen_fraction > 0 && c.min_seen_fraction <= 1)) return refused("min_seen_fraction must be > 0 and <= 1");
   if (!(c.max_spurious_fraction >= 0 && c.max_spurious_fraction < 1))
-    return "max_spurious_fraction must be >= 0 and < 1";
+    return refused("max_spurious_fraction must be >= 0 and < 1");
   if (c.min_size < 0 || c.max_size > 15 || c.min_size > c.max_size)
-    return "min_size..max_size must be a range within 0..15";
+    return refused("min_size..max_size must be a range within 0..15");
   return {};
 }
 
@@ -69,7 +69,7 @@ SensitivityVerdict judge(const SensitivityObservation& o, const SensitivityTuner
 }
 
 SensitivityTuner::SensitivityTuner(SensitivityTunerConfig config) : config_(config) {
-  if (const std::string problem = validate(config_); !problem.empty()) throw std::invalid_argument(problem);
+  if (const Check problem = validate(config_); !problem) throw std::invalid_argument(problem.error());
 }
 
 std::string_view SensitivityTuner::preset() const {

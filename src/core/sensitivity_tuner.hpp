@@ -22,6 +22,7 @@
 
 #include "core/ir_camera_settings.hpp"
 #include "core/ir_dot.hpp"
+#include "core/result.hpp"
 
 namespace mallet {
 
@@ -34,8 +35,8 @@ struct SensitivityTunerConfig {
   int max_size = 8;
 };
 
-//! Empty when `config` is usable; otherwise one line naming the bad key and why.
-std::string validate(const SensitivityTunerConfig& config);
+//! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
+Check validate(const SensitivityTunerConfig& config);
 
 //! What one preset showed.
 struct SensitivityObservation {
@@ -70,7 +71,7 @@ class SensitivityTuner {
     SensitivityVerdict verdict;
   };
 
-  //! Throws std::invalid_argument when validate(config) is not empty.
+  //! Throws std::invalid_argument when validate(config) fails.
   explicit SensitivityTuner(SensitivityTunerConfig config = {});
 
   //! One IR frame reported while the camera ran preset().

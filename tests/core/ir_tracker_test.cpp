@@ -177,14 +177,14 @@ TEST(IrTracker, SurvivesEmptyAndGarbageSlots) {
 }
 
 TEST(IrTracker, BadConfigIsRefused) {
-  EXPECT_TRUE(validate(IrTrackerConfig{}).empty());
+  EXPECT_TRUE(validate(IrTrackerConfig{}));
   IrTrackerConfig c;
   c.reacquire_after_frames = 0;
-  EXPECT_FALSE(validate(c).empty());
+  EXPECT_FALSE(validate(c));
   EXPECT_THROW(IrTracker{c}, std::invalid_argument);
   c = {};
   c.max_speed_px_per_s = -1;
-  EXPECT_FALSE(validate(c).empty());
+  EXPECT_FALSE(validate(c));
 }
 
 }  // namespace

@@ -137,10 +137,10 @@ TEST(OneEuroFilter, ResetForgetsTheState) {
 }
 
 TEST(OneEuroFilter, BadConfigIsRefused) {
-  EXPECT_TRUE(validate(OneEuroConfig{}).empty());
-  EXPECT_FALSE(validate(OneEuroConfig{0.0, 1.0, 1.0}).empty());
-  EXPECT_FALSE(validate(OneEuroConfig{1.0, -1.0, 1.0}).empty());
-  EXPECT_FALSE(validate(OneEuroConfig{1.0, 1.0, std::nan("")}).empty());
+  EXPECT_TRUE(validate(OneEuroConfig{}));
+  EXPECT_FALSE(validate(OneEuroConfig{0.0, 1.0, 1.0}));
+  EXPECT_FALSE(validate(OneEuroConfig{1.0, -1.0, 1.0}));
+  EXPECT_FALSE(validate(OneEuroConfig{1.0, 1.0, std::nan("")}));
   EXPECT_THROW(OneEuroFilter(OneEuroConfig{-1.0, 0.0, 1.0}), std::invalid_argument);
 }
 

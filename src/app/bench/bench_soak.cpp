@@ -386,7 +386,7 @@ end; 1 otherwise, or when a server or the kiosk cannot run here. Ctrl+C ends it 
       ->capture_default_str()
       ->check(CLI::Range(5.0, 3600.0));
   cmd->add_option("--device", o->device, "The kiosk's Vulkan device (substring of its name; default: its own choice)");
-  cmd->callback([o] { set_exit_status(soak::run_bench_soak(*o)); });
+  cmd->callback([o] { finish_with(soak::run_bench_soak(*o)); });
 }
 
 }  // namespace mallet::app

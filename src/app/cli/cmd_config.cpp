@@ -34,7 +34,7 @@ Exit status: 0; 2 when the settings file or a drop-in was refused.)");
     const config::LoadedSettings s = operator_settings(o->config, o->config_dir);
     for (const std::string& r : s.refused) std::fprintf(stderr, "mallet config show: refused: %s\n", r.c_str());
     std::fputs(config::show_settings(s).c_str(), stdout);
-    if (!s.refused.empty()) set_exit_status(2);
+    if (!s.refused.empty()) finish_with(2);
   });
 }
 

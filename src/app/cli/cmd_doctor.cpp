@@ -41,7 +41,7 @@ Exit status: 0 when no check fails, 1 otherwise.)");
     } else {
       for (const DoctorCheck& c : checks) std::printf("%s\n", format_check(c).c_str());
     }
-    set_exit_status(doctor_exit_status(checks));
+    finish_with(doctor_exit_status(checks));
   });
 }
 

@@ -101,7 +101,7 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   if (ctx.validation_messages() > 0) {
     std::fprintf(stderr, "error: %llu Vulkan validation message(s); first: %s\n",
                  static_cast<unsigned long long>(ctx.validation_messages()), ctx.first_validation_message().c_str());
-    set_exit_status(1);
+    finish_with(1);
   }
 }
 
@@ -158,7 +158,7 @@ void run_render(const RenderCliOptions& o) {
     std::fprintf(stderr, "error: %llu Vulkan validation message(s); first: %s\n",
                  static_cast<unsigned long long>(renderer.context().validation_messages()),
                  renderer.context().first_validation_message().c_str());
-    set_exit_status(1);
+    finish_with(1);
   }
 }
 

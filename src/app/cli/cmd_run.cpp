@@ -69,7 +69,7 @@ and DIR/log.txt (one line per strike), then exits 0.)");
                 "frame budget saves; never on a kiosk)");
   cmd->add_option("--quit-after", o->quit_after_s, "With a display: quit after this many seconds (0 = never)")
       ->capture_default_str();
-  cmd->callback([o] { set_exit_status(run_kiosk(*o)); });
+  cmd->callback([o] { finish_with(run_kiosk(*o)); });
 }
 
 }  // namespace mallet::app

@@ -80,7 +80,7 @@ SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and ex
     } catch (const SimulateInterrupted& e) {
       // Stopped on request, nothing left behind: the shell's convention, 128 + the signal.
       std::fprintf(stderr, "mallet: %s\n", e.what());
-      set_exit_status(128 + e.signal());
+      finish_with(128 + e.signal());
       return;
     }
     const auto& c = r.counters;

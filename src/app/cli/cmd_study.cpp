@@ -271,7 +271,7 @@ incomplete last line (a crash while writing) is dropped with a warning naming FI
     if (windowed && r.stopped)
       std::printf("stopped before the end (Esc, Q or the window closed); run the same command to resume\n");
     for (const auto& p : r.written) std::printf("wrote %s\n", p.c_str());
-    if (r.validation_failed) set_exit_status(1);
+    if (r.validation_failed) finish_with(1);
   });
 }
 

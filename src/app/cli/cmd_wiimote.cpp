@@ -108,7 +108,7 @@ void run_monitor(const MonitorCli& cli) {
     throw CLI::ValidationError("--seconds", "must be >= 0 (0 = until Ctrl+C)");
   const AppConfig config = command_settings(cli.config, cli.config_dir, "wiimote monitor");
   if (cli.replay) {
-    set_exit_status(run_replay_monitor(*cli.replay, config.tracking, cli.options, stdout));
+    finish_with(run_replay_monitor(*cli.replay, config.tracking, cli.options, stdout));
     return;
   }
   wm::WiimoteDeviceConfig device_config = wm::device_config(config);
@@ -131,7 +131,7 @@ void run_monitor(const MonitorCli& cli) {
   }
   std::signal(SIGINT, previous_int);
   std::signal(SIGTERM, previous_term);
-  set_exit_status(status);
+  finish_with(status);
 }
 
 void add_monitor(CLI::App& wiimote) {

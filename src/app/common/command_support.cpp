@@ -9,12 +9,12 @@
 namespace mallet::app {
 
 namespace {
-int g_exit_status = 0;
 std::vector<std::string> g_when_done;
 }  // namespace
 
-int exit_status() { return g_exit_status; }
-void set_exit_status(int status) { g_exit_status = status; }
+void finish_with(int status) {
+  if (status != 0) throw CLI::RuntimeError(status);
+}
 CLI::Validator positive_at_most(double most) {
   const std::string hi = most > 0 ? fmt::format("{:g}", most) : "";
   const std::string want = most > 0 ? std::string("must be > 0 and at most ") + hi : "must be > 0";

@@ -1,6 +1,6 @@
 #pragma once
-// What every command of `mallet` shares, whichever product it runs: its exit status, the
-// line said once it has succeeded, and the flags' own checks beyond CLI11's.
+// What every command of `mallet` shares, whichever product it runs: how it ends with a
+// status, the line said once it has succeeded, and the flags' own checks beyond CLI11's.
 #include <string>
 #include <vector>
 
@@ -34,9 +34,10 @@ CLI::Option* add_choice(CLI::App& cmd, const std::string& flag, E& value, const 
       ->default_str(name_in(names, value));
 }
 
-//! The status the last command asked to exit with (0 unless it said otherwise).
-int exit_status();
-void set_exit_status(int status);
+//! Ends the running command with `status`; nothing when it is 0. It throws CLI11's own
+//! RuntimeError, which main turns into the process's exit status without a message of its
+//! own (the command has said why).
+void finish_with(int status);
 
 //! A line for stderr once the command has succeeded (which settings it used): said after
 //! its work, so that a command refusing bad input still says exactly one line.

@@ -25,14 +25,14 @@ void choose_mouse(KioskStage& stage, const InputDevices& devices) {
   mc.screen_height_px = static_cast<int>(devices.window.window->extent().height);
   input::evdev::EvdevOpenResult opened =
       input::evdev::EvdevMouse::open(in.mouse_device.empty() ? input::evdev::kAutoDevice : in.mouse_device, mc);
-  if (!opened.mouse) {
-    stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error + ")";
+  if (!opened) {
+    stage.mouse_line = "mouse: the window system's events, once a frame (evdev: " + opened.error() + ")";
     // Asked for by name: said as a warning; the window system's events keep the kiosk playable.
     if (in.mouse == "evdev")
-      journal::warning("[input] mouse = \"evdev\" could not be opened: {}", opened.error.c_str());
+      journal::warning("[input] mouse = \"evdev\" could not be opened: {}", opened.error().c_str());
     return;
   }
-  stage.evdev = std::move(opened.mouse);
+  stage.evdev = std::move(*opened);
   stage.mouse = std::make_unique<MousePointer>(stage.scene, stage.config, *stage.rig.engine,
                                                &devices.window.window->present_clock(), &devices.window.aspect);
   stage.mouse->on_strike = [t = stage.tally.get()](const Strike& s) { t->record(s.impact); };

@@ -62,35 +62,40 @@ std::string file_kind(mode_t mode) {
   return "not a character device";
 }
 
-struct NodeResult {
-  std::unique_ptr<EvdevNode> node;
-  std::string error;
+//! Why a node could not be read from: one line a person can act on.
+struct NodeError {
+  std::string message;
   bool unreadable = false;  //!< open() itself failed (permissions, a vanished node), not the kind of node
 };
+using NodeResult = Result<std::unique_ptr<EvdevNode>, NodeError>;
+
+tl::unexpected<NodeError> node_error(std::string message, bool unreadable = false) {
+  return tl::unexpected(NodeError{std::move(message), unreadable});
+}
 
 //! Opens `path` non-blocking (libevdev_next_event then answers -EAGAIN instead of waiting,
 //! and the thread waits in poll(), where stop() can wake it). Checks it is an evdev node.
 NodeResult open_evdev(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return {nullptr, open_error(path, errno), true};
+  if (fd < 0) return node_error(open_error(path, errno), true);
   struct stat st {};
   const bool stat_ok = ::fstat(fd, &st) == 0;
   if (!stat_ok || !S_ISCHR(st.st_mode)) {
     const std::string kind = stat_ok ? file_kind(st.st_mode) : errno_text(errno);
     ::close(fd);
-    return {nullptr, path + ": not an input event device (" + kind + "); give a /dev/input/event* node or \"auto\""};
+    return node_error(path + ": not an input event device (" + kind + "); give a /dev/input/event* node or \"auto\"");
   }
   libevdev* dev = nullptr;
   const int rc = libevdev_new_from_fd(fd, &dev);
   if (rc < 0) {
     ::close(fd);
-    return {nullptr, path + ": not an input event device (" + errno_text(-rc) + ")"};
+    return node_error(path + ": not an input event device (" + errno_text(-rc) + ")");
   }
   auto node = std::make_unique<EvdevNode>(fd, dev);
   node->info.path = path;
   const char* name = libevdev_get_name(dev);
   node->info.name = name ? name : "";
-  return {std::move(node), {}};
+  return node;
 }
 
 bool is_mouse(libevdev* dev) {
@@ -108,13 +113,13 @@ Nanos clock_now(clockid_t clock) {
 //! ABS_Y), stamped on CLOCK_MONOTONIC.
 NodeResult open_pointer(const std::string& path) {
   NodeResult result = open_evdev(path);
-  if (!result.node) return result;
-  EvdevNode& node = *result.node;
+  if (!result) return result;
+  EvdevNode& node = **result;
   libevdev* dev = node.dev();
   const bool relative = libevdev_has_event_code(dev, EV_REL, REL_X) && libevdev_has_event_code(dev, EV_REL, REL_Y);
   const bool absolute = libevdev_has_event_code(dev, EV_ABS, ABS_X) && libevdev_has_event_code(dev, EV_ABS, ABS_Y);
   if (!relative && !absolute) {
-    return {nullptr, path + " (" + node.info.name + "): not a pointer (it has neither REL_X + REL_Y nor ABS_X + ABS_Y)"};
+    return node_error(path + " (" + node.info.name + "): not a pointer (it has neither REL_X + REL_Y nor ABS_X + ABS_Y)");
   }
   node.absolute = !relative;
   if (absolute) {
@@ -146,7 +151,7 @@ NodeResult open_auto(const std::filesystem::path& dir) {
         error += "; is the user in the 'input' group?";
       }
     }
-    return {nullptr, error};
+    return node_error(error);
   }
   return open_pointer(scan.mice.front().path);
 }
@@ -188,28 +193,27 @@ MouseScan scan_mice(const std::filesystem::path& dir) {
   std::sort(nodes.begin(), nodes.end());
   for (const auto& [n, path] : nodes) {
     const NodeResult r = open_evdev(path.string());
-    if (r.unreadable && scan.unreadable++ == 0) scan.first_error = r.error;
-    if (r.node && is_mouse(r.node->dev())) scan.mice.push_back(r.node->info);
+    if (!r && r.error().unreadable && scan.unreadable++ == 0) scan.first_error = r.error().message;
+    if (r && is_mouse((*r)->dev())) scan.mice.push_back((*r)->info);
   }
   return scan;
 }
 
 EvdevOpenResult EvdevMouse::open(const std::string& device, EvdevMouseConfig config) {
   if (config.screen_width_px <= 0 || config.screen_height_px <= 0) {
-    return {nullptr, "the screen size must be > 0 pixels, got " + std::to_string(config.screen_width_px) + "x" +
-                         std::to_string(config.screen_height_px)};
+    return refused("the screen size must be > 0 pixels, got " + std::to_string(config.screen_width_px) + "x" +
+                   std::to_string(config.screen_height_px));
   }
-  if (!std::isfinite(config.speed_px_per_count) || config.speed_px_per_count <= 0) {
-    return {nullptr, "speed_px_per_count must be > 0, got " + std::to_string(config.speed_px_per_count)};
-  }
+  if (!std::isfinite(config.speed_px_per_count) || config.speed_px_per_count <= 0)
+    return refused("speed_px_per_count must be > 0, got " + std::to_string(config.speed_px_per_count));
   config.reopen_interval_ns = std::max<Nanos>(config.reopen_interval_ns, 1'000'000);
   config.poll_timeout_ms = std::clamp(config.poll_timeout_ms, 1, 1000);
   const std::string spec = device.empty() ? kAutoDevice : device;
   NodeResult opened = open_spec(spec, config.search_dir);
-  if (!opened.node) return {nullptr, opened.error};
-  std::unique_ptr<EvdevMouse> mouse(new EvdevMouse(spec, std::move(config), std::move(opened.node)));
-  if (mouse->wake_fd_ < 0) return {nullptr, "cannot create an eventfd for the mouse's reading thread"};
-  return {std::move(mouse), {}};
+  if (!opened) return refused(opened.error().message);
+  std::unique_ptr<EvdevMouse> mouse(new EvdevMouse(spec, std::move(config), std::move(*opened)));
+  if (mouse->wake_fd_ < 0) return refused("cannot create an eventfd for the mouse's reading thread");
+  return mouse;
 }
 
 EvdevMouse::EvdevMouse(std::string spec, EvdevMouseConfig config, std::unique_ptr<EvdevNode> node)
@@ -327,7 +331,7 @@ void EvdevMouse::wait_for_wake(int timeout_ms) const {
   ::poll(&wake, 1, timeout_ms);
 }
 
-bool EvdevMouse::read_events(std::vector<PointerSample>& batch, std::string& why_lost) {
+Check EvdevMouse::read_events(std::vector<PointerSample>& batch) {
   // Bounded, so that a flood of events cannot keep stop() waiting; the rest is read at the
   // next wake-up (poll() answers at once while events are pending).
   constexpr int kMaxEventsPerWake = 4096;
@@ -353,12 +357,11 @@ bool EvdevMouse::read_events(std::vector<PointerSample>& batch, std::string& why
       take(event);
       continue;
     }
-    if (rc == -EAGAIN) return true;
+    if (rc == -EAGAIN) return {};
     if (rc == -EINTR) continue;
-    why_lost = node_->info.path + ": the device went away (" + errno_text(-rc) + ")";
-    return false;
+    return refused(node_->info.path + ": the device went away (" + errno_text(-rc) + ")");
   }
-  return true;
+  return {};
 }
 
 void EvdevMouse::run(PointerSink sink) {
@@ -373,13 +376,13 @@ void EvdevMouse::run(PointerSink sink) {
         const Nanos now = monotonic_now();
         if (now >= next_attempt_ns) {
           NodeResult opened = open_spec(spec_, config_.search_dir);
-          if (opened.node) {
+          if (opened) {
             ++reconnects_;
-            attach(std::move(opened.node));
+            attach(std::move(*opened));
             continue;
           }
           next_attempt_ns = now + config_.reopen_interval_ns;
-          detach(lost + " (last attempt: " + opened.error + ")");
+          detach(lost + " (last attempt: " + opened.error().message + ")");
         }
         const Nanos wait_ns = std::max<Nanos>(next_attempt_ns - now, 0);
         wait_for_wake(static_cast<int>(std::min<Nanos>(wait_ns / 1'000'000 + 1, config_.poll_timeout_ms)));
@@ -389,13 +392,14 @@ void EvdevMouse::run(PointerSink sink) {
       pollfd fds[2] = {{node_->fd(), POLLIN, 0}, {wake_fd_, POLLIN, 0}};
       const int ready = ::poll(fds, 2, config_.poll_timeout_ms);
       if (ready > 0 && fds[0].revents != 0) {
-        const bool alive = read_events(batch, lost);
+        const Check alive = read_events(batch);
         if (!batch.empty()) {
           for (const PointerSample& sample : batch) rate_.add(sample.t_ns);
           sink(batch);
           batch.clear();
         }
         if (!alive) {
+          lost = alive.error();
           detach(lost);
           next_attempt_ns = monotonic_now() + config_.reopen_interval_ns;
         }

@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/result.hpp"
 #include "input/evdev/evdev_decoder.hpp"
 #include "input/evdev/rate_meter.hpp"
 #include "input/pointer_source.hpp"
@@ -79,10 +80,7 @@ class EvdevMouse;
 class EvdevNode;  //!< an open node: its fd and libevdev handle (evdev_mouse.cpp)
 
 //! A mouse, or why none could be opened (one line a person can act on).
-struct EvdevOpenResult {
-  std::unique_ptr<EvdevMouse> mouse;
-  std::string error;
-};
+using EvdevOpenResult = Result<std::unique_ptr<EvdevMouse>, std::string>;
 
 class EvdevMouse final : public PointerSource {
  public:
@@ -122,7 +120,8 @@ class EvdevMouse final : public PointerSource {
   void run(PointerSink sink);
   void attach(std::unique_ptr<EvdevNode> node);
   void detach(const std::string& why);
-  bool read_events(std::vector<PointerSample>& batch, std::string& why_lost);
+  //! Reads what is pending into `batch`; fails with why when the device went away.
+  Check read_events(std::vector<PointerSample>& batch);
   void apply_requests();
   void publish(bool force_strings);
   void wait_for_wake(int timeout_ms) const;

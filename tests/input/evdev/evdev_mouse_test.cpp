@@ -40,26 +40,26 @@ TEST(EvdevMouse, OpeningARegularFileSaysItIsNotAnEventNode) {
   const fs::path file = scratch_dir() / "event3";
   std::ofstream(file) << "not a device";
   const EvdevOpenResult r = EvdevMouse::open(file.string());
-  EXPECT_FALSE(r.mouse);
-  EXPECT_EQ(r.error, file.string() +
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), file.string() +
                          ": not an input event device (a regular file); give a /dev/input/event* node or \"auto\"");
 }
 
 TEST(EvdevMouse, OpeningADirectoryOrAMissingPathSaysWhy) {
   const fs::path dir = scratch_dir();
   EvdevOpenResult r = EvdevMouse::open(dir.string());
-  EXPECT_FALSE(r.mouse);
-  EXPECT_NE(r.error.find(dir.string() + ": not an input event device (a directory)"), std::string::npos) << r.error;
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find(dir.string() + ": not an input event device (a directory)"), std::string::npos) << r.error();
   r = EvdevMouse::open((dir / "event99").string());
-  EXPECT_FALSE(r.mouse);
-  EXPECT_EQ(r.error, (dir / "event99").string() + ": No such file or directory");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), (dir / "event99").string() + ": No such file or directory");
 }
 
 TEST(EvdevMouse, OpeningACharacterDeviceThatIsNotEvdevSaysSo) {
   if (!fs::is_character_file("/dev/null")) GTEST_SKIP() << "no /dev/null";
   const EvdevOpenResult r = EvdevMouse::open("/dev/null");
-  EXPECT_FALSE(r.mouse);
-  EXPECT_EQ(r.error.rfind("/dev/null: not an input event device (", 0), 0u) << r.error;
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().rfind("/dev/null: not an input event device (", 0), 0u) << r.error();
 }
 
 TEST(EvdevMouse, AutoWithNoMouseSaysWhereItLooked) {
@@ -67,18 +67,18 @@ TEST(EvdevMouse, AutoWithNoMouseSaysWhereItLooked) {
   EvdevMouseConfig config;
   config.search_dir = dir;
   const EvdevOpenResult r = EvdevMouse::open(kAutoDevice, config);
-  EXPECT_FALSE(r.mouse);
-  EXPECT_EQ(r.error, "no mouse among " + (dir / "event*").string());
-  EXPECT_EQ(EvdevMouse::open("", config).error, r.error);  // empty means auto
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), "no mouse among " + (dir / "event*").string());
+  EXPECT_EQ(why_not(EvdevMouse::open("", config)), r.error());  // empty means auto
 }
 
 TEST(EvdevMouse, ABadConfigIsRefusedBeforeAnyDevice) {
   EvdevMouseConfig config;
   config.speed_px_per_count = 0;
-  EXPECT_EQ(EvdevMouse::open(kAutoDevice, config).error, "speed_px_per_count must be > 0, got 0.000000");
+  EXPECT_EQ(why_not(EvdevMouse::open(kAutoDevice, config)), "speed_px_per_count must be > 0, got 0.000000");
   config = {};
   config.screen_width_px = 0;
-  EXPECT_EQ(EvdevMouse::open(kAutoDevice, config).error, "the screen size must be > 0 pixels, got 0x1080");
+  EXPECT_EQ(why_not(EvdevMouse::open(kAutoDevice, config)), "the screen size must be > 0 pixels, got 0x1080");
 }
 
 }  // namespace
