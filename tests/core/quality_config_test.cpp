@@ -27,7 +27,7 @@ TEST(QualityConfig, APresetSetsItsKnobs) {
   EXPECT_EQ(fast.quality, Quality::fast);
   EXPECT_EQ(fast.render.msaa, "1");
   EXPECT_TRUE(fast.render.shadow);
-  EXPECT_EQ(fast.render.present_mode, "fifo");
+  EXPECT_EQ(fast.render.present_mode, PresentPacing::fifo);
   const AppConfig exact = config::parse_app_config("quality = \"exact\"\n", "c.toml");
   EXPECT_EQ(exact.render.msaa, "4");
   EXPECT_EQ(exact.audio.schedule_ahead_ms, 12.0);

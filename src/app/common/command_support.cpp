@@ -15,6 +15,7 @@ std::vector<std::string> g_when_done;
 void finish_with(int status) {
   if (status != 0) throw CLI::RuntimeError(status);
 }
+
 CLI::Validator positive_at_most(double most) {
   const std::string hi = most > 0 ? fmt::format("{:g}", most) : "";
   const std::string want = most > 0 ? std::string("must be > 0 and at most ") + hi : "must be > 0";

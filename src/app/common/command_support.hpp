@@ -27,9 +27,8 @@ CLI::Option* add_choice(CLI::App& cmd, const std::string& flag, E& value, const 
                         const std::string& help) {
   std::vector<std::string> words;
   for (const auto& [v, name] : names) words.emplace_back(name);
-  return cmd.add_option_function<std::string>(flag, [&value, &names](const std::string& word) {
-              value = *value_named(names, word);
-            }, help)
+  const auto take = [&value, &names](const std::string& word) { value = *value_named(names, word); };
+  return cmd.add_option_function<std::string>(flag, take, help)
       ->check(CLI::IsMember(words))
       ->default_str(name_in(names, value));
 }
