@@ -42,11 +42,8 @@ struct RenderCliOptions {
   PresentPacing present_mode = PresentPacing::fifo;
 };
 
-Nanos to_nanos(double seconds, const char* option) {
-  if (!std::isfinite(seconds) || std::fabs(seconds) > 9.0e9)
-    throw FileError(option, 0, 0, "must be a finite number of seconds");
-  return static_cast<Nanos>(std::llround(seconds * 1e9));
-}
+//! A time the flags gave: CLI11 has checked that the clock holds it (seconds()).
+Nanos to_nanos(double seconds) { return *from_seconds(seconds); }
 
 VkSampleCountFlagBits sample_count(const std::string& msaa) {
   if (msaa == "1") return VK_SAMPLE_COUNT_1_BIT;
@@ -78,8 +75,8 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
   render::SceneRenderer renderer(ctx, scene, render::models_dir(), window.format(), rs, cache.get());
   std::printf("device: %s; window %ux%u\n", ctx.device_name().c_str(), window.extent().width, window.extent().height);
 
-  const Nanos from = o.at_s ? to_nanos(*o.at_s, "--at") : to_nanos(o.from_s, "--from");
-  const Nanos to = o.at_s ? from : to_nanos(o.to_s, "--to");
+  const Nanos from = o.at_s ? to_nanos(*o.at_s) : to_nanos(o.from_s);
+  const Nanos to = o.at_s ? from : to_nanos(o.to_s);
   const Nanos start = monotonic_now();
   render::Image shot;
   int drawn = 0;
@@ -129,9 +126,9 @@ void run_render(const RenderCliOptions& o) {
   std::vector<std::pair<Nanos, std::filesystem::path>> frames;
   if (o.at_s) {
     if (o.out.empty()) throw FileError("--out", 0, 0, "is required with --at (the PNG to write)");
-    frames.push_back({to_nanos(*o.at_s, "--at"), o.out});
+    frames.push_back({to_nanos(*o.at_s), o.out});
   } else {
-    const Nanos from = to_nanos(o.from_s, "--from"), to = to_nanos(o.to_s, "--to");
+    const Nanos from = to_nanos(o.from_s), to = to_nanos(o.to_s);
     if (to < from) throw FileError("--to", 0, 0, "must not be before --from");
     for (std::int64_t k = 0;; ++k) {
       const Nanos t = from + static_cast<Nanos>(std::llround(static_cast<double>(k) * 1e9 / *o.fps));
@@ -183,12 +180,12 @@ Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).)")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
   cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str()->check(pixel_size());
-  auto* at = cmd->add_option("--at", o->at_s, "One frame at this time (s)");
+  auto* at = cmd->add_option("--at", o->at_s, "One frame at this time (s)")->check(seconds());
   auto* out = cmd->add_option("--out", o->out, "PNG file for --at");
   auto* fps = cmd->add_option("--fps", o->fps, "A sequence at this frame rate")
                   ->check(positive_at_most(1000.0));
-  auto* from = cmd->add_option("--from", o->from_s, "Sequence start (s)");
-  auto* to = cmd->add_option("--to", o->to_s, "Sequence end (s, included)");
+  auto* from = cmd->add_option("--from", o->from_s, "Sequence start (s)")->check(seconds());
+  auto* to = cmd->add_option("--to", o->to_s, "Sequence end (s, included)")->check(seconds());
   auto* out_dir = cmd->add_option("--out-dir", o->out_dir, "Directory for the sequence's PNG files");
   at->excludes(fps);
   fps->needs(from)->needs(to);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/pixel_size.hpp"
+#include "core/time.hpp"
 
 namespace mallet::app {
 
@@ -26,6 +27,16 @@ CLI::Validator positive_at_most(double most) {
         return std::string();
       },
       most > 0 ? std::string("in (0, ") + hi + "]" : "> 0");
+}
+
+CLI::Validator seconds() {
+  return CLI::Validator(
+      [](std::string& value) {
+        double s = 0;
+        if (CLI::detail::lexical_cast(value, s) && from_seconds(s)) return std::string();
+        return "must be a finite number of seconds, got " + value;
+      },
+      "");
 }
 
 CLI::Validator pixel_size() {

@@ -15,6 +15,11 @@ namespace mallet::app {
 //! double as its bound.
 CLI::Validator positive_at_most(double most = 0);
 
+//! A flag's check for a time in seconds that the int64 nanosecond clock holds (finite, at
+//! most 9.2e9 s either way: core/time.hpp's from_seconds), worded "must be a finite number of
+//! seconds".
+CLI::Validator seconds();
+
 //! A flag's check for a size in pixels, WIDTHxHEIGHT with each side 16..8192
 //! (core/pixel_size.hpp), worded as the parser words it.
 CLI::Validator pixel_size();

@@ -53,6 +53,22 @@ TEST(RenderCli, BadSizeOrUnofferedAntialiasingIsAClearError) {
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
 }
 
+TEST(RenderCli, ATimeTheClockCannotHoldIsRefusedByTheFlagsCheck) {
+  const auto dir = test::scratch_dir();
+  const auto traj = still_trajectory(dir).string();
+  for (const std::string at : {"nan", "inf", "1e300"}) {
+    const test::CliResult r = test::run_mallet("render --input " + traj + " --at " + at + " --out " +
+                                               (dir / "f.png").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("--at: must be a finite number of seconds, got " + at), std::string::npos) << r.output;
+  }
+  const test::CliResult r = test::run_mallet("render --input " + traj + " --fps 10 --from -1e12 --to 0 --out-dir " +
+                                             (dir / "seq").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--from: must be a finite number of seconds"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+}
+
 TEST(RenderCli, AMissingModelNamesTheFileAndDrawsNothing) {
   const auto dir = test::scratch_dir();
   std::filesystem::copy(test::config_dir(), dir / "config", std::filesystem::copy_options::recursive);
