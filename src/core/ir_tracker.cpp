@@ -24,9 +24,11 @@ bool better_to_acquire(const IrPoint& a, const IrPoint& b) {
 Check validate(const IrTrackerConfig& c) {
   if (!std::isfinite(c.max_speed_px_per_s) || !(c.max_speed_px_per_s > 0))
     return refused("max_speed_px_per_s must be a finite number > 0");
-  if (!std::isfinite(c.jump_slack_px) || c.jump_slack_px < 0) return refused("jump_slack_px must be a finite number >= 0");
+  if (!std::isfinite(c.jump_slack_px) || c.jump_slack_px < 0)
+    return refused("jump_slack_px must be a finite number >= 0");
   if (c.reacquire_after_frames < 1) return refused("reacquire_after_frames must be >= 1");
-  if (!std::isfinite(c.lost_after_ms) || !(c.lost_after_ms > 0)) return refused("lost_after_ms must be a finite number > 0");
+  if (!std::isfinite(c.lost_after_ms) || !(c.lost_after_ms > 0))
+    return refused("lost_after_ms must be a finite number > 0");
   return {};
 }
 

@@ -18,7 +18,8 @@ namespace mallet {
 
 enum class ReliefShape { bump, hole };
 enum class ReliefProfile { gaussian, cosine };
-inline constexpr EnumNames<ReliefShape, 2> kReliefShapeNames{{{ReliefShape::bump, "bump"}, {ReliefShape::hole, "hole"}}};
+inline constexpr EnumNames<ReliefShape, 2> kReliefShapeNames{
+    {{ReliefShape::bump, "bump"}, {ReliefShape::hole, "hole"}}};
 inline constexpr EnumNames<ReliefProfile, 2> kReliefProfileNames{
     {{ReliefProfile::gaussian, "gaussian"}, {ReliefProfile::cosine, "cosine"}}};
 

@@ -116,7 +116,8 @@ std::string TableReader::string_or(std::string_view key, std::string fallback) {
 }
 
 bool TableReader::boolean_or(std::string_view key, bool fallback) {
-  return or_fallback(key, fallback, [](TableReader& t, std::string_view k) { return t.scalar<bool>(k, "true or false"); });
+  return or_fallback(key, fallback,
+                     [](TableReader& t, std::string_view k) { return t.scalar<bool>(k, "true or false"); });
 }
 
 template <typename T, typename Get>

@@ -87,8 +87,9 @@ struct StudyTiming {
 //! How the pairs' differences are chosen: a fixed set shown `repetitions` times each (the
 //! method of constant stimuli), or per condition an adaptive track (adaptive_schedule.hpp).
 enum class StudyProcedure { constant, staircase, quest };
-inline constexpr EnumNames<StudyProcedure, 3> kStudyProcedureNames{
-    {{StudyProcedure::constant, "constant"}, {StudyProcedure::staircase, "staircase"}, {StudyProcedure::quest, "quest"}}};
+inline constexpr EnumNames<StudyProcedure, 3> kStudyProcedureNames{{{StudyProcedure::constant, "constant"},
+                                                                   {StudyProcedure::staircase, "staircase"},
+                                                                   {StudyProcedure::quest, "quest"}}};
 std::string_view procedure_name(StudyProcedure procedure);
 
 //! How the participant answers: keys (1/2, a material's letter), or by striking one of the

@@ -119,7 +119,8 @@ NodeResult open_pointer(const std::string& path) {
   const bool relative = libevdev_has_event_code(dev, EV_REL, REL_X) && libevdev_has_event_code(dev, EV_REL, REL_Y);
   const bool absolute = libevdev_has_event_code(dev, EV_ABS, ABS_X) && libevdev_has_event_code(dev, EV_ABS, ABS_Y);
   if (!relative && !absolute) {
-    return node_error(path + " (" + node.info.name + "): not a pointer (it has neither REL_X + REL_Y nor ABS_X + ABS_Y)");
+    return node_error(path + " (" + node.info.name +
+                      "): not a pointer (it has neither REL_X + REL_Y nor ABS_X + ABS_Y)");
   }
   node.absolute = !relative;
   if (absolute) {
