@@ -196,7 +196,6 @@ std::optional<Homography> Homography::inverse() const {
 
 Result<HomographyFit, std::string> fit_homography(std::span<const Vec2> from, std::span<const Vec2> to,
                                                   ScreenSize screen) {
-  const auto refused = [](std::string why) { return tl::unexpected(std::move(why)); };
   if (from.size() != to.size())
     return refused("got " + std::to_string(from.size()) + " camera points but " + std::to_string(to.size()) +
                    " screen points");

@@ -209,8 +209,7 @@ std::string render_prometheus_text(const KioskMetrics& m) {
            "Time in play with the remote connected but the stick's LED out of the camera's view.",
            number(seconds_of(m.tracking_lost_ns())));
   t.family("mallet_state", "gauge", "The kiosk's state: 1 for the current one, 0 for the others.");
-  for (KioskState s : {KioskState::attract, KioskState::play, KioskState::calibration, KioskState::operator_page})
-    t.sample("mallet_state", {{"state", to_string(s)}}, m.state() == s ? "1" : "0");
+  for (const auto& [s, name] : kKioskStateNames) t.sample("mallet_state", {{"state", name}}, m.state() == s ? "1" : "0");
   t.single("mallet_uptime_seconds", "gauge",
            "Time since this run of the kiosk started.",
            number(seconds_of(m.uptime_ns)));

@@ -15,9 +15,9 @@ Result<PixelSize, std::string> parse_pixel_size(std::string_view text, unsigned 
   PixelSize s;
   const std::size_t x = text.find('x');
   if (x == std::string_view::npos || !side(text.substr(0, x), s.width) || !side(text.substr(x + 1), s.height))
-    return tl::unexpected(fmt::format("expected WIDTHxHEIGHT such as 1280x720, got \"{}\"", text));
+    return refused(fmt::format("expected WIDTHxHEIGHT such as 1280x720, got \"{}\"", text));
   if (s.width < lo || s.height < lo || s.width > hi || s.height > hi)
-    return tl::unexpected(fmt::format("width and height must be {}..{}, got {}", lo, hi, text));
+    return refused(fmt::format("width and height must be {}..{}, got {}", lo, hi, text));
   return s;
 }
 

@@ -67,8 +67,8 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
   const int n = o.quick ? kFs / 20 : kFs * 2;  // samples per timing
   auto presets_where = [](const std::function<bool(const QualityKnobs&)>& uses) {
     std::string names;
-    for (Quality q : {Quality::fast, Quality::balanced, Quality::exact})
-      if (uses(quality_knobs(q))) names += (names.empty() ? "" : " ") + std::string(to_string(q));
+    for (const auto& [q, quality] : kQualityNames)
+      if (uses(quality_knobs(q))) names += (names.empty() ? "" : " ") + std::string(quality);
     return names;
   };
 
@@ -236,9 +236,10 @@ void measure_audio_trades(const Scene& scene, const ReportOptions& o, ReportSect
     }
     blocks.note = "Smaller blocks: more callbacks per second (fixed cost per call), less waiting for the next one.";
     std::vector<double> aheads = {0.0, 1.0, 1.5, 5.0, 10.0, 12.0, 20.0};
-    for (Quality q : {Quality::fast, Quality::balanced, Quality::exact})
-      if (std::find(aheads.begin(), aheads.end(), quality_knobs(q).schedule_ahead_ms) == aheads.end())
-        aheads.push_back(quality_knobs(q).schedule_ahead_ms);
+    for (const auto& preset : kQualityNames) {
+      const double a = quality_knobs(preset.first).schedule_ahead_ms;
+      if (std::find(aheads.begin(), aheads.end(), a) == aheads.end()) aheads.push_back(a);
+    }
     std::sort(aheads.begin(), aheads.end());
     for (double a : aheads) {
       const FirstSampleLatency l = latency(64, a);

@@ -149,10 +149,10 @@ void measure_latency_budget(const Scene& scene, const ReportOptions& o, ReportSe
     AppConfig config;
   };
   std::vector<Row> rows;
-  for (Quality q : {Quality::fast, Quality::balanced, Quality::exact}) {
+  for (const auto& [q, quality] : kQualityNames) {
     AppConfig c;
     apply_quality(q, c);
-    rows.push_back({to_string(q), c});
+    rows.push_back({quality, c});
   }
   rows.push_back({"not a preset", rows.back().config});
   rows.back().config.audio.schedule_ahead_ms = 5.0;  // shorter than a camera frame: what exact would be without it

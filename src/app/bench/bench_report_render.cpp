@@ -86,11 +86,11 @@ void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSec
     if (background_msaa == 0) background_msaa = msaa;
     if (msaa > 1) background_msaa = msaa;  // the background then has the frames' samples
     std::string p;
-    for (Quality q : {Quality::fast, Quality::balanced, Quality::exact}) {
+    for (const auto& [q, quality] : kQualityNames) {
       const QualityKnobs k = quality_knobs(q);
       const int s = k.msaa == "auto" ? auto_samples : std::stoi(k.msaa);
       const int b = k.msaa == "auto" ? (s > 1 ? s : auto_background) : s;
-      if (s == msaa && b == background_msaa && k.shadow == shadow) p += std::string(p.empty() ? "" : " ") + to_string(q);
+      if (s == msaa && b == background_msaa && k.shadow == shadow) p += std::string(p.empty() ? "" : " ") + quality;
     }
     return p;
   };

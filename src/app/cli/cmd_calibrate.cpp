@@ -72,7 +72,7 @@ Result<ScreenSize, std::string> parse_screen_size(const std::string& text) {
   double w = 0, h = 0;
   if (x == std::string::npos || !parse_double(std::string_view(text).substr(0, x), w) ||
       !parse_double(std::string_view(text).substr(x + 1), h) || !(w > 0 && h > 0 && w < 1e6 && h < 1e6))
-    return tl::unexpected("expected WIDTHxHEIGHT in pixels (e.g. 1920x1080), got \"" + text + "\"");
+    return refused("expected WIDTHxHEIGHT in pixels (e.g. 1920x1080), got \"" + text + "\"");
   return ScreenSize{w, h};
 }
 

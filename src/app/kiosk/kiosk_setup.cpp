@@ -47,7 +47,7 @@ Result<KioskSetup, std::string> load_setup(const KioskOptions& o) {
   try {
     return load_kiosk_setup(o);
   } catch (const std::exception& e) {  // FileError, and whatever a library throws (bad_alloc...)
-    return tl::unexpected(std::string(e.what()));
+    return refused(e.what());
   }
 }
 

@@ -47,9 +47,9 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
     if (inst.name == reference.instrument) owner = &inst;
   if (owner) owner->speaker = protocol.sound;
   for (std::size_t s = 0; s < protocol.stimuli.size(); ++s) {
-    for (study::StudyCondition c : study::kAllConditions) {
+    for (const auto& [c, condition] : study::kStudyConditionNames) {
       Material m = protocol.stimuli[s].material;
-      m.name = protocol.stimuli[s].name + "@" + std::string(study::condition_name(c));
+      m.name = protocol.stimuli[s].name + "@" + condition;
       if (!study::shows_visual(c)) m.visual.amplitude = 0;
       if (!study::plays_actuator(c)) m.actuator.amplitude = 0;
       Target t = reference;

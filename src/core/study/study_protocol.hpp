@@ -46,8 +46,6 @@ enum class StudyCondition { visual_only, tactile_only, both, none };
 inline constexpr EnumNames<StudyCondition, 4> kStudyConditionNames{
     {{StudyCondition::visual_only, "visual_only"}, {StudyCondition::tactile_only, "tactile_only"},
      {StudyCondition::both, "both"}, {StudyCondition::none, "none"}}};
-inline constexpr StudyCondition kAllConditions[] = {StudyCondition::visual_only, StudyCondition::tactile_only,
-                                                    StudyCondition::both, StudyCondition::none};
 
 std::string_view task_name(StudyTask task);
 std::string_view condition_name(StudyCondition condition);

@@ -14,10 +14,12 @@
 namespace mallet::study {
 
 namespace {
+//! Where a condition stands in the table's order (unknown names last).
 int condition_rank(const std::string& name) {
-  for (int i = 0; i < 4; ++i)
-    if (condition_name(kAllConditions[i]) == name) return i;
-  return 4;
+  const std::size_t n = kStudyConditionNames.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (kStudyConditionNames[i].second == name) return static_cast<int>(i);
+  return static_cast<int>(n);
 }
 
 //! The bootstrap's seed for one participant's (or the pool's, "") condition: the schedule's
