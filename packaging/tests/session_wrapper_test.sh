@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The display's start script (/usr/libexec/mallet/mallet-session, from the package) with a
+# stand-in cage: it runs cage with the unit's runtime folder as XDG_RUNTIME_DIR (so the
+# sandbox can hide /run/user), asks for wlroots' software renderer where /dev/dri has no
+# render node and leaves an operator's WLR_RENDERER alone, writes the X display cage's
+# Xwayland gives it for the kiosk, and `--wait` waits for that display's socket, giving up
+# with status 1. cage, sleep and the DRM folder are stand-ins here; the package's system
+# test (packaging/tests/system/) runs the real ones in a booted machine.
+#   session_wrapper_test.sh DEB_DIR SCRATCH
+set -euo pipefail
+dir=$1 scratch=$2
+shopt -s nullglob
+debs=("$dir"/mallet_*.deb)
+((${#debs[@]} == 1)) || { echo "package: expected one mallet_*.deb in $dir" >&2; exit 1; }
+rm -rf "$scratch"
+mkdir -p "$scratch/fakebin" "$scratch/run" "$scratch/dri" "$scratch/x11"
+dpkg-deb --fsys-tarfile "${debs[0]}" | tar -x -C "$scratch" ./usr/libexec/mallet/mallet-session
+session=$scratch/usr/libexec/mallet/mallet-session
+failures=0
+fail() {
+  echo "package: $*" >&2
+  failures=$((failures + 1))
+}
+
+# The stand-in cage: logs what it was given, then runs its client as cage does (with
+# DISPLAY set to its Xwayland's display) and ends with it.
+cat >"$scratch/fakebin/cage" <<'CAGE'
+#!/bin/sh
+echo "XDG_RUNTIME_DIR=$XDG_RUNTIME_DIR WLR_RENDERER=${WLR_RENDERER:-} args=$*" >> "$FAKE_LOG"
+[ "$1" = -- ] && shift
+DISPLAY=:7 "$@"
+CAGE
+# The client ends with `exec sleep infinity`: here it ends at once.
+printf '#!/bin/sh\necho "sleep $*" >> "$FAKE_LOG"\n' >"$scratch/fakebin/sleep"
+chmod +x "$scratch/fakebin/cage" "$scratch/fakebin/sleep"
+run() {  # ENV-OPTION... [-- ARG...]: mallet-session with the stand-ins, its output in $scratch/out
+  local options=()
+  while (($#)) && [[ $1 != -- ]]; do options+=("$1"); shift; done
+  (($#)) && shift
+  : >"$scratch/log"
+  env "${options[@]}" PATH="$scratch/fakebin:$PATH" FAKE_LOG="$scratch/log" RUNTIME_DIRECTORY="$scratch/run" \
+    MALLET_DRI_DIR="$scratch/dri" MALLET_X11_DIR="$scratch/x11" "$session" "$@" >"$scratch/out" 2>&1
+}
+
+# No render node: pixman, the runtime folder as XDG_RUNTIME_DIR, the display written.
+run -u WLR_RENDERER || fail "mallet-session exits $? with a stand-in cage: $(cat "$scratch/out")"
+grep -qx "XDG_RUNTIME_DIR=$scratch/run WLR_RENDERER=pixman args=-- $session --display-ready" "$scratch/log" ||
+  fail "without a render node cage got: $(cat "$scratch/log")"
+grep -q 'compositor renderer: pixman' "$scratch/out" || fail "it did not say which renderer: $(cat "$scratch/out")"
+[[ $(cat "$scratch/run/display" 2>/dev/null) == "DISPLAY=:7" ]] ||
+  fail "the display file holds '$(cat "$scratch/run/display" 2>/dev/null)', expected DISPLAY=:7"
+grep -qx 'sleep infinity' "$scratch/log" || fail "the client did not wait (sleep infinity): $(cat "$scratch/log")"
+
+# A render node: the GPU's renderer (WLR_RENDERER left unset for wlroots to choose).
+touch "$scratch/dri/renderD128"
+run -u WLR_RENDERER || fail "mallet-session exits $? with a render node"
+grep -q "WLR_RENDERER= args" "$scratch/log" || fail "with a render node cage got: $(cat "$scratch/log")"
+grep -q "the GPU's ($scratch/dri/renderD128)" "$scratch/out" || fail "it did not name the node: $(cat "$scratch/out")"
+
+# An operator's WLR_RENDERER (a drop-in) wins.
+rm "$scratch/dri/renderD128"
+run WLR_RENDERER=gles2 || fail "mallet-session exits $? with WLR_RENDERER=gles2"
+grep -q "WLR_RENDERER=gles2 args" "$scratch/log" || fail "the operator's WLR_RENDERER was overridden: $(cat "$scratch/log")"
+
+# --wait: the display's socket there → 0 at once; absent → 1 after the limit, with a line.
+python3 -c 'import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$scratch/x11/X7"
+run -u WLR_RENDERER -- --wait 5 && status=0 || status=$?
+((status == 0)) || fail "--wait with the socket there exits $status: $(cat "$scratch/out")"
+rm "$scratch/x11/X7"
+run -u WLR_RENDERER -- --wait 1 && status=0 || status=$?
+((status == 1)) || fail "--wait without the socket exits $status, expected 1"
+grep -q 'no display from mallet-session.service after 1 s' "$scratch/out" || fail "--wait said: $(cat "$scratch/out")"
+
+if ((failures > 0)); then
+  exit 1
+fi
+echo "package: mallet-session runs cage with its own runtime folder, picks the renderer, hands the display to the kiosk and waits for it"

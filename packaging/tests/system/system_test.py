@@ -1,0 +1,391 @@
+#!/usr/bin/env python3
+"""The package's system test: the Debian package booted as a museum boots it, each
+deployment scenario checked, one line each (`ok NAME (seconds): what was seen` or
+`FAIL NAME: why`), then the timings. run.sh builds the package and the image and calls this.
+
+  system_test.py --image DIR --out DIR [--only NAME[,NAME…]] [--accel tcg|kvm]
+                 [--reference FILE] [--screens DIR]
+"""
+
+import argparse
+import json
+import os
+import re
+import shlex
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from vm import (Machine, VmError, signature, signature_distance, wav_channels_energy,  # noqa: E402
+                wav_seconds, write_png)
+
+UNIT = "mallet"
+BAD_DROPIN = "/etc/mallet/mallet.toml.d/99-system-test.toml"
+SCENARIOS = ["first-boot", "mouse", "reload", "bad-settings", "watchdog", "state-full", "wiimote",
+             "remote-off-on", "quit", "update", "reboot"]
+
+
+class Test:
+    def __init__(self, args):
+        self.args = args
+        self.vm = Machine(args.image, args.out, args.accel)
+        self.timings = []
+        self.results = []
+
+    # --- the guest ----------------------------------------------------------------------
+    def sh(self, command, timeout=120, check=False):
+        return self.vm.agent.run(command, timeout=timeout, check=check)
+
+    def out(self, command, timeout=120):
+        return self.sh(command, timeout=timeout, check=True)[1].strip()
+
+    def unit(self, name=UNIT):
+        text = self.out(f"systemctl show {name} -p ActiveState -p SubState -p MainPID -p NRestarts")
+        return dict(line.split("=", 1) for line in text.splitlines() if "=" in line)
+
+    def wait(self, what, predicate, timeout, step=2.0):
+        """Polls predicate() until it returns something true; VmError naming `what` after
+        `timeout` seconds. Returns what it returned and the seconds waited."""
+        start = time.monotonic()
+        last = None
+        while True:
+            try:
+                last = predicate()
+            except VmError as e:
+                last = None
+                why = str(e)
+            else:
+                why = ""
+            if last:
+                return last, time.monotonic() - start
+            if time.monotonic() - start > timeout:
+                raise VmError(f"{what}: not within {timeout} s{' (' + why + ')' if why else ''}")
+            time.sleep(step)
+
+    def wait_active(self, timeout, name=UNIT, not_pid=None):
+        def active():
+            u = self.unit(name)
+            if u.get("ActiveState") == "active" and u.get("MainPID", "0") != "0" and u.get("MainPID") != not_pid:
+                return u
+            return None
+        try:
+            return self.wait(f"{name}.service active", active, timeout)
+        except VmError as e:
+            raise VmError(f"{e}; {self.diagnosis()}")
+
+    def guest_time(self):
+        return self.out("date +%s.%N")
+
+    def journal(self, since, unit=UNIT, grep=None):
+        command = f"journalctl -u {unit} --since @{since} -o cat --no-pager"
+        if grep:
+            command += f" | grep -E {shlex.quote(grep)}"
+        return self.sh(command)[1]
+
+    def diagnosis(self):
+        """The last lines a failing check should show."""
+        _, status = self.sh(f"systemctl status {UNIT} mallet-session --no-pager -n 0 2>&1 | head -n 20; "
+                            "journalctl -b --no-pager -n 25 -o short-monotonic 2>&1")
+        return "guest says:\n" + status
+
+    def screen(self, name):
+        path = os.path.join(self.args.out, name + ".ppm")
+        width, height, rgb = self.vm.qmp.screendump(path)
+        png = os.path.join(self.args.out, name + ".png")
+        write_png(png, width, height, rgb)
+        if self.args.screens:
+            os.makedirs(self.args.screens, exist_ok=True)
+            write_png(os.path.join(self.args.screens, name + ".png"), width, height, rgb)
+        return width, height, rgb
+
+    # --- the scenarios ------------------------------------------------------------------
+    def first_boot(self):
+        """Power-on → the kiosk on the screen, as a museum's first boot."""
+        seconds = self.vm.wait_for_agent(900)
+        self.timings.append(("power-on → guest agent (booted)", seconds))
+        u, waited = self.wait_active(900)
+        to_active = time.monotonic() - self.vm.started
+        self.timings.append(("power-on → mallet.service active (READY=1 after the first frame)", to_active))
+        mono = dict(line.split("=", 1) for line in self.out(
+            "systemctl show mallet -p ExecMainStartTimestampMonotonic -p ActiveEnterTimestampMonotonic "
+            "-p InactiveExitTimestampMonotonic").splitlines())
+        start_us = int(mono["InactiveExitTimestampMonotonic"])
+        ready_us = int(mono["ActiveEnterTimestampMonotonic"])
+        self.timings.append(("guest: kernel start → mallet.service started", start_us / 1e6))
+        self.timings.append(("guest: mallet.service started → first kiosk frame (READY=1)", (ready_us - start_us) / 1e6))
+        problems = []
+        # The display is a logind seat session of the kiosk's user, active on seat0.
+        sessions = self.out("loginctl list-sessions --no-legend")
+        if not re.search(r"\bmallet\b.*\bseat0\b", sessions):
+            problems.append(f"no seat0 session of mallet in loginctl: {sessions!r}")
+        # Watched by its watchdog.
+        watchdog = self.out("systemctl show mallet -p WatchdogUSec --value")
+        if watchdog in ("", "0", "infinity"):
+            problems.append(f"no watchdog (WatchdogUSec={watchdog})")
+        # The kiosk's own lines are the unit's: `journalctl -u mallet` shows them.
+        lines = self.journal(0, grep="^mallet run: |^input: ")
+        if "mallet run:" not in lines:
+            problems.append("journalctl -u mallet shows none of the kiosk's lines")
+        # Mesa's shader cache is written (the sandbox leaves it a writable folder).
+        cache = self.out("find /var/cache/mallet/mesa_shader_cache -type f 2>/dev/null | wc -l")
+        if cache == "0":
+            problems.append("Mesa's shader cache /var/cache/mallet/mesa_shader_cache is empty")
+        renderer = self.journal(0, unit="mallet-session", grep="compositor renderer").strip().splitlines()
+        time.sleep(10)  # a few frames at TCG's pace
+        width, height, rgb = self.screen("vm-first-boot")
+        sig = signature(width, height, rgb)
+        bright = sum(sum(c) for c in sig) / (3 * len(sig))
+        if bright < 12:
+            problems.append(f"the screen is dark (mean level {bright:.0f} of 255)")
+        reference = self.args.reference
+        distance = None
+        if reference and os.path.exists(reference):
+            with open(reference) as f:
+                distance = signature_distance(sig, json.load(f))
+            if distance > 30:
+                problems.append(f"the screen differs from {reference} by {distance:.1f} levels on average (at most 30)")
+        elif reference:
+            with open(reference, "w") as f:
+                json.dump(sig, f)
+        if problems:
+            raise VmError("; ".join(problems))
+        return (f"active after {waited:.0f} s of waiting, {u['MainPID']} is the kiosk; screen {width}x{height}, "
+                f"{'distance %.1f from the reference' % distance if distance is not None else 'reference written'}; "
+                f"{renderer[-1] if renderer else 'no renderer line'}")
+
+    def mouse(self):
+        """A visitor's downstroke with a USB mouse reaches the kiosk through evdev."""
+        since = self.guest_time()
+        line = self.journal(0, grep="^input: ").strip().splitlines()
+        if not line or "evdev" not in line[-1]:
+            raise VmError(f"the kiosk's input is not the mouse through evdev: {line[-1] if line else 'no input line'}")
+        wav_before = wav_seconds(self.vm.wav)
+        qmp = self.vm.qmp
+        w, h = self.vm.screen
+        for fx in (0.22, 0.3, 0.38, 0.62, 0.7, 0.78):
+            qmp.move(-4 * w, -4 * h)  # the top-left corner
+            time.sleep(0.2)
+            qmp.move(int(fx * w), 0)
+            time.sleep(0.5)
+            for _ in range(12):  # down the whole screen in about 0.15 s
+                qmp.move(0, h // 10)
+                time.sleep(0.012)
+            time.sleep(1.0)
+        strikes, waited = self.wait("a strike in journalctl -u mallet after the mouse's downstrokes",
+                                    lambda: self.journal(since, grep="^strike t=").strip().splitlines(), 180)
+        time.sleep(3)
+        rate, left, right = wav_channels_energy(self.vm.wav, wav_before)
+        if left < 30 or right < 30:
+            raise VmError(f"the WAV after the strokes is silent on a channel: RMS {left:.0f} / {right:.0f} "
+                          f"(16-bit) at {rate} Hz")
+        return f"{len(strikes)} strike(s), first: {strikes[0]}; WAV RMS left {left:.0f}, right {right:.0f}"
+
+    def reload(self):
+        """`systemctl reload` with a broken settings file is refused; the kiosk plays on."""
+        before = self.unit()
+        since = self.guest_time()
+        self.out(f"mkdir -p /etc/mallet/mallet.toml.d && printf '[audio]\\nvolume = \"loud\"\\n' > {BAD_DROPIN}")
+        self.out("systemctl reload mallet")
+        refused, _ = self.wait("the kiosk's refusal in journalctl -u mallet",
+                               lambda: self.journal(since, grep="reload refused").strip(), 120)
+        self.out(f"rm -f {BAD_DROPIN} && systemctl reload mallet")
+        after = self.unit()
+        if after["ActiveState"] != "active" or after["MainPID"] != before["MainPID"]:
+            raise VmError(f"the kiosk did not play on: {before} → {after}")
+        if "99-system-test.toml" not in refused:
+            raise VmError(f"the refusal does not name the file: {refused}")
+        return refused.splitlines()[0]
+
+    def bad_settings(self):
+        """A broken settings file at boot: the kiosk still comes up, and says what is wrong."""
+        since = self.guest_time()
+        self.out(f"mkdir -p /etc/mallet/mallet.toml.d && printf '[audio]\\nvolume = \"loud\"\\n' > {BAD_DROPIN}")
+        old = self.unit()["MainPID"]
+        self.out("systemctl restart mallet")
+        try:
+            u, waited = self.wait_active(600, not_pid=old)
+            said = self.journal(since, grep="99-system-test.toml").strip().splitlines()
+        finally:
+            self.out(f"rm -f {BAD_DROPIN}")
+        if not said:
+            raise VmError("the kiosk came up but no line names the broken file")
+        self.out("systemctl restart mallet")
+        self.wait_active(600, not_pid=u["MainPID"])
+        return f"came up in {waited:.0f} s; said: {said[0]}"
+
+    def watchdog(self):
+        """A stopped kiosk (kill -STOP) is killed by the watchdog and started again."""
+        before = self.unit()
+        since = self.guest_time()
+        self.out(f"kill -STOP {before['MainPID']}")
+        u, waited = self.wait_active(600, not_pid=before["MainPID"])
+        said = self.sh(f"journalctl -u mallet --since @{since} -o cat --no-pager | grep -i watchdog")[1].strip()
+        if not said:
+            raise VmError("restarted, but systemd logged no watchdog time-out")
+        return f"restarted as {u['MainPID']} after {waited:.0f} s: {said.splitlines()[0]}"
+
+    def state_full(self):
+        """/var/lib/mallet full: the kiosk plays on, and says so."""
+        since = self.guest_time()
+        self.out("mount -t tmpfs -o size=64k,mode=0755 tmpfs /var/lib/mallet && chown mallet:mallet /var/lib/mallet "
+                 "&& (dd if=/dev/zero of=/var/lib/mallet/filler bs=4k 2>/dev/null; true)")
+        try:
+            old = self.unit()["MainPID"]
+            self.out("systemctl restart mallet")
+            u, waited = self.wait_active(600, not_pid=old)
+            time.sleep(20)
+            still = self.unit()
+            said = self.journal(since, grep="/var/lib/mallet").strip().splitlines()
+        finally:
+            self.sh("systemctl stop mallet; umount /var/lib/mallet; systemctl start mallet", timeout=300)
+        if still["MainPID"] != u["MainPID"] or still["ActiveState"] != "active":
+            raise VmError(f"the kiosk did not play on with its state folder full: {u} → {still}")
+        if not said:
+            raise VmError("the kiosk played on but said nothing about /var/lib/mallet")
+        self.wait_active(600)
+        return f"played on; said: {said[0]}"
+
+    def wiimote(self):
+        """The emulated Wii Remote on /dev/uhid, bound by the kernel's hid-wiimote."""
+        emulator = "/opt/mallet-test/wiimote_uhid.py"
+        if self.sh(f"test -x {emulator} || test -f {emulator}")[0] != 0:
+            raise VmError(f"no {emulator} in the image")
+        since = self.guest_time()
+        self.sh("systemctl stop wiimote-emulator 2>/dev/null; systemctl reset-failed wiimote-emulator 2>/dev/null")
+        self.out(f"systemd-run --unit wiimote-emulator python3 {emulator} --calibration --strokes 40")
+        bound, _ = self.wait("a hidraw node of the emulated remote, bound by hid-wiimote",
+                             lambda: self.out("for d in /sys/class/hidraw/hidraw*; do "
+                                              "grep -l 057E:0306 $d/device/uevent 2>/dev/null; done; "
+                                              "ls -l /sys/bus/hid/drivers/wiimote/ 2>/dev/null | grep -c 057E"), 120)
+        connected, _ = self.wait("'Wii Remote … connected' in journalctl -u mallet",
+                                 lambda: self.journal(since, grep="Wii Remote .* connected").strip(), 300)
+        calibrated, _ = self.wait("the calibration's end in journalctl -u mallet",
+                                  lambda: self.journal(since, grep="calibration: (done|saved|complete)").strip(), 900)
+        strikes, _ = self.wait("strikes with the remote",
+                               lambda: self.journal(since, grep="^strike t=").strip().splitlines(), 600)
+        code, doctor = self.sh("runuser -u mallet -- mallet doctor 2>&1")
+        lines = [l for l in doctor.splitlines() if re.search(r"wiimote|hidraw", l)]
+        bad = [l for l in lines if not l.startswith("ok")]
+        if not lines or bad:
+            raise VmError(f"mallet doctor on the remote: {lines or doctor[-300:]}")
+        return (f"{connected.splitlines()[0]}; {calibrated.splitlines()[0]}; {len(strikes)} strike(s); "
+                f"doctor: {' | '.join(lines)}")
+
+    def remote_off_on(self):
+        """The remote switched off and on again: the kiosk reconnects."""
+        if self.sh("systemctl is-active wiimote-emulator")[0] != 0:
+            raise VmError("the emulated remote is not running (the wiimote scenario comes first)")
+        since = self.guest_time()
+        self.out("systemctl kill -s USR1 wiimote-emulator")
+        lost, _ = self.wait("'Wii Remote … lost'", lambda: self.journal(since, grep="Wii Remote .* lost").strip(), 180)
+        since2 = self.guest_time()
+        self.out("systemctl kill -s USR2 wiimote-emulator")
+        back, _ = self.wait("'Wii Remote … connected' again",
+                            lambda: self.journal(since2, grep="Wii Remote .* connected").strip(), 300)
+        return f"{lost.splitlines()[0]}; {back.splitlines()[0]}"
+
+    def quit(self):
+        """The operator page's Q: the kiosk stays stopped until `systemctl start`."""
+        since = self.guest_time()
+        self.vm.qmp.keys("ctrl", "alt", "o")
+        self.wait("the operator page", lambda: self.journal(since, grep="operator").strip() or
+                  self.journal(since, grep="page").strip(), 120)
+        time.sleep(8)
+        self.screen("vm-operator")
+        self.vm.qmp.keys("q")
+        self.wait("mallet.service inactive after Q",
+                  lambda: self.unit()["ActiveState"] in ("inactive", "failed") and True, 180)
+        time.sleep(15)
+        u = self.unit()
+        session = self.unit("mallet-session")
+        if u["ActiveState"] != "inactive":
+            raise VmError(f"after Q the kiosk is {u['ActiveState']} (expected to stay inactive)")
+        if session["ActiveState"] not in ("inactive", "deactivating"):
+            raise VmError(f"after Q its display is {session['ActiveState']}")
+        self.out("systemctl start mallet", timeout=300)
+        self.wait_active(600)
+        return "stopped on Q and stayed stopped 15 s; display stopped with it; started again"
+
+    def update(self):
+        """A newer build installed with apt over the running kiosk keeps the operator's
+        edits, the calibration and the counters, and the kiosk comes back by itself."""
+        newer = self.out("ls /opt/mallet-test/newer/mallet_*.deb")
+        self.out("echo '# edited by the operator' >> /etc/mallet/mallet.toml")
+        state_before = self.out("ls /var/lib/mallet | sort")
+        old = self.unit()["MainPID"]
+        code, log = self.sh(f"DEBIAN_FRONTEND=noninteractive apt-get install -y --no-download "
+                            f"-o Dpkg::Options::=--force-confdef -o Dpkg::Options::=--force-confold {newer}", timeout=900)
+        if code != 0:
+            raise VmError(f"apt-get install of the newer package failed: {log[-400:]}")
+        u, waited = self.wait_active(600, not_pid=old)
+        problems = []
+        if "# edited by the operator" not in self.out("tail -n 2 /etc/mallet/mallet.toml"):
+            problems.append("the operator's edit of /etc/mallet/mallet.toml is gone")
+        state_after = self.out("ls /var/lib/mallet | sort")
+        missing = set(state_before.split()) - set(state_after.split())
+        if missing:
+            problems.append(f"/var/lib/mallet lost {sorted(missing)}")
+        version = self.out("dpkg-query -W -f '${Version}' mallet")
+        if problems:
+            raise VmError("; ".join(problems))
+        return f"now {version}, kiosk back as {u['MainPID']} after {waited:.0f} s; state kept: {state_after.split()}"
+
+    def reboot(self):
+        """A reboot brings the kiosk back by itself."""
+        self.vm.agent.shutdown("reboot")
+        time.sleep(10)
+        start = time.monotonic()
+        if not self.vm.agent.connect(900):
+            raise VmError("the guest agent did not come back after the reboot")
+        u, _ = self.wait_active(900)
+        seconds = time.monotonic() - start
+        self.timings.append(("reboot → mallet.service active", seconds))
+        return f"back as {u['MainPID']} {seconds:.0f} s after the reboot"
+
+    # --- running ----------------------------------------------------------------------------
+    def run(self, names):
+        self.vm.start()
+        failed = 0
+        try:
+            for name in names:
+                start = time.monotonic()
+                try:
+                    said = getattr(self, name.replace("-", "_"))()
+                    print(f"ok   {name} ({time.monotonic() - start:.0f} s): {said}", flush=True)
+                except VmError as e:
+                    failed += 1
+                    print(f"FAIL {name} ({time.monotonic() - start:.0f} s): {e}", flush=True)
+                    if name == "first-boot":
+                        break
+        finally:
+            self.vm.stop()
+        print("timings:")
+        for what, seconds in self.timings:
+            print(f"  {seconds:7.1f} s  {what}")
+        return failed
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--image", required=True, help="folder with disk.raw, vmlinuz, initrd.img")
+    parser.add_argument("--out", required=True, help="folder for the logs, screens and the WAV")
+    parser.add_argument("--only", default="", help="comma-separated scenarios (first-boot always runs)")
+    parser.add_argument("--accel", default="tcg", choices=["tcg", "kvm"])
+    parser.add_argument("--reference", help="first boot's screen signature (JSON); written when missing")
+    parser.add_argument("--screens", help="also write the screens (PNG) here")
+    args = parser.parse_args()
+    names = SCENARIOS
+    if args.only:
+        wanted = args.only.split(",")
+        unknown = [w for w in wanted if w not in SCENARIOS]
+        if unknown:
+            parser.error(f"unknown scenario(s) {unknown}; known: {', '.join(SCENARIOS)}")
+        names = ["first-boot"] + [n for n in SCENARIOS if n in wanted and n != "first-boot"]
+    os.makedirs(args.out, exist_ok=True)
+    failed = Test(args).run(names)
+    print(f"system: {len(names) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
