@@ -61,11 +61,17 @@ FileError file_error_of(F&& load) {
   return FileError("", 0, 0, "");
 }
 
-//! A fresh, empty directory named after the running test.
+//! This build tree's scratch folder, <temp>/mallet-<6 hex digits of the build tree's path>
+//! (tests/CMakeLists.txt): two build trees running the same tests at once never share a folder,
+//! and the name stays short (a test's Unix socket path must fit in 108 bytes).
+inline std::filesystem::path scratch_root() {
+  return std::filesystem::temp_directory_path() / MALLET_TEST_SCRATCH_NAME;
+}
+
+//! A fresh, empty directory named after the running test (in this build tree's scratch_root).
 inline std::filesystem::path scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mallet-tests" /
-                                    (std::string(info->test_suite_name()) + "." + info->name());
+  const std::filesystem::path dir = scratch_root() / (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

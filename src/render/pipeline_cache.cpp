@@ -5,7 +5,10 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -72,7 +75,9 @@ void PipelineCache::save() const {
   if (vkGetPipelineCacheData(ctx_.device(), cache_.get(), &size, data.data()) != VK_SUCCESS) return;
   std::error_code ec;
   fs::create_directories(file_.parent_path(), ec);
-  const fs::path tmp = file_.string() + ".tmp";
+  // A name of this process's own: two programs closing at once (tests, a render beside the
+  // kiosk) each write whole files, and the last rename wins.
+  const fs::path tmp = file_.string() + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(data.data(), static_cast<std::streamsize>(size));

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "render/detailed_model.hpp"
+#include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_kiosk_cpu.hpp"
 #include "app/bench/bench_report.hpp"
 #include "app/bench/bench_commands.hpp"
@@ -117,8 +118,9 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
          const std::string& device) {
   const Scene scene = config::load_scene(scene_file);
   const render::FrameState state = bench_state(scene);
-  const auto tmp_cache = std::filesystem::temp_directory_path() / "mallet-bench-pipeline-cache";
-  std::filesystem::remove_all(tmp_cache);
+  // A pipeline cache of this run's own (empty: the first start-up is cold), removed at the end.
+  const latency::TempDir tmp("mallet-bench-render");
+  const auto tmp_cache = tmp.path() / "pipeline-cache";
 
   // Start-up: context, pipelines (cold, then warm cache), first frame read back.
   double cold = 0, warm = 0;
@@ -239,7 +241,6 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
     }
     std::printf("\n");
   }
-  std::filesystem::remove_all(tmp_cache);
   if (kiosk_cpu_s > 0) {
     std::fflush(stdout);
     const std::vector<KioskCpuRow> cpu = measure_kiosk_cpu(1920, 1080, kiosk_cpu_s, device);

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_kiosk_cpu.hpp"
 #include "app/bench/bench_report.hpp"
 #include "render/render_setup.hpp"
@@ -52,7 +53,8 @@ void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSec
   const Target& a = scene.targets.at(std::min<std::size_t>(3, scene.targets.size() - 1));
   render::FrameState state;
   state.mallet_centre = {a.x_max + 0.004, 0.035};  // just above a bar, the shadow on two bars
-  const auto cache = std::filesystem::temp_directory_path() / "mallet-bench-report-cache";
+  const latency::TempDir scratch("mallet-bench-report");  // this run's own, removed at the end
+  const auto cache = scratch.path() / "pipeline-cache";
   // `background_msaa` 0: the frames' own; `cached` false: the whole scene every frame.
   auto make = [&](int msaa, bool shadow, VkExtent2D extent, int background_msaa = 0, bool cached = true) {
     render::HeadlessOptions h;
@@ -178,7 +180,6 @@ void measure_render_trades(const Scene& scene, const ReportOptions& o, ReportSec
                  "redraws the instruments only where the mallet's shadow can fall, and draws the mallet. The shadow is "
                  "analytic (no shadow-map pass); with its caster out of view it costs nothing.";
   out.tables.push_back(savings);
-  std::filesystem::remove_all(cache);
 }
 
 void measure_kiosk_cpu_part(const Scene&, const ReportOptions& o, ReportSections& out) {

@@ -33,7 +33,7 @@ Vec2 camera_of(Vec2 screen) { return {900.0 - screen.x * 800.0, 80.0 + screen.y 
 Vec2 screen_of(Vec2 camera) { return {(900.0 - camera.x) / 800.0, (camera.y - 80.0) / 600.0}; }
 
 std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("mallet-remote-kiosk-" + name);
+  const auto dir = test::scratch_root() / ("remote-kiosk-" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
