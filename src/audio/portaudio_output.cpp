@@ -196,6 +196,10 @@ PortAudioOutput::PortAudioOutput(AudioEngine& engine, const AudioConfig& config,
     throw std::invalid_argument("audio: frames_per_buffer must be in [0, 8192] (0 = PortAudio chooses)");
   if (!(config.suggested_latency_ms >= 0 && config.suggested_latency_ms <= 2000))
     throw std::invalid_argument("audio: suggested_latency_ms must be in [0, 2000] (0 = the device's default)");
+  if (!(config.min_latency_ms >= 0 && config.min_latency_ms <= config.max_latency_ms && config.max_latency_ms <= 2000))
+    throw std::invalid_argument("audio: need 0 <= min_latency_ms <= max_latency_ms <= 2000");
+  if (config.grow_after_underruns < 0 || !(config.underrun_window_ms > 0))
+    throw std::invalid_argument("audio: grow_after_underruns must be >= 0 and underrun_window_ms > 0");
   scratch_.resize(static_cast<std::size_t>(kScratchFrames) * static_cast<std::size_t>(channels_));
   std::lock_guard lock(pa_mutex());
   session_ = std::make_unique<Session>();
@@ -219,8 +223,11 @@ void PortAudioOutput::open_locked() {
   p.device = device.index;
   p.channelCount = channels_;
   p.sampleFormat = options_.format == StreamFormat::int16 ? paInt16 : paFloat32;
-  p.suggestedLatency =
+  // See UNDERRUNS in the header: never the few-period buffer a device's default or a tiny
+  // setting would give, and at least what repeated underruns have grown it to.
+  const double asked =
       config_.suggested_latency_ms > 0 ? config_.suggested_latency_ms / 1000.0 : device.default_low_latency_s;
+  p.suggestedLatency = std::max({asked, config_.min_latency_ms / 1000.0, grown_latency_s_});
   p.hostApiSpecificStreamInfo = nullptr;
   const unsigned long fpb = config_.frames_per_buffer > 0 ? static_cast<unsigned long>(config_.frames_per_buffer)
                                                           : paFramesPerBufferUnspecified;
@@ -236,6 +243,7 @@ void PortAudioOutput::open_locked() {
   const PaStreamInfo* info = Pa_GetStreamInfo(stream);
   stream_ = stream;
   device_ = device;
+  requested_latency_s_ = p.suggestedLatency;
   latency_s_ = info ? info->outputLatency : p.suggestedLatency;
   // A measured figure (the operator's latency test, key T) beats the driver's report.
   if (config_.output_latency_ms >= 0) latency_s_ = config_.output_latency_ms * 1e-3;
@@ -301,6 +309,15 @@ void PortAudioOutput::drop_device() {
   if (stream_) Pa_AbortStream(static_cast<PaStream*>(stream_));
 }
 
+void PortAudioOutput::grow_buffer() {
+  if (running_) grow_requested_.store(true, std::memory_order_relaxed);
+}
+
+double PortAudioOutput::requested_latency_s() const {
+  std::lock_guard lock(pa_mutex());
+  return requested_latency_s_;
+}
+
 DeviceInfo PortAudioOutput::device() const {
   std::lock_guard lock(pa_mutex());
   return device_;
@@ -326,6 +343,7 @@ OutputCounters PortAudioOutput::counters() const {
   c.reopen_attempts = reopen_attempts_.load(std::memory_order_relaxed);
   c.reopens = reopens_.load(std::memory_order_relaxed);
   c.resyncs = resyncs_.load(std::memory_order_relaxed);
+  c.buffer_growths = growths_.load(std::memory_order_relaxed);
   return c;
 }
 
@@ -398,6 +416,16 @@ void PortAudioOutput::render_silent(std::int64_t frames) {
   }
 }
 
+bool PortAudioOutput::grow_locked() {
+  const double ceiling = config_.max_latency_ms / 1000.0;
+  if (requested_latency_s_ >= ceiling) return false;
+  grown_latency_s_ = std::min(2 * requested_latency_s_, ceiling);
+  close_locked(true);  // joins the audio thread: the engine is ours until the new stream starts
+  open_locked();
+  start_stream_locked();
+  return true;
+}
+
 void PortAudioOutput::supervise() {
   using Clock = std::chrono::steady_clock;
   const auto xrun_interval = std::chrono::duration_cast<Clock::duration>(options_.xrun_log_interval);
@@ -409,6 +437,28 @@ void PortAudioOutput::supervise() {
   std::chrono::milliseconds backoff = options_.first_retry;
   Clock::time_point retry_at{}, silent_since{};
   std::int64_t silent_base = 0;
+  // UNDERRUNS: a window opens at the first underrun and counts those within it.
+  const auto underrun_window = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double, std::milli>(config_.underrun_window_ms));
+  const auto grow_after = static_cast<std::uint64_t>(config_.grow_after_underruns);
+  std::uint64_t xruns_seen = xruns_.load(std::memory_order_relaxed), window_base = 0;
+  bool window_open = false, ceiling_logged = false;
+  Clock::time_point window_start{};
+
+  // The stream is closed (the audio thread joined): run silent and retry with backoff.
+  auto lose = [&](const std::string& name, const std::string& why, Clock::time_point now) {
+    lost = true;
+    retry_failure_logged = false;
+    attempts = 0;
+    device_ok_.store(false, std::memory_order_relaxed);
+    losses_.fetch_add(1, std::memory_order_relaxed);
+    journal::warning("audio: output \"{}\" lost ({}); running silent, retrying to open \"{}\"", name.c_str(),
+                     why.c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
+    backoff = options_.first_retry;
+    retry_at = now + backoff;
+    silent_since = now;
+    silent_base = engine_.position();
+  };
 
   for (;;) {
     {
@@ -426,18 +476,59 @@ void PortAudioOutput::supervise() {
         name = device_.name;
         if (!alive) close_locked(true);  // joins the audio thread: the engine is ours now
       }
-      if (!alive) {
-        lost = true;
-        retry_failure_logged = false;
-        attempts = 0;
-        device_ok_.store(false, std::memory_order_relaxed);
-        losses_.fetch_add(1, std::memory_order_relaxed);
-        journal::warning("audio: output \"{}\" lost ({}); running silent, retrying to open \"{}\"", name.c_str(),
-                         alive.error().c_str(), config_.device.empty() ? "the default device" : config_.device.c_str());
-        backoff = options_.first_retry;
-        retry_at = now + backoff;
-        silent_since = now;
-        silent_base = engine_.position();
+      if (!alive) lose(name, alive.error(), now);
+    }
+
+    if (!lost) {
+      const std::uint64_t xruns = xruns_.load(std::memory_order_relaxed);
+      if (window_open && now - window_start > underrun_window) window_open = false;
+      if (!window_open && xruns > xruns_seen) {
+        window_open = true;
+        window_start = now;
+        window_base = xruns_seen;
+      }
+      xruns_seen = xruns;
+      const bool asked = grow_requested_.exchange(false, std::memory_order_relaxed);
+      const bool repeated = grow_after > 0 && window_open && xruns - window_base >= grow_after;
+      if (asked || repeated) {
+        window_open = false;
+        std::string name, failure;
+        double before = 0, after = 0;
+        bool grown = false;
+        {
+          std::lock_guard lock(pa_mutex());
+          name = device_.name;
+          before = latency_s_;
+          try {
+            grown = grow_locked();
+          } catch (const std::exception& e) {
+            failure = e.what();
+          }
+          after = latency_s_;
+          watched_callbacks_ = callbacks_.load(std::memory_order_relaxed);
+          last_progress_ = Clock::now();
+        }
+        if (!failure.empty()) {
+          lose(name, "reopening it with a larger buffer failed: " + failure, now);
+        } else if (grown && !repeated) {
+          growths_.fetch_add(1, std::memory_order_relaxed);
+          journal::info("audio: reopened \"{}\" with a larger buffer as asked, output latency {:.1f} ms "
+                        "(was {:.1f} ms)",
+                        name.c_str(), after * 1e3, before * 1e3);
+        } else if (grown) {
+          growths_.fetch_add(1, std::memory_order_relaxed);
+          journal::warning(
+              "audio: {} output underrun(s) within {:g} ms on \"{}\": reopened it with a larger buffer, output "
+              "latency {:.1f} ms (was {:.1f} ms; at most [audio].max_latency_ms = {:g})",
+              xruns - window_base, config_.underrun_window_ms, name.c_str(), after * 1e3, before * 1e3,
+              config_.max_latency_ms);
+        } else if (!ceiling_logged) {
+          ceiling_logged = true;
+          journal::warning(
+              "audio: underruns go on with the largest buffer allowed ([audio].max_latency_ms = {:g}, output latency "
+              "{:.1f} ms); the machine is too busy for its sound",
+              config_.max_latency_ms, after * 1e3);
+        }
       }
     }
 
@@ -486,8 +577,8 @@ void PortAudioOutput::supervise() {
     const std::uint64_t xruns = xruns_.load(std::memory_order_relaxed);
     if (xruns > xruns_logged && now - last_xrun_log >= xrun_interval) {
       journal::warning(
-          "audio: {} output underrun(s) since the last report ({} in all); raise [audio].frames_per_buffer or "
-          "suggested_latency_ms if they persist",
+          "audio: {} output underrun(s) since the last report ({} in all); if they persist, raise [audio] "
+          "min_latency_ms (grow_after_underruns grows the buffer by itself)",
           xruns - xruns_logged, xruns);
       xruns_logged = xruns;
       last_xrun_log = now;

@@ -43,8 +43,25 @@
 // reference-counted: a rescan happens only if nothing else in the process holds
 // PortAudio open at that moment.)
 //
-// XRUNS. The callback counts paOutputUnderflow; the supervisor logs the count at most
-// once per Options::xrun_log_interval (10 s by default).
+// UNDERRUNS. The callback counts paOutputUnderflow; the supervisor logs the count at most
+// once per Options::xrun_log_interval (10 s by default). An underrun is not only a click:
+// through ALSA's `default` PCM on a card with dmix (Debian 12: plug → softvol → dmix, e.g.
+// HDA-Intel) it can abort the process, and nothing in-process can catch that. alsa-lib
+// 1.2.8's snd_pcm_dmix_mmap_commit moves dmix's application pointer forward *before*
+// snd_pcm_dmix_sync_ptr finds the underrun and returns -EPIPE; the softvol/plug converter
+// above it (snd_pcm_plugin_mmap_commit) then does not move its own, and the next
+// snd_pcm_status() hits snd_pcm_plugin_status's `assert(status->appl_ptr ==
+// *pcm->appl.ptr)` (pcm_plugin.c; still there in 1.2.11 and later). PortAudio 19.6 always
+// calls snd_pcm_status() next: for the callback's time info, or in its xrun handler before
+// snd_pcm_prepare. So every underrun that dmix notices inside a commit (rather than in
+// avail_update or poll) kills the kiosk: a race that heavy underruns win now and then
+// (twice in ~272 underruns in 10 s in a QEMU guest). Mallet therefore makes underruns rare
+// and stops them from going on: PortAudio's suggested latency (≈ the ALSA buffer less one
+// period) is never below [audio] min_latency_ms, and when [audio] grow_after_underruns
+// underruns come within underrun_window_ms (counted from the first), the supervisor
+// reopens the same device with twice the latency, up to max_latency_ms, logs one warning
+// line and counts it (OutputCounters::buffer_growths), while the engine's timeline goes on
+// (FRAME 0'S TIME). A grown buffer stays for this object's life (device reopens included).
 //
 // LOGGING. Plain stderr lines with journald priority prefixes: "<4>" warning, "<6>" info,
 // written only by the supervisor and the caller's threads.
@@ -93,6 +110,7 @@ struct OutputCounters {
   std::uint64_t reopen_attempts = 0; //!< tries to open the device again
   std::uint64_t reopens = 0;         //!< successful reopens
   std::uint64_t resyncs = 0;         //!< the stream fell behind its clock and was re-anchored
+  std::uint64_t buffer_growths = 0;  //!< reopened with a larger buffer after repeated underruns
 };
 
 class PortAudioOutput {
@@ -110,10 +128,11 @@ class PortAudioOutput {
   //! config.device: empty = the default output device, all digits = a device index,
   //! otherwise a case-insensitive part of the device name (the first match). Channels,
   //! sample rate and routing come from the engine's settings (which must agree with
-  //! config); frames_per_buffer (0 = PortAudio chooses) and suggested_latency_ms (0 = the
-  //! device's default low latency) from config. Throws std::runtime_error with one clear
-  //! line (no such device: the list of those that exist) on failure. `engine` must
-  //! outlive this object.
+  //! config); frames_per_buffer (0 = PortAudio chooses), suggested_latency_ms (0 = the
+  //! device's default low latency, never below min_latency_ms) and the underrun policy
+  //! (grow_after_underruns, underrun_window_ms, max_latency_ms; see UNDERRUNS) from config.
+  //! Throws std::runtime_error with one clear line (no such device: the list of those that
+  //! exist) on failure. `engine` must outlive this object.
   PortAudioOutput(AudioEngine& engine, const AudioConfig& config, Options options);
   PortAudioOutput(AudioEngine& engine, const AudioConfig& config) : PortAudioOutput(engine, config, Options{}) {}
   //! Stops the supervisor and the stream, closes it, terminates PortAudio.
@@ -133,10 +152,18 @@ class PortAudioOutput {
   //! reopens the device with backoff. No effect unless started.
   void drop_device();
 
+  //! Reopens the device with twice the latency (up to [audio] max_latency_ms), as repeated
+  //! underruns do (tests; an operator's action). The supervisor does it at its next poll.
+  //! No effect unless started.
+  void grow_buffer();
+
   //! The device now in use (as opened, or as last reopened).
   DeviceInfo device() const;
   //! The stream's output latency in seconds, as PortAudio reports it (Pa_GetStreamInfo).
   double output_latency_s() const;
+  //! The latency the stream was asked for (PortAudio's suggestedLatency), in seconds: the
+  //! configured or default one, at least min_latency_ms, doubled by each buffer growth.
+  double requested_latency_s() const;
   //! The sample rate the stream runs at (Pa_GetStreamInfo).
   double sample_rate_hz() const;
   //! True while a device stream is open and running (false while silent after a loss).
@@ -156,6 +183,10 @@ class PortAudioOutput {
   void close_locked(bool abort);
 
   void supervise();
+  //! Reopens the stream with twice the requested latency (at most max_latency_ms). False,
+  //! with nothing done, when the buffer is at its ceiling already; throws (the stream then
+  //! closed) when the device cannot be opened again. Supervisor thread.
+  bool grow_locked();
   void render_silent(std::int64_t frames);
   //! Passes while the stream plays; else fails with why it was lost.
   Check stream_alive_locked();
@@ -170,6 +201,8 @@ class PortAudioOutput {
   void* stream_ = nullptr;  // PaStream*
   DeviceInfo device_;
   double latency_s_ = 0;
+  double requested_latency_s_ = 0;  //!< suggestedLatency of the open stream
+  double grown_latency_s_ = 0;      //!< the floor set by buffer growths (0 = none yet)
   std::atomic<Nanos> latency_ns_{0};  //!< latency_s_ for the audio thread
   std::atomic<std::uint64_t> resyncs_{0};
   double stream_rate_ = 0;
@@ -185,8 +218,9 @@ class PortAudioOutput {
 
   std::atomic<bool> device_ok_{false};
   std::atomic<bool> stream_finished_{false};
+  std::atomic<bool> grow_requested_{false};
   std::atomic<std::uint64_t> callbacks_{0}, frames_{0}, xruns_{0}, silent_frames_{0}, losses_{0},
-      reopen_attempts_{0}, reopens_{0};
+      reopen_attempts_{0}, reopens_{0}, growths_{0};
   static_assert(std::atomic<std::uint64_t>::is_always_lock_free);
   static_assert(std::atomic<bool>::is_always_lock_free);
 };

@@ -40,6 +40,15 @@ struct AudioConfig {
   std::string device;               //!< PortAudio output: name substring or index; empty = default
   int frames_per_buffer = 64;
   double suggested_latency_ms = 0;  //!< 0 = the device's default low latency
+  //! The output buffer is never asked for less than this (PortAudio's suggested latency),
+  //! whatever suggested_latency_ms or the device's default says: a few-period ALSA buffer
+  //! underruns whenever the machine is busy (src/audio/portaudio_output.hpp, UNDERRUNS).
+  double min_latency_ms = 10;
+  //! This many output underruns within underrun_window_ms reopen the device with twice the
+  //! latency, up to max_latency_ms, while the kiosk plays on; 0 = never.
+  int grow_after_underruns = 4;
+  double underrun_window_ms = 5000;
+  double max_latency_ms = 100;      //!< the ceiling of that growth
   double schedule_ahead_ms = 0;     //!< 0 = as soon as possible; > 0 = constant latency, no jitter
   //! From a frame leaving the callback to it being heard; < 0: the device's own report
   //! (PortAudio's outputLatency). Set by [timing] audio_output_latency_ms (measured, key T).

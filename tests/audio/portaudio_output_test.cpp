@@ -246,5 +246,46 @@ TEST_F(PortAudioOutputTest, ALostDeviceIsReopenedAndPlaysAgain) {
   EXPECT_GT(energy(wav.channel(1)), 1.0);
 }
 
+// A larger buffer (what repeated underruns ask for) reopens the device; the engine's
+// timeline goes on, and a strike after it still reaches the actuator's channel as Eq. 1
+// itself, sample for sample.
+TEST_F(PortAudioOutputTest, AGrownBufferKeepsStrikesExact) {
+  AppConfig c = config();
+  AudioRig rig = make_audio_rig(percussion(), c, kRate, false);
+  PortAudioOutput::Options options = int16();
+  options.poll_interval = std::chrono::milliseconds(2);
+  {
+    PortAudioOutput out(*rig.engine, c.audio, options);
+    const double first = out.requested_latency_s();
+    EXPECT_GE(first, c.audio.min_latency_ms / 1000.0);
+    out.start();
+    ASSERT_TRUE(wait_until([&] { return out.counters().frames >= 4096; }));
+    out.grow_buffer();
+    ASSERT_TRUE(wait_until([&] { return out.counters().buffer_growths >= 1; }));
+    EXPECT_DOUBLE_EQ(out.requested_latency_s(), 2 * first);
+    EXPECT_EQ(out.counters().device_losses, 0u);
+    // Reopening truncated the file; a strike posted now must be in it.
+    ASSERT_TRUE(rig.engine->post(strike(3, 0, 1.0)));
+    const std::uint64_t before = out.counters().frames;
+    ASSERT_TRUE(wait_until([&] { return out.counters().frames >= before + static_cast<std::uint64_t>(kFrames); }));
+    out.stop();
+  }
+  const WavData wav = read_wav(this->wav());
+  const std::vector<double> actuator = wav.channel(1);
+  EXPECT_EQ(energy(wav.channel(0)), 0.0);
+  const std::vector<Impact> impacts{strike(3, 0, 1.0)};
+  ActuatorTrack reference(percussion(), impacts, c.actuator, kRate);
+  std::vector<float> want(static_cast<std::size_t>(kRate / 2));
+  reference.render(0, want);
+  const std::vector<double> want_d(want.begin(), want.end());
+  const std::int64_t lag = first_above(actuator, 0.01) - first_above(want_d, 0.01);
+  ASSERT_GE(lag, 0);
+  ASSERT_LE(static_cast<std::size_t>(lag) + want.size(), actuator.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < want.size(); ++i)
+    worst = std::max(worst, std::fabs(actuator[static_cast<std::size_t>(lag) + i] - want_d[i]));
+  EXPECT_LT(worst, 1e-4);
+}
+
 }  // namespace
 }  // namespace mallet::audio

@@ -48,6 +48,13 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     a.device = t->string_or("device", a.device);
     t->read("frames_per_buffer", a.frames_per_buffer, 16, 8192);
     t->read("suggested_latency_ms", a.suggested_latency_ms, 0, 1000);
+    t->read("min_latency_ms", a.min_latency_ms, 0, 1000);
+    t->read("grow_after_underruns", a.grow_after_underruns, 0, 1000000);
+    t->read("underrun_window_ms", a.underrun_window_ms, 10, 3600000);
+    t->read("max_latency_ms", a.max_latency_ms, 1, 2000);
+    if (a.max_latency_ms < a.min_latency_ms)
+      t->fail(t->has("max_latency_ms") ? "max_latency_ms" : "min_latency_ms",
+              "max_latency_ms must not be below min_latency_ms");
     t->read("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
     t->read("max_voices", a.max_voices, 1, 4096);
     t->read("max_modes", a.max_modes, 1, kMaxModalModes);
