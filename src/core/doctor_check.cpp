@@ -43,6 +43,50 @@ DoctorCheck judge_free_space(const std::string& where, std::uint64_t available) 
   return c;
 }
 
+DoctorCheck judge_state_folder(const std::string& where, std::uint64_t available, const std::string& write_problem) {
+  DoctorCheck c = judge_free_space(where, available);
+  c.found = "state folder: " + c.found;  // "state folder: 71.2 GiB free in /var/lib/mallet"
+  if (write_problem.empty()) {
+    c.found += ", writable";
+    return c;
+  }
+  c.level = CheckLevel::fail;
+  c.found += ", cannot be written: " + write_problem;
+  c.fix = "free space on that file system or make " + where +
+          " writable by the kiosk's user (the package's StateDirectory=mallet); meanwhile the kiosk plays on but keeps "
+          "no calibration, counters, last good settings or visitor results";
+  return c;
+}
+
+namespace {
+std::string node_names(const std::vector<RenderNode>& nodes) {
+  std::string out;
+  for (const RenderNode& n : nodes)
+    out += (out.empty() ? "" : ", ") + n.name + (n.driver.empty() ? std::string() : ", driver " + n.driver);
+  return out;
+}
+}  // namespace
+
+CompositorRenderer compositor_renderer(const std::vector<RenderNode>& nodes, const std::optional<std::string>& env) {
+  if (env && !env->empty()) return {*env, "WLR_RENDERER set by the unit's environment", true};
+  if (nodes.empty())
+    return {"pixman", "no GPU render node in /dev/dri: software", false};
+  return {"gles2", "the GPU's: " + node_names(nodes), false};
+}
+
+DoctorCheck judge_compositor(const CompositorRenderer& r, const std::vector<RenderNode>& nodes) {
+  DoctorCheck c{"compositor", CheckLevel::ok, r.renderer + " (" + r.reason + ")", ""};
+  if (r.from_environment && nodes.empty() && r.renderer != "pixman") {
+    c.level = CheckLevel::warn;
+    c.found += "; /dev/dri has no render node";
+    c.fix = "without a GPU render node wlroots falls back to Mesa's kms_swrast, which crashes on some virtual GPUs: "
+            "remove WLR_RENDERER from the drop-in (the session then uses pixman)";
+  } else if (r.from_environment && !nodes.empty()) {
+    c.found += "; render node " + node_names(nodes);
+  }
+  return c;
+}
+
 DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t width, std::uint32_t height,
                            double frame_ms) {
   DoctorCheck c{"vulkan", CheckLevel::ok,

@@ -34,6 +34,38 @@ int doctor_exit_status(const std::vector<DoctorCheck>& checks);
 //! calibration can no longer be saved for long), below 1 GiB warns.
 DoctorCheck judge_free_space(const std::string& where, std::uint64_t available_bytes);
 
+//! The kiosk's state folder (calibration, last good settings, counters, visitor results):
+//! its free space as judge_free_space, and whether it can be written. `write_problem`: why
+//! a write into it failed (a probe's, or the running kiosk's last one), empty when it did not;
+//! the kiosk plays on without keeping anything new, so that fails with the folder named.
+DoctorCheck judge_state_folder(const std::string& where, std::uint64_t available_bytes,
+                               const std::string& write_problem);
+
+//! A GPU's render node in /dev/dri ("renderD128") and its kernel driver ("i915", "amdgpu",
+//! "virtio_gpu"; empty: unknown).
+struct RenderNode {
+  std::string name;
+  std::string driver;
+};
+
+//! The renderer of the kiosk's Wayland compositor (cage, wlroots: WLR_RENDERER) and why.
+struct CompositorRenderer {
+  std::string renderer;  //!< "pixman", "gles2", or what WLR_RENDERER names
+  std::string reason;    //!< e.g. "no GPU render node in /dev/dri: software"
+  bool from_environment = false;  //!< WLR_RENDERER was set (an operator's drop-in)
+};
+
+//! The rule mallet-session applies: a set WLR_RENDERER (an operator's drop-in) wins; else,
+//! with no render node, wlroots' GLES2 renderer would fall back to Mesa's kms_swrast, which
+//! crashes on e.g. virtio-gpu without virgl, so the session uses "pixman" (the CPU); with one,
+//! "gles2" (the GPU's). `wlr_renderer` empty counts as unset, as the shell's `-z` does.
+CompositorRenderer compositor_renderer(const std::vector<RenderNode>& render_nodes,
+                                       const std::optional<std::string>& wlr_renderer);
+
+//! The doctor's `compositor` line: ok, with the renderer and why; a WLR_RENDERER that asks
+//! for the GPU (gles2, vulkan) where there is no render node warns.
+DoctorCheck judge_compositor(const CompositorRenderer& renderer, const std::vector<RenderNode>& render_nodes);
+
 //! The renderer: a CPU rasteriser (lavapipe) on a large display is a warning, with the frame
 //! time measured at that size; above one 60 Hz refresh (16.7 ms) it fails.
 DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t width, std::uint32_t height,

@@ -208,6 +208,12 @@ std::string render_prometheus_text(const KioskMetrics& m) {
   t.single("mallet_tracking_lost_seconds_total", "counter",
            "Time in play with the remote connected but the stick's LED out of the camera's view.",
            number(seconds_of(m.tracking_lost_ns())));
+  t.single("mallet_settings_refused", "gauge",
+           "1 while the kiosk runs on its last good settings or the shipped defaults: its own were refused.",
+           m.settings_refused ? "1" : "0");
+  t.single("mallet_state_folder_writable", "gauge",
+           "0 while the kiosk's state folder cannot be written (full, read-only): nothing new is kept.",
+           m.state_folder_writable ? "1" : "0");
   t.family("mallet_state", "gauge", "The kiosk's state: 1 for the current one, 0 for the others.");
   for (const auto& [s, name] : kKioskStateNames) t.sample("mallet_state", {{"state", name}}, m.state() == s ? "1" : "0");
   t.single("mallet_uptime_seconds", "gauge",

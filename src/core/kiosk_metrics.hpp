@@ -80,6 +80,11 @@ class KioskMetrics {
   //! Device memory the renderer holds (render::device_memory_bytes); NaN: nothing renders.
   double vulkan_device_memory_bytes = std::numeric_limits<double>::quiet_NaN();
   bool remote_connected = false;
+  //! mallet_settings_refused: the operator's settings were refused at start and the kiosk
+  //! runs on its last good settings or the shipped defaults (until a reload loads them).
+  bool settings_refused = false;
+  //! mallet_state_folder_writable: 0 while writes into the state folder fail (full, read-only).
+  bool state_folder_writable = true;
   double remote_battery_ratio = std::numeric_limits<double>::quiet_NaN();
   Nanos uptime_ns = 0;
   std::uint64_t restarts = 0;  //!< how many times the kiosk started before this run

@@ -27,6 +27,47 @@ TEST(DoctorCheck, FreeSpaceThresholds) {
   EXPECT_NE(ok.found.find("5.0 GiB free in /var"), std::string::npos) << ok.found;
 }
 
+TEST(DoctorCheck, AStateFolderThatCannotBeWrittenFailsNamingTheFolderAndItsFreeSpace) {
+  const DoctorCheck fine = judge_state_folder("/var/lib/mallet", 5 * 1024 * kMiB, "");
+  EXPECT_EQ(fine.name, "disk");
+  EXPECT_EQ(fine.level, CheckLevel::ok);
+  EXPECT_EQ(fine.found, "state folder: 5.0 GiB free in /var/lib/mallet, writable");
+  const DoctorCheck full = judge_state_folder("/var/lib/mallet", 0, "No space left on device");
+  EXPECT_EQ(full.level, CheckLevel::fail);
+  EXPECT_EQ(full.found, "state folder: 0.0 GiB free in /var/lib/mallet, cannot be written: No space left on device");
+  EXPECT_NE(full.fix.find("the kiosk plays on"), std::string::npos) << full.fix;
+  // Space enough, but a read-only file system: it fails all the same.
+  EXPECT_EQ(judge_state_folder("/var/lib/mallet", 5 * 1024 * kMiB, "Read-only file system").level, CheckLevel::fail);
+}
+
+TEST(CompositorRenderer, NoRenderNodeIsPixmanAGpuIsGles2AndASetWlrRendererWins) {
+  const std::vector<RenderNode> none;
+  const std::vector<RenderNode> gpu{{"renderD128", "i915"}};
+  const CompositorRenderer software = compositor_renderer(none, std::nullopt);
+  EXPECT_EQ(software.renderer, "pixman");
+  EXPECT_FALSE(software.from_environment);
+  EXPECT_EQ(format_check(judge_compositor(software, none)),
+            "ok    compositor   pixman (no GPU render node in /dev/dri: software)");
+  const CompositorRenderer hardware = compositor_renderer(gpu, std::nullopt);
+  EXPECT_EQ(hardware.renderer, "gles2");
+  EXPECT_EQ(format_check(judge_compositor(hardware, gpu)),
+            "ok    compositor   gles2 (the GPU's: renderD128, driver i915)");
+  // An empty WLR_RENDERER is unset, as the start script's `-z` test reads it.
+  EXPECT_EQ(compositor_renderer(none, std::string()).renderer, "pixman");
+  EXPECT_EQ(compositor_renderer({{"renderD128", ""}}, std::string()).renderer, "gles2");
+  // An operator's drop-in wins both ways, and the doctor says so.
+  const CompositorRenderer forced = compositor_renderer(gpu, std::string("pixman"));
+  EXPECT_EQ(forced.renderer, "pixman");
+  EXPECT_TRUE(forced.from_environment);
+  const DoctorCheck said = judge_compositor(forced, gpu);
+  EXPECT_EQ(said.level, CheckLevel::ok);
+  EXPECT_NE(said.found.find("WLR_RENDERER set by the unit's environment"), std::string::npos) << said.found;
+  // Asking for the GPU where there is none is the crash the rule avoids: a warning with the fix.
+  const DoctorCheck risky = judge_compositor(compositor_renderer(none, std::string("gles2")), none);
+  EXPECT_EQ(risky.level, CheckLevel::warn);
+  EXPECT_NE(risky.fix.find("remove WLR_RENDERER"), std::string::npos) << risky.fix;
+}
+
 TEST(DoctorCheck, SoftwareRendererOnALargeDisplayWarnsWithItsFrameTime) {
   const DoctorCheck big = judge_renderer("llvmpipe", true, 1920, 1080, 2.4);
   EXPECT_EQ(big.level, CheckLevel::warn);

@@ -110,6 +110,23 @@ TEST_F(DropIns, ShowNamesEachKeysFileAndParsesBackToTheSameValues) {
   EXPECT_EQ(back.audio.sample_rate_hz, 48000);
 }
 
+TEST_F(DropIns, KeptSettingsReadBackAsTheFilesTheyCameFromRelativePathsIncluded) {
+  // The kiosk keeps show_settings' text as its last good settings, in its state folder; read
+  // back, a relative [metrics] textfile still lies beside the settings it was written in.
+  write(drop / "10-metrics.toml", "[metrics]\ntextfile = \"mallet.prom\"\n");
+  const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
+  write(dir / "state" / "kept.toml", config::show_settings(s));
+  const config::LoadedSettings kept = config::load_kept_settings(dir / "state" / "kept.toml", main);
+  EXPECT_EQ(kept.file, dir / "state" / "kept.toml");
+  EXPECT_DOUBLE_EQ(kept.config.audio.volume, 0.8);
+  EXPECT_EQ(kept.config.audio.sample_rate_hz, 48000);
+  EXPECT_EQ(kept.config.metrics.textfile, (dir / "mallet.prom").string());
+  // A bad kept file is a ConfigError naming itself.
+  write(dir / "state" / "kept.toml", "[audio\n");
+  const FileError e = test::file_error_of([&] { config::load_kept_settings(dir / "state" / "kept.toml", main); });
+  EXPECT_EQ(e.file(), (dir / "state" / "kept.toml").string());
+}
+
 TEST(ScenesPlaces, TheSettingsLineThatNamesTheScenesIsKept) {
   const AppConfig c = config::parse_app_config("[scenes]\nstart = \"x.toml\"\nchoices = [\"x.toml\"]\n", "m.toml");
   EXPECT_EQ(c.scenes.start_at.file, "m.toml");

@@ -39,13 +39,18 @@ ghost player plays whenever nobody has moved for --idle-after seconds. Visitors 
 it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, R
 recalibrate, S next scene of [scenes] choices, M the wall's next material, L next language,
 Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the
-settings and the scene (a bad file is refused, the old ones stay). Each strike and a
+settings and the scene (a bad file is refused, the old ones stay). Settings refused at start
+do not keep the kiosk dark: it runs on its last good settings (kept in the state folder as
+last-good-settings.toml at each start or reload that loaded), else on the shipped defaults,
+and says so (an error line naming the file and line, the operator page, `mallet doctor`).
+A state folder that cannot be written is said once; the kiosk plays on. Each strike and a
 heartbeat a minute are logged on stderr (journald priorities);
 under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.
 Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs
 offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,
 and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])
-and DIR/log.txt (one line per strike), then exits 0.)");
+and DIR/log.txt (one line per strike), then exits 0; settings that are refused end it with
+exit status 2 and the one line, as for every other command.)");
   cmd->add_option("--scene", o->scene,
                   "Scene file (default: [scenes] start of the settings, a file in the scenes/ folder next to "
                   "them: percussion.toml)")

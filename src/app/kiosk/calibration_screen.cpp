@@ -90,11 +90,13 @@ void CalibrationScreen::accept() {
     write_calibration_file(*save_to_, *result_);
     outcome_ = Outcome::accepted;
     message_ += tr(", saved");
+    saved_ = Check{};
   } catch (const std::exception& e) {
     // Not written: the kiosk keeps its previous calibration, and the operator sees why.
     outcome_ = Outcome::failed;
     result_.reset();
     message_ = std::string(tr("Calibration not saved: ")) + e.what();
+    saved_ = Check(refused(e.what()));
   }
 }
 

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "core/result.hpp"
 #include "core/calibration_session.hpp"
 #include "core/sensitivity_tuner.hpp"
 #include "render/overlay.hpp"
@@ -58,6 +59,10 @@ class CalibrationScreen {
   //! One line for the screen after the end: the accepted error and where it went, or why it
   //! failed (the previous calibration stays).
   const std::string& message() const { return message_; }
+  //! Whether an accepted calibration was to be written to save_to and how that went: none
+  //! when nothing was to be written (not accepted, or no save_to); else the write's outcome
+  //! (its refusal: why, one line), for the state folder's report.
+  const std::optional<Check>& saved() const { return saved_; }
   const CalibrationSession& session() const { return session_; }
 
   //! The line under the targets: which target is being measured and in which round, and
@@ -76,6 +81,7 @@ class CalibrationScreen {
   Outcome outcome_ = Outcome::measuring;
   std::optional<Calibration> result_;
   std::string message_;
+  std::optional<Check> saved_;
   std::string last_round_;  //!< the last rejected round's errors, shown while repeating
   std::optional<SensitivityTuner> tuner_;
   std::string configured_, sensitivity_, tuner_note_;

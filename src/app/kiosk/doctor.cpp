@@ -11,8 +11,15 @@
 #include <cstdio>
 #include <ctime>
 #include <memory>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
 #include <system_error>
 #include <thread>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -23,6 +30,7 @@
 #include "audio/audio_setup.hpp"
 #include "core/data_paths.hpp"
 #include "app/kiosk/kiosk_setup.hpp"
+#include "app/kiosk/state_folder.hpp"
 #include "app/strike/remote_pointer.hpp"
 #include "app/common/settings_source.hpp"
 #include "core/visitor_catalogues.hpp"
@@ -352,20 +360,59 @@ DoctorCheck check_calibration(const std::optional<std::string>& remote) {
   return judge_calibration(path.string(), cal, problem, static_cast<std::int64_t>(std::time(nullptr)), remote);
 }
 
-DoctorCheck check_disk() {
-  // Where the kiosk writes: its state (calibration) and, by default, the study results.
-  fs::path where = state_dir();
+//! Why the kiosk could not write into its state folder `dir`, tried as far as this process
+//! stands for the kiosk's user: a read-only file system always; a file created, written and
+//! removed again when it runs as root or as the folder's owner. Empty: nothing found.
+std::string state_write_problem(const fs::path& dir) {
   std::error_code ec;
+  fs::path where = dir;
   while (!where.empty() && !fs::exists(where, ec) && where != where.parent_path()) where = where.parent_path();
   struct statvfs st {};
-  if (where.empty() || ::statvfs(where.c_str(), &st) != 0)
-    return fail("disk", "cannot read the free space of " + state_dir().string(), "check that the disk is mounted");
-  return judge_free_space(where.string(), static_cast<std::uint64_t>(st.f_bavail) * st.f_frsize);
+  if (!where.empty() && ::statvfs(where.c_str(), &st) == 0 && (st.f_flag & ST_RDONLY)) return std::strerror(EROFS);
+  if (!fs::exists(dir, ec)) return fs::is_directory(where, ec) ? "" : where.string() + " is not a folder";
+  if (!fs::is_directory(dir, ec)) return dir.string() + " is not a folder";
+  struct stat info {};
+  if (::stat(dir.c_str(), &info) != 0 || (::geteuid() != 0 && info.st_uid != ::geteuid())) return "";
+  const fs::path probe = dir / (".doctor-probe-" + std::to_string(::getpid()));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) return probe.string() + ": " + std::strerror(errno);
+  const char byte = 0;
+  std::string problem;
+  if (::write(fd, &byte, 1) != 1 || ::fsync(fd) != 0) problem = probe.string() + ": " + std::strerror(errno);
+  ::close(fd);
+  fs::remove(probe, ec);
+  return problem;
+}
+
+DoctorCheck check_disk(const std::string& kiosk_problem) {
+  // Where the kiosk writes: its state (calibration, last good settings, counters) and, by
+  // default, the study results. What the running kiosk found wins over a probe's guess.
+  const fs::path dir = state_dir();
+  const std::optional<std::uint64_t> space = free_bytes(dir);
+  if (!space) return fail("disk", "cannot read the free space of " + dir.string(), "check that the disk is mounted");
+  return judge_state_folder(dir.string(), *space, kiosk_problem.empty() ? state_write_problem(dir) : kiosk_problem);
+}
+
+DoctorCheck check_compositor() {
+  const std::vector<RenderNode> nodes = render_nodes();
+  return judge_compositor(kiosk_compositor_renderer(true), nodes);
 }
 
 bool systemd_running() {
   std::error_code ec;
   return fs::is_directory("/run/systemd/system", ec);
+}
+
+//! WLR_RENDERER in mallet-session.service's environment (`systemctl show`), if set there.
+std::optional<std::string> session_unit_renderer() {
+  if (!systemd_running()) return std::nullopt;
+  const Ran env = run("systemctl show --property=Environment --value mallet-session.service");
+  if (env.status != 0) return std::nullopt;
+  std::istringstream words(env.out);
+  std::string word;
+  while (words >> word)
+    if (word.rfind("WLR_RENDERER=", 0) == 0 && word.size() > 13) return word.substr(13);
+  return std::nullopt;
 }
 
 DoctorCheck check_service() {
@@ -408,8 +455,30 @@ DoctorCheck check_watchdog() {
 
 }  // namespace
 
+std::vector<RenderNode> render_nodes() {
+  std::vector<RenderNode> nodes;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator("/dev/dri", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("renderD", 0) != 0) continue;
+    std::error_code link;
+    const fs::path driver = fs::read_symlink(fs::path("/sys/class/drm") / name / "device" / "driver", link);
+    nodes.push_back({name, link ? std::string() : driver.filename().string()});
+  }
+  std::sort(nodes.begin(), nodes.end(), [](const RenderNode& a, const RenderNode& b) { return a.name < b.name; });
+  return nodes;
+}
+
+CompositorRenderer kiosk_compositor_renderer(bool ask_unit) {
+  std::optional<std::string> env;
+  if (const char* v = std::getenv("WLR_RENDERER"); v && *v) env = v;
+  CompositorRenderer r = compositor_renderer(render_nodes(), env ? env : ask_unit ? session_unit_renderer() : env);
+  if (r.from_environment && !env) r.reason = "WLR_RENDERER set in mallet-session.service's environment";
+  return r;
+}
+
 std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDeviceFacts& facts) {
-  std::vector<DoctorCheck> checks{facts.vulkan, facts.audio, facts.wiimote};
+  std::vector<DoctorCheck> checks{facts.vulkan, check_compositor(), facts.audio, facts.wiimote};
   KioskOptions ko;
   ko.config = o.config;
   ko.config_dir = o.config_dir;
@@ -432,11 +501,17 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
     checks.push_back(check_soundfont(setup.config));
     checks.push_back(check_languages(setup.config));
   } catch (const std::exception& e) {
-    checks.push_back(fail("settings", e.what(), "fix the line named; `mallet config show` shows what is in force"));
+    // What the kiosk starts on meanwhile: the same route as its start (kiosk_setup.hpp).
+    const Result<KioskSetup, std::string> fallback = start_setup(ko, state_dir() / kLastGoodSettings);
+    checks.push_back(fail("settings", e.what(),
+                          "fix the line named, then `systemctl reload mallet`; `mallet config show` shows what is in "
+                          "force; meanwhile " +
+                              (fallback && !fallback->fallback.empty() ? "the kiosk runs on " + fallback->fallback
+                                        : std::string("the kiosk cannot start: nothing to fall back on"))));
   }
   checks.push_back(check_hidraw());
   checks.push_back(check_calibration(facts.connected_remote));
-  checks.push_back(check_disk());
+  checks.push_back(check_disk(facts.state_problem));
   checks.push_back(check_service());
   checks.push_back(check_watchdog());
   return checks;
@@ -450,9 +525,12 @@ std::vector<DoctorCheck> run_doctor(const DoctorOptions& o) {
     KioskOptions ko;
     ko.config = o.config;
     ko.config_dir = o.config_dir;
-    KioskSetup setup = load_kiosk_setup(ko);
-    config = std::move(setup.config);
-    scene = std::move(setup.scene);
+    // The devices as the kiosk opens them: with its settings, or what it falls back on
+    // while they are refused (the settings check says which).
+    Result<KioskSetup, std::string> setup = start_setup(ko, state_dir() / kLastGoodSettings);
+    if (!setup) throw std::runtime_error(setup.error());
+    config = std::move(setup->config);
+    scene = std::move(setup->scene);
   } catch (const std::exception& e) {  // the settings check says why; the devices need them
     const DoctorCheck skipped = fail("", "not checked: the settings or the scene cannot be read", "see `settings`");
     facts.vulkan = skipped, facts.audio = skipped, facts.wiimote = skipped;

@@ -26,14 +26,29 @@ struct KioskDeviceFacts {
   DoctorCheck audio;
   DoctorCheck wiimote;
   std::optional<std::string> connected_remote;  //!< its identity, for the calibration check
+  //! Why the kiosk's last write into its state folder failed (state_folder.hpp); empty: it
+  //! did not, or the doctor runs alone (it then tries a write of its own).
+  std::string state_problem;
 };
+
+//! The render nodes in /dev/dri (renderD*), each with its kernel driver
+//! (/sys/class/drm/renderD*/device/driver), in order of their names.
+std::vector<RenderNode> render_nodes();
+
+//! The renderer the kiosk's compositor uses (core/doctor_check.hpp: compositor_renderer)
+//! on this machine: its render nodes and $WLR_RENDERER. With `ask_unit` and systemd running,
+//! a WLR_RENDERER set in mallet-session.service's environment (an operator's drop-in) when
+//! this process has none. `mallet doctor --print-renderer` prints its renderer (mallet-session
+//! exports it as WLR_RENDERER).
+CompositorRenderer kiosk_compositor_renderer(bool ask_unit);
 
 //! Every check, each device opened and released again. Never throws: a probe that fails is a
 //! `fail` line.
 std::vector<DoctorCheck> run_doctor(const DoctorOptions& options);
 
-//! The checks that open no device (settings, scenes, models, soundfont, hidraw access,
-//! calibration, disk, service, watchdog), after the kiosk's own device facts.
+//! The checks that open no device (the compositor's renderer, settings, scenes, models,
+//! soundfont, hidraw access, calibration, disk, service, watchdog), with the kiosk's own
+//! device facts.
 std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& options, const KioskDeviceFacts& facts);
 
 //! The same checks as JSON: {"checks": [{"name", "status", "found", "fix"}...], "ok": N, "warn": N, "fail": N}.

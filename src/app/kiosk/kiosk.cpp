@@ -22,6 +22,7 @@
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
+#include "core/journal.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/sample_clock.hpp"
 #include "core/visitor_language.hpp"
@@ -68,7 +69,7 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     say("warning: " + line);
     std::fprintf(stderr, "mallet run: warning: %s\n", line.c_str());
   };
-  MetricsFile metrics_file(std::nullopt, warn, [&](const std::string& line) { say(line); });
+  MetricsFile metrics_file(nullptr, warn, [&](const std::string& line) { say(line); });
   metrics_file.configure(config.metrics);
   loop.on_strike = [&](const Strike& s, bool) {
     say(strike_line(scene, s.impact));
@@ -123,14 +124,27 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
 }  // namespace
 
 int run_kiosk(const KioskOptions& options) {
-  KioskSetup setup = load_kiosk_setup(options);
+  const bool window = !options.headless && render::WindowSystem::display_available();
+  // A kiosk on a display never goes dark over its settings: refused, it starts on its last
+  // good settings or the shipped defaults and says so (start_setup). Headless (a
+  // researcher's run) refuses bad input as every other command does: exit 2, one line.
+  Result<KioskSetup, std::string> started = window ? start_setup(options, state_dir() / kLastGoodSettings)
+                                                   : Result<KioskSetup, std::string>(load_kiosk_setup(options));
+  if (!started) {  // nothing to fall back on: the operator's own error, one line and exit 2, as before
+    load_kiosk_setup(options);
+    throw std::runtime_error(started.error());
+  }
+  KioskSetup setup = std::move(*started);
   KioskOptions o = options;
-  o.scene = setup.scene.file;  // a reload re-reads the scene it runs
-  const bool window = !o.headless && render::WindowSystem::display_available();
+  // A reload re-reads the scene it runs; on a fallback, what the operator's settings name.
+  if (setup.refused.empty()) o.scene = setup.scene.file;
   // The kiosk's stderr goes to the journal: its priorities; a headless run's to a person.
   const std::string info = window ? "<6>" : "mallet run: ", warning = window ? "<4>" : "mallet run: warning: ";
   std::fprintf(stderr, "%s%s\n", info.c_str(), setup.settings_line.c_str());
-  for (const std::string& p : setup.problems) std::fprintf(stderr, "%s%s\n", warning.c_str(), p.c_str());
+  for (const std::string& p : setup.problems) {
+    if (p == setup.refused) journal::error("{}", p);
+    else std::fprintf(stderr, "%s%s\n", warning.c_str(), p.c_str());
+  }
   if (o.headless) return run_headless(o, setup, "--headless");
   if (!window) return run_headless(o, setup, "no display: DISPLAY and WAYLAND_DISPLAY are unset");
   return run_window_kiosk(o, std::move(setup));

@@ -106,6 +106,8 @@ void KioskHealth::write_metrics(Nanos now, const KioskStage& stage, const render
   if (stage.device)
     if (const std::optional<std::uint8_t> b = stage.device->state().remote.battery)
       metrics_.remote_battery_ratio = std::min(1.0, *b / 200.0);  // 0xC8 on fresh cells (reports.hpp)
+  metrics_.settings_refused = !stage.refused.empty();
+  metrics_.state_folder_writable = !state_.failing();
   metrics_.uptime_ns = now - started_;
   metrics_.version = mallet_version();
   metrics_file_.write(metrics_, now);

@@ -7,11 +7,13 @@
 // decided still); why it goes hungry is said once per stall. A heartbeat line a minute
 // (state, frames, strikes, audio callbacks, xruns). [metrics]: the frames, states, tracking,
 // strikes, xruns, device memory and the remote's battery into the Prometheus file
-// (metrics_file.hpp) when due, counts kept across reloads.
+// (metrics_file.hpp) when due, counts kept across reloads. The state folder
+// (state_folder.hpp): its writes, and whether they fail, said once.
 #include <cstdint>
 
 #include "app/kiosk/kiosk_stage.hpp"
 #include "app/kiosk/metrics_file.hpp"
+#include "app/kiosk/state_folder.hpp"
 #include "app/kiosk/systemd_notify.hpp"
 #include "core/data_paths.hpp"
 #include "core/journal.hpp"
@@ -29,6 +31,10 @@ class KioskHealth {
   SystemdNotifier& notifier() { return notifier_; }
   KioskMetrics& metrics() { return metrics_; }
   MetricsFile& metrics_file() { return metrics_file_; }
+  //! The state folder: every write of the kiosk into it (calibration, last good settings,
+  //! counters, visitor results) goes through it or reports to it.
+  StateFolder& state() { return state_; }
+  const StateFolder& state() const { return state_; }
   Nanos started() const { return started_; }
 
   //! The main loop went round (input polled); a frame was drawn; one was decided still.
@@ -72,7 +78,9 @@ class KioskHealth {
   std::uint64_t callbacks_at_beat_ = 0;
   std::uint64_t strikes_before_ = 0;  //!< by the stages a reload replaced
   KioskMetrics metrics_;
-  MetricsFile metrics_file_{state_dir(), [](const std::string& line) { journal::warning("{}", line.c_str()); },
+  StateFolder state_{state_dir(), [](const std::string& line) { journal::warning("{}", line.c_str()); },
+                     [](const std::string& line) { journal::notice("{}", line.c_str()); }};
+  MetricsFile metrics_file_{&state_, [](const std::string& line) { journal::warning("{}", line.c_str()); },
                             [](const std::string& line) { journal::notice("{}", line.c_str()); }};
   StrikeCounts strikes_retired_;      //!< by the stages a reload replaced (and a zero per scene's label)
   std::uint64_t xruns_retired_ = 0;   //!< by the audio outputs a reload replaced

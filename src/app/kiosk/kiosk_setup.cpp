@@ -6,6 +6,7 @@
 #include "app/common/settings_source.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "core/config/scene_config.hpp"
+#include "core/config/settings_files.hpp"
 #include "core/file_error.hpp"
 
 namespace mallet::app {
@@ -20,16 +21,20 @@ std::filesystem::path named_scene(const std::optional<std::filesystem::path>& se
   return file;
 }
 
-KioskSetup load_kiosk_setup(const KioskOptions& o) {
+namespace {
+
+//! What `o` names, with `settings` (already loaded) as the settings; scenes named in them
+//! are found beside `scenes_beside` (the settings file they are read as).
+KioskSetup setup_from(const KioskOptions& o, config::LoadedSettings settings,
+                      const std::optional<std::filesystem::path>& scenes_beside) {
   KioskSetup s;
-  config::LoadedSettings settings = operator_settings(o.config, o.config_dir);
   s.config = std::move(settings.config);
   s.settings_line = "settings: " + settings.describe();
   s.problems = std::move(settings.refused);
   const ScenesConfig& sc = s.config.scenes;
   for (const std::string& name : sc.choices) {
     try {
-      const std::filesystem::path file = named_scene(o.config, name, sc.choices_at, "scenes.choices");
+      const std::filesystem::path file = named_scene(scenes_beside, name, sc.choices_at, "scenes.choices");
       config::load_scene(file);  // parses, with its materials and instruments
       s.scene_choices.push_back(file);
     } catch (const std::exception& e) {
@@ -37,10 +42,28 @@ KioskSetup load_kiosk_setup(const KioskOptions& o) {
     }
   }
   const std::filesystem::path scene =
-      o.scene.empty() ? named_scene(o.config, sc.start, sc.start_at, "scenes.start") : o.scene;
+      o.scene.empty() ? named_scene(scenes_beside, sc.start, sc.start_at, "scenes.start") : o.scene;
   s.scene = config::load_scene(scene);
   start_visitor_language(s.config.language, s.problems);
   return s;
+}
+
+}  // namespace
+
+KioskSetup load_kiosk_setup(const KioskOptions& o) {
+  config::LoadedSettings settings = operator_settings(o.config, o.config_dir);
+  std::string kept = config::show_settings(settings);
+  KioskSetup s = setup_from(o, std::move(settings), o.config);
+  s.kept_settings = std::move(kept);
+  return s;
+}
+
+std::string last_good_text(const KioskSetup& setup) {
+  if (setup.kept_settings.empty()) return {};
+  return "# The kiosk's last good settings: those of its last start or reload whose settings loaded, kept by\n"
+         "# `mallet run`. The kiosk starts on them when its settings are refused (a broken file). Not for\n"
+         "# editing: edit the files named below, then `systemctl reload mallet`.\n" +
+         setup.kept_settings;
 }
 
 Result<KioskSetup, std::string> load_setup(const KioskOptions& o) {
@@ -49,6 +72,43 @@ Result<KioskSetup, std::string> load_setup(const KioskOptions& o) {
   } catch (const std::exception& e) {  // FileError, and whatever a library throws (bad_alloc...)
     return refused(e.what());
   }
+}
+
+Result<KioskSetup, std::string> start_setup(const KioskOptions& o, const std::filesystem::path& last_good) {
+  Result<KioskSetup, std::string> own = load_setup(o);
+  if (own) return own;
+  std::vector<std::string> not_used;  // fallbacks that did not load, each with its reason
+  // Each fallback as the reload's route loads: whatever it throws is its reason.
+  const auto fall_back = [&](const std::filesystem::path& file, const std::optional<std::filesystem::path>& as_if,
+                             const KioskOptions& options, bool kept, const std::string& what) -> bool {
+    try {
+      config::LoadedSettings settings = kept ? config::load_kept_settings(file, as_if)
+                                             : config::load_settings(file, {});
+      KioskSetup s = setup_from(options, std::move(settings), as_if);
+      s.fallback = what + " (" + file.string() + ")";
+      s.refused = "settings refused: " + own.error() + "; the kiosk runs on " + s.fallback +
+                  " until they load (fix them, then reload: systemctl reload mallet)";
+      s.settings_line = "settings: " + s.fallback + ", the operator's are refused";
+      s.problems.insert(s.problems.begin(), not_used.begin(), not_used.end());
+      s.problems.insert(s.problems.begin(), s.refused);
+      own = std::move(s);
+      return true;
+    } catch (const std::exception& e) {
+      not_used.push_back(what + " not used: " + e.what());
+      return false;
+    }
+  };
+  std::error_code ec;
+  if (std::filesystem::exists(last_good, ec) && fall_back(last_good, o.config, o, true, "its last good settings"))
+    return own;
+  // The shipped defaults whole: their own start scene, found beside them.
+  KioskOptions shipped = o;
+  shipped.scene.clear();
+  const std::filesystem::path defaults = data_dir() / "config" / "mallet.toml";
+  if (fall_back(defaults, defaults, shipped, false, "the shipped defaults")) return own;
+  std::string why = own.error();
+  for (const std::string& n : not_used) why += "; " + n;
+  return refused(why);
 }
 
 }  // namespace mallet::app

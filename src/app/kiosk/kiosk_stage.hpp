@@ -37,6 +37,9 @@ struct KioskStage {
   std::string settings_line;                          //!< where the settings came from
   std::vector<std::filesystem::path> scene_choices;  //!< the usable [scenes] choices (S)
   std::vector<std::string> problems;                  //!< drop-ins and scene choices refused
+  //! The start's settings were refused and this stage runs on a fallback: the line that says
+  //! so (kiosk_setup.hpp); empty once a reload loads the operator's settings.
+  std::string refused;
   audio::AudioRig rig;
   std::unique_ptr<audio::PortAudioOutput> output;
   std::string audio_status;

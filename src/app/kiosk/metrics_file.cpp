@@ -68,8 +68,8 @@ void StrikeTally::add_to(StrikeCounts& counts) const {
         counts[{scene_.targets[t].instrument, scene_.materials[m].name}] += n;
 }
 
-std::uint64_t count_kiosk_start(const std::filesystem::path& dir, const std::function<void(const std::string&)>& warn) {
-  const std::filesystem::path file = dir / "kiosk-starts";
+std::uint64_t count_kiosk_start(StateFolder& state, const std::function<void(const std::string&)>& warn) {
+  const std::filesystem::path file = state.file("kiosk-starts");
   std::uint64_t before = 0;
   std::error_code ec;
   if (std::filesystem::exists(file, ec)) {
@@ -84,17 +84,13 @@ std::uint64_t count_kiosk_start(const std::filesystem::path& dir, const std::fun
       before = 0;
     }
   }
-  try {
-    std::filesystem::create_directories(dir);
-    write_file_atomically(file, std::to_string(before + 1) + "\n");
-  } catch (const std::exception& e) {  // a read-only state folder: the count stays, the kiosk runs
-    warn(std::string("cannot count this start of the kiosk: ") + e.what());
-  }
+  // A state folder that cannot be written: the count stays, the kiosk runs, the folder says so.
+  state.write("kiosk-starts", std::to_string(before + 1) + "\n");
   return before;
 }
 
-MetricsFile::MetricsFile(std::optional<std::filesystem::path> starts_dir, Log warn, Log note)
-    : starts_dir_(std::move(starts_dir)), warn_(std::move(warn)), note_(std::move(note)) {}
+MetricsFile::MetricsFile(StateFolder* starts, Log warn, Log note)
+    : starts_(starts), warn_(std::move(warn)), note_(std::move(note)) {}
 
 void MetricsFile::configure(const MetricsConfig& config) {
   const Nanos interval = from_seconds(config.interval_s).value_or(15 * kNanosPerSecond);
@@ -103,9 +99,9 @@ void MetricsFile::configure(const MetricsConfig& config) {
   interval_ns_ = interval > 0 ? interval : kNanosPerSecond;
   // Counted once per run, when the file is first enabled: a kiosk without metrics writes
   // nothing new in its state folder.
-  if (enabled() && starts_dir_ && !counted_start_) {
+  if (enabled() && starts_ && !counted_start_) {
     counted_start_ = true;
-    restarts_ = count_kiosk_start(*starts_dir_, warn_);
+    restarts_ = count_kiosk_start(*starts_, warn_);
   }
 }
 

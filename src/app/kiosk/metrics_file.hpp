@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "app/kiosk/state_folder.hpp"
 #include "core/app_config.hpp"
 #include "core/impact.hpp"
 #include "core/kiosk_metrics.hpp"
@@ -49,18 +50,19 @@ class StrikeTally {
   std::unique_ptr<std::atomic<std::uint64_t>[]> cells_;  //!< target × material
 };
 
-//! How many times the kiosk started before this one: the count kept in `dir`/kiosk-starts,
-//! which this call increments (atomically replaced; the folder is created). A file that
-//! cannot be read or written is said through `warn` and counts as 0 starts.
-std::uint64_t count_kiosk_start(const std::filesystem::path& dir, const std::function<void(const std::string&)>& warn);
+//! How many times the kiosk started before this one: the count kept in the state folder's
+//! kiosk-starts, which this call increments (written through `state`: atomically replaced,
+//! the folder created, a failure said by the state folder, once). A file that cannot be read
+//! is said through `warn`, set aside as kiosk-starts.bad, and counts as 0 starts.
+std::uint64_t count_kiosk_start(StateFolder& state, const std::function<void(const std::string&)>& warn);
 
 class MetricsFile {
  public:
   using Log = std::function<void(const std::string& line)>;
-  //! `starts_dir`: where count_kiosk_start() keeps its count once the file is enabled
-  //! (nothing: the headless run, which is not a start of the kiosk). `warn` gets a write
-  //! failure (once until a write succeeds again), `note` the recovery.
-  MetricsFile(std::optional<std::filesystem::path> starts_dir, Log warn, Log note);
+  //! `starts`: the state folder where count_kiosk_start() keeps its count once the file is
+  //! enabled (null: the headless run, which is not a start of the kiosk); it must outlive
+  //! this. `warn` gets a write failure (once until a write succeeds again), `note` the recovery.
+  MetricsFile(StateFolder* starts, Log warn, Log note);
 
   //! The settings (at start and after a reload). The next due() is at once when the file
   //! or the interval changed.
@@ -75,7 +77,7 @@ class MetricsFile {
   std::uint64_t restarts() const { return restarts_; }
 
  private:
-  std::optional<std::filesystem::path> starts_dir_;
+  StateFolder* starts_;
   Log warn_, note_;
   std::filesystem::path path_;
   Nanos interval_ns_ = 15 * kNanosPerSecond;

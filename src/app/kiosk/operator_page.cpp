@@ -87,8 +87,10 @@ void draw_operator_page(render::Overlay& o, const std::vector<std::string>& line
 }
 
 std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render::ProductWindow& win,
-                                           const KioskOptions& options, double frame_ms) {
+                                           const KioskOptions& options, double frame_ms,
+                                           const std::string& state_problem) {
   KioskDeviceFacts facts;
+  facts.state_problem = state_problem;
   VkPhysicalDeviceProperties props{};
   vkGetPhysicalDeviceProperties(win.ctx->physical_device(), &props);
   facts.vulkan = judge_renderer(win.ctx->device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,

@@ -42,9 +42,11 @@ void draw_operator_page(render::Overlay& overlay, const std::vector<std::string>
 
 //! Operator page D: `mallet doctor`'s checks, with what the kiosk knows of the devices it
 //! holds (its renderer at `frame_ms` a frame, its audio output and its remote) instead of
-//! opening them again. Returns the page's lines (what was found); the journal gets each
+//! opening them again, and why its last write into the state folder failed (`state_problem`;
+//! empty: it did not). Returns the page's lines (what was found); the journal gets each
 //! check whole, with its fix.
 std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render::ProductWindow& window,
-                                           const KioskOptions& options, double frame_ms);
+                                           const KioskOptions& options, double frame_ms,
+                                           const std::string& state_problem);
 
 }  // namespace mallet::app

@@ -7,9 +7,11 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +64,12 @@ void on_stop(int signal) {
   g_stop.store(true);
 }
 
+//! Whether `file` lies in the folder `dir` (or below it).
+bool in_folder(const std::filesystem::path& file, const std::filesystem::path& dir) {
+  const std::filesystem::path rel = file.lexically_normal().lexically_relative(dir.lexically_normal());
+  return !rel.empty() && *rel.begin() != "..";
+}
+
 KioskStatesConfig states_config(const AppConfig& c, const KioskOptions& o) {
   KioskStatesConfig k;
   k.idle_after_s = o.idle_after_s.value_or(c.attract.idle_after_s);
@@ -78,6 +86,11 @@ class WindowKiosk {
   void on_key(int key, int mods);
   void handle_keys(Nanos now);
   void reload();
+  //! Keeps `text` as the last good settings in the state folder (kiosk_setup.hpp), unless it
+  //! is kept already; a failed write is the state folder's to say.
+  void keep_last_good(const std::string& text);
+  //! A reload refused: said on the operator page (the journal has it already).
+  void refused_reload(const std::string& why);
   void next_wall_material();  //!< operator page M: the wall's next material
   void next_scene();          //!< operator page S: the next of [scenes] choices
   void on_cursor(double x, double y);  //!< the window system's cursor event, stamped as it is read
@@ -212,8 +225,12 @@ void WindowKiosk::run_visitor_session() {
                   : r.abandoned ? "abandoned"
                   : "completed", r.answered, r.planned, r.csv.string());
     ++health_.metrics().visitor_study[r.abandoned ? "abandoned" : r.consented ? "completed" : "declined"];
+    if (r.consented && in_folder(r.csv, health_.state().dir())) health_.state().wrote("visitor study results", {});
   } catch (const std::exception& e) {  // the kiosk plays on
     journal::error("visitor study: {}", e.what());
+    // Its results are the state folder's by default: a write there that failed is its to say.
+    if (const std::string what = e.what(); what.find(health_.state().dir().string()) != std::string::npos)
+      health_.state().wrote("visitor study results", refused(what));
   }
   install_callbacks();
   cursor_.clear();
@@ -227,6 +244,8 @@ void WindowKiosk::run_visitor_session() {
 
 void WindowKiosk::build(KioskSetup setup) {
   auto stage = std::make_unique<KioskStage>();
+  const std::string last_good = last_good_text(setup);
+  stage->refused = std::move(setup.refused);
   stage->config = std::move(setup.config);
   stage->scene = std::move(setup.scene);
   stage->tally = std::make_unique<StrikeTally>(stage->scene);
@@ -270,6 +289,7 @@ void WindowKiosk::build(KioskSetup setup) {
     offer_.emplace(static_cast<Nanos>(std::llround(c.study.offer_every_s * 1e9)),
                    static_cast<Nanos>(std::llround(c.study.offer_for_s * 1e9)), now);
   health_.stage_built(*stage_);
+  if (!last_good.empty()) keep_last_good(last_good);
   win_.set_max_fps(options_.no_frame_cap ? -1 : stage_->config.render.max_fps);  // a reload may change it
   // The languages as set: a reload that changes them starts them afresh; one that does not
   // (the page's S, a SIGHUP for another key) keeps the operator's L.
@@ -377,6 +397,8 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (calibration_->outcome() == CalibrationScreen::Outcome::measuring) return;
   if (!calibration_->sensitivity().empty())
     stage_->calibration_status_sensitivity = "IR sensitivity " + calibration_->sensitivity();
+  if (const std::optional<Check>& saved = calibration_->saved())
+    health_.state().wrote(calibration_path().filename().string(), *saved);
   notice_ = calibration_->message();
   notice_until_ = now + 6 * kNanosPerSecond;
   journal::notice("{}", notice_.c_str());
@@ -479,6 +501,7 @@ void WindowKiosk::reload() {
   Result<KioskSetup, std::string> setup = load_setup(options_);
   if (!setup) {
     journal::warning("reload refused, the running configuration stays: {}", setup.error());
+    refused_reload(setup.error());
     return;
   }
   try {
@@ -492,7 +515,26 @@ void WindowKiosk::reload() {
     for (const std::string& p : problems) journal::warning("{}", p.c_str());
   } catch (const std::exception& e) {  // e.g. a model the new scene names is broken: whatever is thrown
     journal::warning("reload refused, the running configuration stays: {}", e.what());
+    refused_reload(e.what());
   }
+}
+
+void WindowKiosk::refused_reload(const std::string& why) {
+  // On the operator page too, in place of an earlier refusal, until a reload loads.
+  std::vector<std::string>& problems = stage_->problems;
+  const std::string prefix = "reload refused, the running configuration stays: ";
+  std::erase_if(problems, [&](const std::string& p) { return p.rfind(prefix, 0) == 0; });
+  problems.insert(problems.begin(), prefix + why);
+}
+
+void WindowKiosk::keep_last_good(const std::string& text) {
+  const std::filesystem::path file = health_.state().file(kLastGoodSettings);
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream kept;
+  kept << in.rdbuf();
+  if (in && kept.str() == text) return;  // kept already: no write at each start
+  if (health_.state().write(kLastGoodSettings, text))
+    journal::info("settings kept as the last good ones: {}", file.string());
 }
 
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
@@ -525,7 +567,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   }
   if (doctor_asked_) {
     doctor_asked_ = false;
-    doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_);  // what a frame costs, not the budget's interval
+    // What a frame costs, not the budget's interval; and the state folder as the kiosk found it.
+    doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_, health_.state().problem());
   }
   std::vector<std::string> lines;
   const double uptime = to_seconds(now - health_.started());
@@ -534,6 +577,10 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // the doctor's checks) stay as the journal and `mallet doctor` write them.
   lines.push_back(fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"),
                                to_string(stage_->config.quality), visitor_language()));
+  // What needs the operator first, before the status: settings refused (at start, on a
+  // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
+  for (const std::string& p : stage_->problems) lines.push_back("! " + p);
+  if (health_.state().failing()) lines.push_back("! " + health_.state().problem());
   lines.push_back(input_line(*stage_));
   lines.push_back(stage_->audio_status);
   lines.push_back(fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
@@ -553,7 +600,6 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                                  : tr("calibration: R runs the screen with the mouse (not saved)"));
   lines.push_back(timing_line());
   lines.push_back(stage_->settings_line);
-  for (const std::string& p : stage_->problems) lines.push_back("! " + p);
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
     lines.resize(1);
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());

@@ -30,7 +30,12 @@
 // liveness and metrics are KioskHealth's (kiosk_health.hpp).
 //
 // SIGHUP reloads the settings (with their drop-ins) and the scene; an invalid new file is
-// refused with its reason on stderr and the running configuration stays. SIGTERM (systemd's
+// refused with its reason on stderr and on the operator page, and the running configuration
+// stays. At start, settings that are refused do not keep the kiosk dark: run_kiosk starts it
+// on its last good settings or the shipped defaults (kiosk_setup.hpp: start_setup), with the
+// refusal first on the operator page; each start or reload that loads keeps its settings as
+// the last good ones in the state folder (state_folder.hpp: written atomically, a failure
+// said once, the kiosk plays on). SIGTERM (systemd's
 // stop) ends the loop as the operator's Q does: a closing log line and exit status 0.
 //
 // Faults: a Wii Remote that is gone → Attract with the remote-missing hint, reconnected by

@@ -160,6 +160,13 @@ LoadedSettings load_settings(const std::optional<fs::path>& file, const std::vec
   return s;
 }
 
+LoadedSettings load_kept_settings(const fs::path& kept, const std::optional<fs::path>& as_if) {
+  LoadedSettings s;
+  s.file = kept;
+  s.config = read_app_config(parse_file(kept), (as_if ? *as_if : kept).string());
+  return s;
+}
+
 std::string show_settings(const LoadedSettings& settings) {
   std::ostringstream out;
   out << "# mallet settings: " << (settings.file ? settings.file->string() : std::string("built-in defaults"));

@@ -39,6 +39,12 @@ std::vector<std::filesystem::path> drop_in_files(const std::filesystem::path& di
 LoadedSettings load_settings(const std::optional<std::filesystem::path>& file,
                              const std::vector<std::filesystem::path>& drop_ins);
 
+//! Settings kept as one merged file (the kiosk's last good settings, show_settings' text),
+//! read as if they were `as_if`: their relative paths (a replay file, [metrics] textfile,
+//! [study] files) resolve against as_if's folder, as they did in the files they came from
+//! (none: against the kept file's own folder). Throws ConfigError for a bad file.
+LoadedSettings load_kept_settings(const std::filesystem::path& kept, const std::optional<std::filesystem::path>& as_if);
+
 //! The merged TOML of what `settings` applied (its file, then its accepted drop-ins), each
 //! key followed by `# from FILE`; keys no file sets keep their built-in defaults and are
 //! not listed.

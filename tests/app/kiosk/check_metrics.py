@@ -27,6 +27,8 @@ EXPECTED = {
     "mallet_remote_connected": "gauge",
     "mallet_remote_battery_ratio": "gauge",
     "mallet_tracking_lost_seconds": "counter",
+    "mallet_settings_refused": "gauge",
+    "mallet_state_folder_writable": "gauge",
     "mallet_state": "gauge",
     "mallet_uptime_seconds": "gauge",
     "mallet_restarts": "counter",

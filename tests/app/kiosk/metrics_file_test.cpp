@@ -109,7 +109,7 @@ TEST(MetricsFile, AFailedWriteIsOneLineAndIsTriedAgainAtTheNextInterval) {
   const fs::path dir = test::scratch_dir();
   std::vector<std::string> warnings, notes;
   MetricsFile file(
-      std::nullopt, [&](const std::string& l) { warnings.push_back(l); }, [&](const std::string& l) { notes.push_back(l); });
+      nullptr, [&](const std::string& l) { warnings.push_back(l); }, [&](const std::string& l) { notes.push_back(l); });
   KioskMetrics metrics;
   EXPECT_FALSE(file.due(0)) << "off until configured";
   file.configure({(dir / "missing" / "mallet.prom").string(), 2.0});
@@ -137,14 +137,15 @@ TEST(MetricsFile, RestartsAreTheStartsCountedBeforeInTheStateFolder) {
   std::vector<std::string> warnings;
   const auto warn = [&](const std::string& l) { warnings.push_back(l); };
   const MetricsConfig on{(state.parent_path() / "mallet.prom").string(), 15.0};
+  StateFolder folder(state, warn, warn);
 
   {  // Without a metrics file nothing is written in the state folder.
-    MetricsFile off(state, warn, warn);
+    MetricsFile off(&folder, warn, warn);
     off.configure({});
     EXPECT_FALSE(fs::exists(state / "kiosk-starts"));
   }
   for (std::uint64_t run = 0; run < 3; ++run) {
-    MetricsFile file(state, warn, warn);
+    MetricsFile file(&folder, warn, warn);
     file.configure(on);
     file.configure(on);  // a reload is not a start
     EXPECT_EQ(file.restarts(), run);
@@ -157,7 +158,7 @@ TEST(MetricsFile, RestartsAreTheStartsCountedBeforeInTheStateFolder) {
   EXPECT_TRUE(warnings.empty());
 
   { std::ofstream(state / "kiosk-starts") << "many\n"; }
-  EXPECT_EQ(count_kiosk_start(state, warn), 0u);
+  EXPECT_EQ(count_kiosk_start(folder, warn), 0u);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("kiosk-starts:1:"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("(the file is kept as " + (state / "kiosk-starts.bad").string() + ")"), std::string::npos)
