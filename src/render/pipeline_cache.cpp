@@ -3,15 +3,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <iterator>
-#include <string>
+#include <string_view>
 #include <vector>
-
-#include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
 #include "core/journal.hpp"
 #include "render/vk_error.hpp"
 
@@ -75,20 +75,13 @@ void PipelineCache::save() const {
   if (vkGetPipelineCacheData(ctx_.device(), cache_.get(), &size, data.data()) != VK_SUCCESS) return;
   std::error_code ec;
   fs::create_directories(file_.parent_path(), ec);
-  // A name of this process's own: two programs closing at once (tests, a render beside the
-  // kiosk) each write whole files, and the last rename wins.
-  const fs::path tmp = file_.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(data.data(), static_cast<std::streamsize>(size));
-    if (!out) {
-      journal::warning("{}: cannot write the pipeline cache (next start compiles again)", tmp.c_str());
-      fs::remove(tmp, ec);
-      return;
-    }
+  // Through a temporary file of this process's own: two programs closing at once (tests, a
+  // render beside the kiosk) each put a whole file in place, and the last one stays.
+  try {
+    write_file_atomically(file_, std::string_view(data.data(), size));
+  } catch (const std::exception& e) {
+    journal::warning("cannot save the pipeline cache (next start compiles again): {}", e.what());
   }
-  fs::rename(tmp, file_, ec);
-  if (ec) journal::warning("{}: cannot save the pipeline cache: {}", file_.c_str(), ec.message().c_str());
 }
 
 }  // namespace mallet::render
