@@ -177,7 +177,7 @@ fi
 [[ $(setting NotifyAccess) == main ]] || fail "NotifyAccess=$(setting NotifyAccess) (the kiosk is the main process)"
 [[ $(setting User) == mallet ]] || fail "User=$(setting User)"
 [[ -z $(setting PAMName) ]] || fail "mallet.service has PAMName=: its processes would leave the unit's cgroup"
-[[ $(setting Requires) == mallet-session.service ]] || fail "Requires=$(setting Requires)"
+[[ $(setting Wants) == mallet-session.service ]] || fail "Wants=$(setting Wants)"
 [[ $(setting JoinsNamespaceOf) == mallet-session.service ]] || fail "JoinsNamespaceOf=$(setting JoinsNamespaceOf)"
 [[ $(setting WantedBy) == graphical.target ]] || fail "WantedBy=$(setting WantedBy)"
 [[ $(setting ExecStart "$session") == /usr/libexec/mallet/mallet-session ]] ||

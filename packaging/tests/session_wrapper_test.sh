@@ -32,35 +32,50 @@ DISPLAY=:7 "$@"
 CAGE
 # The client ends with `exec sleep infinity`: here it ends at once.
 printf '#!/bin/sh\necho "sleep $*" >> "$FAKE_LOG"\n' >"$scratch/fakebin/sleep"
-chmod +x "$scratch/fakebin/cage" "$scratch/fakebin/sleep"
+# `mallet doctor --print-renderer` says $FAKE_RENDERER, or fails when it is empty.
+cat >"$scratch/fakebin/mallet" <<'MALLET'
+#!/bin/sh
+echo "mallet $*" >> "$FAKE_LOG"
+[ -n "${FAKE_RENDERER:-}" ] || exit 1
+echo "$FAKE_RENDERER"
+MALLET
+chmod +x "$scratch/fakebin/cage" "$scratch/fakebin/sleep" "$scratch/fakebin/mallet"
 run() {  # ENV-OPTION... [-- ARG...]: mallet-session with the stand-ins, its output in $scratch/out
   local options=()
   while (($#)) && [[ $1 != -- ]]; do options+=("$1"); shift; done
   (($#)) && shift
   : >"$scratch/log"
   env "${options[@]}" PATH="$scratch/fakebin:$PATH" FAKE_LOG="$scratch/log" RUNTIME_DIRECTORY="$scratch/run" \
-    MALLET_DRI_DIR="$scratch/dri" MALLET_X11_DIR="$scratch/x11" "$session" "$@" >"$scratch/out" 2>&1
+    MALLET_SESSION_DIR="$scratch/run" MALLET_DRI_DIR="$scratch/dri" MALLET_X11_DIR="$scratch/x11" "$session" "$@" >"$scratch/out" 2>&1
 }
 
-# No render node: pixman, the runtime folder as XDG_RUNTIME_DIR, the display written.
-run -u WLR_RENDERER || fail "mallet-session exits $? with a stand-in cage: $(cat "$scratch/out")"
+# The doctor says pixman: pixman, the runtime folder as XDG_RUNTIME_DIR, the display written.
+run -u WLR_RENDERER FAKE_RENDERER=pixman || fail "mallet-session exits $? with a stand-in cage: $(cat "$scratch/out")"
+grep -qx 'mallet doctor --print-renderer' "$scratch/log" || fail "the doctor was not asked: $(cat "$scratch/log")"
 grep -qx "XDG_RUNTIME_DIR=$scratch/run WLR_RENDERER=pixman args=-- $session --display-ready" "$scratch/log" ||
-  fail "without a render node cage got: $(cat "$scratch/log")"
+  fail "with the doctor saying pixman cage got: $(cat "$scratch/log")"
 grep -q 'compositor renderer: pixman' "$scratch/out" || fail "it did not say which renderer: $(cat "$scratch/out")"
 [[ $(cat "$scratch/run/display" 2>/dev/null) == "DISPLAY=:7" ]] ||
   fail "the display file holds '$(cat "$scratch/run/display" 2>/dev/null)', expected DISPLAY=:7"
 grep -qx 'sleep infinity' "$scratch/log" || fail "the client did not wait (sleep infinity): $(cat "$scratch/log")"
 
-# A render node: the GPU's renderer (WLR_RENDERER left unset for wlroots to choose).
-touch "$scratch/dri/renderD128"
-run -u WLR_RENDERER || fail "mallet-session exits $? with a render node"
-grep -q "WLR_RENDERER= args" "$scratch/log" || fail "with a render node cage got: $(cat "$scratch/log")"
-grep -q "the GPU's ($scratch/dri/renderD128)" "$scratch/out" || fail "it did not name the node: $(cat "$scratch/out")"
+# The doctor says gles2: WLR_RENDERER left unset, for wlroots to use the GPU.
+run -u WLR_RENDERER FAKE_RENDERER=gles2 || fail "mallet-session exits $? with the doctor saying gles2"
+grep -q "WLR_RENDERER= args" "$scratch/log" || fail "with the doctor saying gles2 cage got: $(cat "$scratch/log")"
+grep -q 'compositor renderer: gles2' "$scratch/out" || fail "it said: $(cat "$scratch/out")"
 
-# An operator's WLR_RENDERER (a drop-in) wins.
+# The doctor fails: the render node decides (none: pixman; one: the GPU's).
+run -u WLR_RENDERER -u FAKE_RENDERER || fail "mallet-session exits $? when the doctor fails"
+grep -q "WLR_RENDERER=pixman args" "$scratch/log" || fail "no doctor, no render node: cage got $(cat "$scratch/log")"
+touch "$scratch/dri/renderD128"
+run -u WLR_RENDERER -u FAKE_RENDERER || fail "mallet-session exits $? with a render node"
+grep -q "WLR_RENDERER= args" "$scratch/log" || fail "no doctor, a render node: cage got $(cat "$scratch/log")"
 rm "$scratch/dri/renderD128"
-run WLR_RENDERER=gles2 || fail "mallet-session exits $? with WLR_RENDERER=gles2"
+
+# An operator's WLR_RENDERER (a drop-in) wins, and the doctor is not asked.
+run WLR_RENDERER=gles2 FAKE_RENDERER=pixman || fail "mallet-session exits $? with WLR_RENDERER=gles2"
 grep -q "WLR_RENDERER=gles2 args" "$scratch/log" || fail "the operator's WLR_RENDERER was overridden: $(cat "$scratch/log")"
+! grep -q '^mallet doctor' "$scratch/log" || fail "the doctor was asked although WLR_RENDERER was set"
 
 # --wait: the display's socket there → 0 at once; absent → 1 after the limit, with a line.
 python3 -c 'import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$scratch/x11/X7"

@@ -24,8 +24,9 @@ if [[ ! -s $base ]]; then
   echo "image: building the base ($key: ${#packages[@]} packages) with mmdebstrap"
   mkdir -p "$cache/apt-archives"
   # The host's apt sources, read from standard input (no mirror is named here).
-  cat /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null |
-    mmdebstrap --variant=minbase --mode=root --format=tar \
+  sources=$(cat /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null || true)
+  [[ -n $sources ]] || { echo "image: no apt sources on this machine (/etc/apt/sources.list*)" >&2; exit 1; }
+  mmdebstrap --variant=minbase --mode=root --format=tar \
       --include="$(IFS=,; echo "${packages[*]}")" \
       --skip=essential/unlink \
       --setup-hook='mkdir -p "$1"/var/cache/apt/archives/' \
@@ -36,7 +37,7 @@ if [[ ! -s $base ]]; then
       --customize-hook='printf "/dev/vda / ext4 rw,errors=remount-ro 0 1\n" > "$1"/etc/fstab' \
       --customize-hook='mkdir -p "$1"/var/log/journal' \
       --customize-hook='passwd --root "$1" -d root' \
-      bookworm "$base.part" - >"$cache/mmdebstrap.log" 2>&1 ||
+      bookworm "$base.part" - <<<"$sources" >"$cache/mmdebstrap.log" 2>&1 ||
     { tail -n 30 "$cache/mmdebstrap.log" >&2; echo "image: mmdebstrap failed (log: $cache/mmdebstrap.log)" >&2; exit 1; }
   mv "$base.part" "$base"
 else

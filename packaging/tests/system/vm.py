@@ -103,6 +103,9 @@ class Agent:
             try:
                 self._reconnect()
                 self.sync_id += 1
+                # 0xFF resets the agent's JSON parser: a client that went away mid-request (a
+                # killed test) leaves half a command in it.
+                self.sock.sendall(b"\xff")
                 self._send({"execute": "guest-sync-delimited", "arguments": {"id": self.sync_id}})
                 self.sock.settimeout(5)
                 buffer = b""
@@ -117,7 +120,7 @@ class Agent:
                         for line in buffer.splitlines():
                             try:
                                 if json.loads(line).get("return") == self.sync_id:
-                                    self.sock.settimeout(60)
+                                    self.sock.settimeout(180)
                                     self.rest = b""
                                     return True
                             except ValueError:
@@ -142,7 +145,10 @@ class Agent:
             request["arguments"] = arguments
         self._send(request)
         while b"\n" not in self.rest:
-            chunk = self.sock.recv(65536)
+            try:
+                chunk = self.sock.recv(65536)
+            except socket.timeout:
+                raise VmError(f"guest agent: no answer to {command} within 180 s")
             if not chunk:
                 raise VmError(f"guest agent: connection closed during {command}")
             self.rest += chunk
@@ -321,6 +327,12 @@ class Machine:
         log = open(os.path.join(self.out, "qemu.log"), "ab")
         self.started = time.monotonic()
         self.process = subprocess.Popen(self.command(), stdout=log, stderr=subprocess.STDOUT)
+        self.qmp = Qmp(os.path.join(self.out, "qmp.sock"))
+        self.agent = Agent(os.path.join(self.out, "qga.sock"))
+
+    def attach(self):
+        """The sockets of a machine that is already running."""
+        self.started = time.monotonic()
         self.qmp = Qmp(os.path.join(self.out, "qmp.sock"))
         self.agent = Agent(os.path.join(self.out, "qga.sock"))
 
