@@ -128,8 +128,18 @@ void IrStartup::on_ack(const AckReport& ack, Nanos now_ns) {
   // the last step (0x12) has its own id.
   if (ack.report != acked_id(step_)) return;
   if (!ack.success()) {
-    fail("the remote refused " + std::string(to_string(step_)) + " (acknowledgement error code " +
-         std::to_string(ack.error) + ")");
+    // Linux's hid-wiimote writes too (0x16: its extension and Motion Plus probes, every few
+    // seconds), and a remote without them refuses those writes with error 7. Their ack names
+    // the same report as ours, so a refusal may be the kernel's: the step is sent again, and
+    // only a step refused on every try fails (found with the kernel's driver bound, in the
+    // package's system test).
+    if (tries_ > config_.max_resends) {
+      fail("the remote refused " + std::string(to_string(step_)) + " (acknowledgement error code " +
+           std::to_string(ack.error) + ")");
+      return;
+    }
+    ++resends_total_;
+    send_current(now_ns);
     return;
   }
   enter(next(step_), now_ns);

@@ -17,8 +17,9 @@
 // Writes (0x16) are always acknowledged by the remote; 0x13, 0x1a and 0x12 only because we
 // set bit 0x02 (the ack-request bit of every output report; Dolphin's emulated remote and
 // wiibrew agree). Silence for `ack_timeout_ns` → the step's report is sent again, up to
-// `max_resends` times, then failed() with a clear error; an ack carrying an error code →
-// failed() at once. Every 0x20 status report (solicited or not) resets the remote's
+// `max_resends` times, then failed() with a clear error. An ack carrying an error code sends
+// the step again at once (the kernel's hid-wiimote writes too, and its refused writes are
+// acked under the same report id), and fails only when every try was refused. Every 0x20 status report (solicited or not) resets the remote's
 // reporting mode, so once running — or while the last step waits — 0x12 is sent again.
 // Call start() after every (re)connect: the remote forgets all of this when it drops.
 #include <array>

@@ -42,7 +42,8 @@ std::vector<Bytes> drain(IrStartup& s) {
   return out;
 }
 
-//! A remote that acknowledges each report it is sent, with `error` for the n-th.
+//! A remote that acknowledges each report it is sent, with `error` for the n-th and for
+//! every copy of it sent again (a write it cannot do).
 struct FakeRemote {
   int refuse_index = -1;  //!< which report gets an error ack (-1: none)
   std::uint8_t error = 0x03;
@@ -58,7 +59,8 @@ struct FakeRemote {
         const int index = static_cast<int>(received.size()) - 1;
         if (index == drop_index) continue;
         if (r->requests_ack() || r->id() == OutputReportId::write_memory) {
-          s.feed(ack(r->bytes[0], index == refuse_index ? error : 0), now_ns);
+          const bool refused = refuse_index >= 0 && index >= refuse_index && received.back() == received[refuse_index];
+          s.feed(ack(r->bytes[0], refused ? error : 0), now_ns);
           more = true;
         }
       }
@@ -111,19 +113,46 @@ TEST(IrStartup, BasicModeMaxSensitivityAndRumble) {
   EXPECT_EQ(remote.received, expected);
 }
 
-TEST(IrStartup, ErrorAckFailsWithTheStepNamed) {
-  IrStartup s;
-  FakeRemote remote;
-  remote.refuse_index = 3;  // sensitivity block 1
+TEST(IrStartup, AStepRefusedOnEveryTryFailsWithTheStepNamed) {
+  IrStartup s;  // 3 resends: 4 tries
   s.start(0);
-  remote.exchange(s, 0);
+  for (int step = 0; step < 3; ++step) {  // pixel clock, logic, camera on
+    ASSERT_EQ(drain(s).size(), 1u);
+    s.feed(ack(step == 0 ? 0x13 : step == 1 ? 0x1a : 0x16), 0);
+  }
+  for (int attempt = 1; attempt <= 4; ++attempt) {  // sensitivity block 1, refused each time
+    const std::vector<Bytes> sent = drain(s);
+    ASSERT_EQ(sent.size(), 1u) << "try " << attempt;
+    EXPECT_EQ(sent[0][0], 0x16);
+    EXPECT_FALSE(s.failed()) << "try " << attempt;
+    s.feed(ack(0x16, 3), 0);
+  }
   EXPECT_TRUE(s.failed());
-  EXPECT_EQ(remote.received.size(), 4u);
+  EXPECT_EQ(s.resends(), 3);
   EXPECT_EQ(s.error(),
             "IR start-up: the remote refused sensitivity block 1 (write 9 bytes at 0xb00000) "
             "(acknowledgement error code 3)");
   s.tick(kNanosPerSecond);
   EXPECT_TRUE(drain(s).empty());
+}
+
+TEST(IrStartup, TheKernelsRefusedWriteIsNotTakenForOurs) {
+  // hid-wiimote probes the absent Motion Plus with a write that the remote refuses (error
+  // 7); its ack, also for report 0x16, arrives while our camera write waits for its own.
+  IrStartup s;
+  s.start(0);
+  ASSERT_EQ(drain(s).size(), 1u);
+  s.feed(ack(0x13), 0);
+  ASSERT_EQ(drain(s).size(), 1u);
+  s.feed(ack(0x1a), 0);
+  const std::vector<Bytes> camera_on = drain(s);
+  ASSERT_EQ(camera_on.size(), 1u);
+  s.feed(ack(0x16, 7), 1);  // the kernel's refused probe
+  EXPECT_FALSE(s.failed());
+  EXPECT_EQ(s.step(), IrStartupStep::camera_on);
+  EXPECT_EQ(drain(s), camera_on);  // ours again, at once
+  s.feed(ack(0x16), 2);            // the remote's answer to ours
+  EXPECT_EQ(s.step(), IrStartupStep::sensitivity1);
 }
 
 TEST(IrStartup, AcksForOtherReportsAreNotOurs) {
