@@ -67,10 +67,15 @@ std::string node_names(const std::vector<RenderNode>& nodes) {
 }
 }  // namespace
 
-CompositorRenderer compositor_renderer(const std::vector<RenderNode>& nodes, const std::optional<std::string>& env) {
+CompositorRenderer compositor_renderer(const std::vector<RenderNode>& nodes, const std::optional<std::string>& env,
+                                       std::optional<bool> vulkan_gpu) {
   if (env && !env->empty()) return {*env, "WLR_RENDERER set by the unit's environment", true};
   if (nodes.empty())
     return {"pixman", "no GPU render node in /dev/dri: software", false};
+  if (vulkan_gpu && !*vulkan_gpu)
+    return {"pixman", "Vulkan finds no GPU, only a software driver, although /dev/dri has " + node_names(nodes) +
+                          ": software",
+            false};
   return {"gles2", "the GPU's: " + node_names(nodes), false};
 }
 

@@ -56,11 +56,15 @@ struct CompositorRenderer {
 };
 
 //! The rule mallet-session applies: a set WLR_RENDERER (an operator's drop-in) wins; else,
-//! with no render node, wlroots' GLES2 renderer would fall back to Mesa's kms_swrast, which
-//! crashes on e.g. virtio-gpu without virgl, so the session uses "pixman" (the CPU); with one,
-//! "gles2" (the GPU's). `wlr_renderer` empty counts as unset, as the shell's `-z` does.
+//! where the GPU cannot draw, wlroots' GLES2 renderer would fall back to Mesa's kms_swrast,
+//! which crashes (wlroots 0.15, seen on virtio-gpu without virgl), so the session uses
+//! "pixman" (the CPU): with no render node, or when Vulkan finds no GPU but only a software
+//! driver such as lavapipe (`vulkan_gpu` false; a virtio-gpu without 3D has a render node
+//! all the same). Otherwise "gles2" (the GPU's). `vulkan_gpu` empty: Vulkan was not asked,
+//! the render node decides. `wlr_renderer` empty counts as unset, as the shell's `-z` does.
 CompositorRenderer compositor_renderer(const std::vector<RenderNode>& render_nodes,
-                                       const std::optional<std::string>& wlr_renderer);
+                                       const std::optional<std::string>& wlr_renderer,
+                                       std::optional<bool> vulkan_gpu = std::nullopt);
 
 //! The doctor's `compositor` line: ok, with the renderer and why; a WLR_RENDERER that asks
 //! for the GPU (gles2, vulkan) where there is no render node warns.

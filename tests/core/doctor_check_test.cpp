@@ -52,6 +52,16 @@ TEST(CompositorRenderer, NoRenderNodeIsPixmanAGpuIsGles2AndASetWlrRendererWins) 
   EXPECT_EQ(hardware.renderer, "gles2");
   EXPECT_EQ(format_check(judge_compositor(hardware, gpu)),
             "ok    compositor   gles2 (the GPU's: renderD128, driver i915)");
+  // A render node that only Mesa's software driver serves (virtio-gpu without 3D): Vulkan
+  // finds no GPU, so pixman; a GPU that Vulkan finds keeps gles2.
+  const std::vector<RenderNode> virtual_gpu{{"renderD128", "virtio_gpu"}};
+  const CompositorRenderer no_3d = compositor_renderer(virtual_gpu, std::nullopt, false);
+  EXPECT_EQ(no_3d.renderer, "pixman");
+  EXPECT_EQ(format_check(judge_compositor(no_3d, virtual_gpu)),
+            "ok    compositor   pixman (Vulkan finds no GPU, only a software driver, although /dev/dri has "
+            "renderD128, driver virtio_gpu: software)");
+  EXPECT_EQ(compositor_renderer(gpu, std::nullopt, true).renderer, "gles2");
+  EXPECT_EQ(compositor_renderer(virtual_gpu, std::string("gles2"), false).renderer, "gles2");
   // An empty WLR_RENDERER is unset, as the start script's `-z` test reads it.
   EXPECT_EQ(compositor_renderer(none, std::string()).renderer, "pixman");
   EXPECT_EQ(compositor_renderer({{"renderD128", ""}}, std::string()).renderer, "gles2");

@@ -469,11 +469,38 @@ std::vector<RenderNode> render_nodes() {
   return nodes;
 }
 
+std::optional<bool> vulkan_finds_gpu() {
+  // A bare instance, no layers: only which kinds of device the installed drivers offer.
+  const VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_0};
+  const VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+  VkInstance instance = VK_NULL_HANDLE;
+  if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return std::nullopt;
+  std::uint32_t count = 0;
+  std::vector<VkPhysicalDevice> devices;
+  if (vkEnumeratePhysicalDevices(instance, &count, nullptr) == VK_SUCCESS) {
+    devices.resize(count);
+    if (vkEnumeratePhysicalDevices(instance, &count, devices.data()) != VK_SUCCESS) devices.clear();
+    devices.resize(count);
+  }
+  std::optional<bool> gpu;
+  for (VkPhysicalDevice d : devices) {
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(d, &props);
+    gpu = gpu.value_or(false) || props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return gpu;
+}
+
 CompositorRenderer kiosk_compositor_renderer(bool ask_unit) {
-  std::optional<std::string> env;
-  if (const char* v = std::getenv("WLR_RENDERER"); v && *v) env = v;
-  CompositorRenderer r = compositor_renderer(render_nodes(), env ? env : ask_unit ? session_unit_renderer() : env);
-  if (r.from_environment && !env) r.reason = "WLR_RENDERER set in mallet-session.service's environment";
+  std::optional<std::string> process_env;
+  if (const char* v = std::getenv("WLR_RENDERER"); v && *v) process_env = v;
+  const std::optional<std::string> env = process_env || !ask_unit ? process_env : session_unit_renderer();
+  const std::vector<RenderNode> nodes = render_nodes();
+  // Vulkan is asked only when its answer decides (no WLR_RENDERER, a render node there).
+  const std::optional<bool> gpu = env || nodes.empty() ? std::nullopt : vulkan_finds_gpu();
+  CompositorRenderer r = compositor_renderer(nodes, env, gpu);
+  if (r.from_environment && !process_env) r.reason = "WLR_RENDERER set in mallet-session.service's environment";
   return r;
 }
 

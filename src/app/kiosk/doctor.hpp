@@ -35,8 +35,12 @@ struct KioskDeviceFacts {
 //! (/sys/class/drm/renderD*/device/driver), in order of their names.
 std::vector<RenderNode> render_nodes();
 
+//! Whether Vulkan finds a GPU (a device that is not the CPU, e.g. not lavapipe); none when
+//! no instance can be made or no device is found.
+std::optional<bool> vulkan_finds_gpu();
+
 //! The renderer the kiosk's compositor uses (core/doctor_check.hpp: compositor_renderer)
-//! on this machine: its render nodes and $WLR_RENDERER. With `ask_unit` and systemd running,
+//! on this machine: its render nodes, whether Vulkan finds a GPU, and $WLR_RENDERER. With `ask_unit` and systemd running,
 //! a WLR_RENDERER set in mallet-session.service's environment (an operator's drop-in) when
 //! this process has none. `mallet doctor --print-renderer` prints its renderer (mallet-session
 //! exports it as WLR_RENDERER).
