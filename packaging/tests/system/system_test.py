@@ -133,7 +133,13 @@ class Test:
         cache = self.out("find /var/cache/mallet/mesa_shader_cache -type f 2>/dev/null | wc -l")
         if cache == "0":
             problems.append("Mesa's shader cache /var/cache/mallet/mesa_shader_cache is empty")
-        renderer = self.journal(0, unit="mallet-session", grep="compositor renderer").strip().splitlines()
+        # The session's own lines are its scope's, not the unit's: read by their identifier.
+        renderer = self.sh("journalctl -b -t mallet-session -o cat --no-pager | grep 'compositor renderer'")[1]
+        renderer = renderer.strip().splitlines()
+        doctor_says = self.out("runuser -u mallet -- mallet doctor --print-renderer", timeout=300)
+        if not renderer or not renderer[-1].endswith(doctor_says):
+            problems.append(f"the session chose {renderer[-1] if renderer else 'no renderer'}, "
+                            f"mallet doctor --print-renderer says {doctor_says}")
         time.sleep(10)  # a few frames at TCG's pace
         width, height, rgb = self.screen("vm-first-boot")
         sig = signature(width, height, rgb)
@@ -180,7 +186,7 @@ class Test:
         # says play.
         beat, _ = self.wait("a heartbeat saying play after the mouse's downstrokes",
                             lambda: self.journal(since, grep="^heartbeat: play").strip(), 150)
-        time.sleep(3)
+        self.screen("vm-play")
         rate, left, right = wav_channels_energy(self.vm.wav, wav_before)
         if left < 30 or right < 30:
             raise VmError(f"the WAV after the strokes is silent on a channel: RMS {left:.0f} / {right:.0f} "
