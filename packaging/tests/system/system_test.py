@@ -375,6 +375,13 @@ class Test:
                     if name == "first-boot":
                         break
         finally:
+            # The guest's journal of this boot, for whoever reads a failure afterwards.
+            try:
+                _, text = self.sh("journalctl -b -o short-monotonic --no-pager", timeout=300)
+                with open(os.path.join(self.args.out, "journal.txt"), "w") as f:
+                    f.write(text)
+            except Exception as e:  # the machine may be the reason the run failed
+                print(f"system: could not save the guest's journal: {e}")
             if not self.args.attach:
                 self.vm.stop()
         print("timings:")
