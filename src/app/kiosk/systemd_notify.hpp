@@ -3,10 +3,11 @@
 // one datagram of `KEY=VALUE` lines to the AF_UNIX socket named by $NOTIFY_SOCKET
 // (a path, or a Linux abstract name when it starts with '@').
 //
-// mallet.service runs the kiosk under the cage compositor, so the process systemd started
-// (and names in $WATCHDOG_PID) is not this one: the unit says NotifyAccess=all, and the
-// watchdog is taken from $WATCHDOG_USEC as long as $WATCHDOG_PID is this process or one of
-// its ancestors (the unit's wrapper → cage → the kiosk), never a stranger's.
+// mallet.service runs the kiosk as its main process (NotifyAccess=main; its display, cage,
+// is another unit: a seat session's processes leave the unit's cgroup, and systemd would
+// drop their messages). The watchdog is taken from $WATCHDOG_USEC as long as $WATCHDOG_PID
+// is this process or one of its ancestors (a wrapper that execs or forks the kiosk), never
+// a stranger's.
 //
 // Every call is one non-blocking sendto(): it never waits for systemd, never throws, and
 // returns whether the message left. Not for the audio callback (status() builds a string).
