@@ -15,7 +15,7 @@
 // Why not libsystemd's sd_notify(3): Debian 12's (252) sends on a blocking socket, so a
 // queue systemd has not read stops the caller (measured: 5000 WATCHDOG=1 to an unread
 // socket hung in sendmsg until killed 3 s later), and sd_watchdog_enabled() answers 0 when
-// $WATCHDOG_PID is not the caller, which under cage it never is.
+// $WATCHDOG_PID is not the caller (a wrapper's).
 #include <optional>
 #include <string>
 #include <string_view>
