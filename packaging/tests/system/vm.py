@@ -64,13 +64,21 @@ class Qmp:
 
     # --- the mouse and the keyboard ---
     def move(self, dx, dy):
-        events = []
-        if dx:
-            events.append({"type": "rel", "data": {"axis": "x", "value": int(dx)}})
-        if dy:
-            events.append({"type": "rel", "data": {"axis": "y", "value": int(dy)}})
-        if events:
+        """Moves the USB mouse by (dx, dy) counts, in steps of at most 100: a USB mouse's report
+        carries at most ±127 a axis, and QEMU's usb-mouse clamps a larger motion to that (seen:
+        the mallet never left the screen's left edge)."""
+        dx, dy = int(dx), int(dy)
+        while dx or dy:
+            sx = max(-100, min(100, dx))
+            sy = max(-100, min(100, dy))
+            events = []
+            if sx:
+                events.append({"type": "rel", "data": {"axis": "x", "value": sx}})
+            if sy:
+                events.append({"type": "rel", "data": {"axis": "y", "value": sy}})
             self.execute("input-send-event", events=events)
+            dx -= sx
+            dy -= sy
 
     def keys(self, *names, hold=0.1):
         """Presses the keys (QEMU qcodes: "ctrl", "alt", "o", "q", "d"…) together, then
