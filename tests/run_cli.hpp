@@ -12,8 +12,9 @@ struct CliResult {
   std::string output;  //!< stdout and stderr together
 };
 
-inline CliResult run_mallet(const std::string& args) {
-  const std::string command = std::string(MALLET_TEST_BINARY) + " " + args + " 2>&1";
+//! Runs a shell command line with stderr joined to stdout.
+inline CliResult run_command(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   CliResult r;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;
@@ -22,6 +23,10 @@ inline CliResult run_mallet(const std::string& args) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+inline CliResult run_mallet(const std::string& args) {
+  return run_command(std::string(MALLET_TEST_BINARY) + " " + args);
 }
 
 }  // namespace mallet::test

@@ -48,15 +48,7 @@ int run_window_kiosk(const fs::path& settings, const fs::path& state, const fs::
 
 //! `mallet ARGS` with one more variable in its environment ("NAME=value").
 test::CliResult run_with(const std::string& variable, const std::string& args) {
-  const std::string command = "env '" + variable + "' " + std::string(MALLET_TEST_BINARY) + " " + args + " 2>&1";
-  test::CliResult r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
+  return test::run_command("env '" + variable + "' " + std::string(MALLET_TEST_BINARY) + " " + args);
 }
 
 void no_display() {
