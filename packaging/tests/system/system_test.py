@@ -213,8 +213,9 @@ class Test:
                                    lambda: self.journal(since, grep="reload refused").strip(), 180)
         finally:
             self.out(f"{MEND_SETTINGS} && systemctl reload mallet")
-        after = self.unit()
-        if after["ActiveState"] != "active" or after["MainPID"] != before["MainPID"]:
+        # A reload keeps the unit "reloading" until the kiosk says READY=1 again.
+        after, _ = self.wait_active(300)
+        if after["MainPID"] != before["MainPID"]:
             raise VmError(f"the kiosk did not play on: {before} → {after}")
         if "mallet.toml" not in refused:
             raise VmError(f"the refusal does not name the file: {refused}")
