@@ -157,6 +157,14 @@ run_script postrm remove
 for command in 'daemon-reload' 'deb-systemd-helper enable' 'udevadm control --reload-rules' 'udevadm trigger'; do
   grep -q "$command" "$work/control/postinst" || fail "postinst never runs '$command'"
 done
+# An update: nothing stops the kiosk before the postinst, whose try-restart then brings it
+# back on the new files (a stop in the preinst left try-restart nothing to restart: the kiosk
+# stayed dark after every update, found by the VM system test).
+if [[ -e $work/control/preinst ]] && grep -q 'deb-systemd-invoke stop' "$work/control/preinst"; then
+  fail "preinst stops the units on upgrade; postinst's try-restart would then leave the kiosk stopped"
+fi
+grep -q 'deb-systemd-invoke try-restart mallet.service' "$work/control/postinst" ||
+  fail "postinst does not restart the kiosk after an update"
 
 # --- The units ------------------------------------------------------------------------------
 # mallet.service is the kiosk itself (its main process, so that its sd_notify and its lines

@@ -132,30 +132,31 @@ std::string known_devices(const std::vector<DeviceInfo>& outputs) {
   return text + " (see `mallet audio devices`)";
 }
 
-// config.device → a device: empty = default, all digits = index, else a case-insensitive
-// part of the name (an exact name wins over a part of a longer one).
-DeviceInfo resolve_locked(const std::string& spec) {
+// config.device → the devices to try, in order: empty = the default (after ALSA's dmix
+// itself where the default leads to it: see UNDERRUNS in the header), all digits = index,
+// else a case-insensitive part of the name (an exact name wins over a part of a longer one).
+std::vector<DeviceInfo> resolve_locked(const std::string& spec) {
   const std::vector<DeviceInfo> outputs = outputs_locked();
   if (spec.empty()) {
-    const PaDeviceIndex def = Pa_GetDefaultOutputDevice();
     if (outputs.empty())
       throw std::runtime_error(
           "audio: no audio output device found (PortAudio sees none: no sound card, or ALSA is not configured)");
-    if (def == paNoDevice)
+    std::vector<DeviceInfo> order = default_output_order(outputs);
+    if (order.empty())
       throw std::runtime_error("audio: there is no default output device; set [audio].device to one of the " +
                                known_devices(outputs));
-    return describe(def);
+    return order;
   }
   if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
     for (const DeviceInfo& d : outputs)
-      if (spec.size() < 10 && d.index == std::stoi(spec)) return d;
+      if (spec.size() < 10 && d.index == std::stoi(spec)) return {d};
     throw std::runtime_error("audio: device " + spec + " is not an output device; " + known_devices(outputs));
   }
   const std::string want = lower(spec);
   for (const DeviceInfo& d : outputs)
-    if (lower(d.name) == want) return d;
+    if (lower(d.name) == want) return {d};
   for (const DeviceInfo& d : outputs)
-    if (lower(d.name).find(want) != std::string::npos) return d;
+    if (lower(d.name).find(want) != std::string::npos) return {d};
   throw std::runtime_error("audio: no output device matches \"" + spec + "\"; " + known_devices(outputs));
 }
 
@@ -213,9 +214,32 @@ PortAudioOutput::~PortAudioOutput() {
   session_.reset();
 }
 
+std::vector<DeviceInfo> default_output_order(const std::vector<DeviceInfo>& outputs) {
+  const auto def = std::find_if(outputs.begin(), outputs.end(), [](const DeviceInfo& d) { return d.is_default; });
+  if (def == outputs.end()) return {};
+  if (def->host_api == "ALSA" && def->name == "default")
+    for (const DeviceInfo& d : outputs)
+      if (d.host_api == "ALSA" && d.name == "dmix") return {d, *def};
+  return {*def};
+}
+
 void PortAudioOutput::open_locked() {
   if (!session_) session_ = std::make_unique<Session>();
-  const DeviceInfo device = resolve_locked(config_.device);
+  const std::vector<DeviceInfo> devices = resolve_locked(config_.device);
+  // Each in turn: dmix may be unable to share a card a sound server holds; the last one's
+  // error is the one reported.
+  for (std::size_t i = 0; i + 1 < devices.size(); ++i) {
+    try {
+      open_device_locked(devices[i]);
+      return;
+    } catch (const std::runtime_error& e) {
+      journal::info("{}; opening \"{}\" instead", e.what(), devices.back().name.c_str());
+    }
+  }
+  open_device_locked(devices.back());
+}
+
+void PortAudioOutput::open_device_locked(const DeviceInfo& device) {
   if (device.max_output_channels < channels_)
     throw std::runtime_error("audio: \"" + device.name + "\" has " + std::to_string(device.max_output_channels) +
                              " output channel(s); [audio.routing] needs " + std::to_string(channels_));

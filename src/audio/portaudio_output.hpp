@@ -55,8 +55,13 @@
 // calls snd_pcm_status() next: for the callback's time info, or in its xrun handler before
 // snd_pcm_prepare. So every underrun that dmix notices inside a commit (rather than in
 // avail_update or poll) kills the kiosk: a race that heavy underruns win now and then
-// (twice in ~272 underruns in 10 s in a QEMU guest). Mallet therefore makes underruns rare
-// and stops them from going on: PortAudio's suggested latency (≈ the ALSA buffer less one
+// (twice in ~272 underruns in 10 s in a QEMU guest; again in the package's VM test, after
+// 1690). So an empty [audio] device opens ALSA's "dmix" PCM itself where PortAudio's default
+// is ALSA's "default" (default_output_order): the same mixer on the same card, with no
+// snd_pcm_plugin layer above it (PortAudio converts the samples to dmix's format itself),
+// hence no such assert on the path; where dmix cannot open (a sound server holds the card)
+// the default is opened as before. A device named in [audio] device is opened as named.
+// Mallet also makes underruns rare and stops them from going on: PortAudio's suggested latency (≈ the ALSA buffer less one
 // period) is never below [audio] min_latency_ms, and when [audio] grow_after_underruns
 // underruns come within underrun_window_ms (counted from the first), the supervisor
 // reopens the same device with twice the latency, up to max_latency_ms, logs one warning
@@ -96,6 +101,11 @@ struct DeviceInfo {
 //! Throws std::runtime_error if PortAudio cannot be initialised.
 std::vector<DeviceInfo> list_output_devices();
 
+//! The devices an empty [audio] device tries, in order, among `outputs` (one marked
+//! is_default): ALSA's "dmix" PCM first where the default is ALSA's "default" PCM (see
+//! UNDERRUNS), then the default. Empty if none is the default.
+std::vector<DeviceInfo> default_output_order(const std::vector<DeviceInfo>& outputs);
+
 //! The sample type of the device stream. The engine always renders float; int16 is
 //! converted in the callback, for devices or ALSA plugins that must be fed 16-bit
 //! (the ALSA file plugin labels float data as integer PCM in its WAV header).
@@ -125,7 +135,7 @@ class PortAudioOutput {
   };
 
   //! Initialises PortAudio and opens (does not start) an output stream on
-  //! config.device: empty = the default output device, all digits = a device index,
+  //! config.device: empty = the default output device (default_output_order), all digits = a device index,
   //! otherwise a case-insensitive part of the device name (the first match). Channels,
   //! sample rate and routing come from the engine's settings (which must agree with
   //! config); frames_per_buffer (0 = PortAudio chooses), suggested_latency_ms (0 = the
@@ -178,7 +188,8 @@ class PortAudioOutput {
   int render(void* output, unsigned long frames, unsigned long status_flags);  // audio thread
 
   // All below with pa_mutex held.
-  void open_locked();
+  void open_locked();  // the configured device, or the first of default_output_order that opens
+  void open_device_locked(const DeviceInfo& device);
   void start_stream_locked();
   void close_locked(bool abort);
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -107,6 +108,40 @@ class PortAudioOutputTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+DeviceInfo device(int index, std::string name, std::string api, bool is_default = false) {
+  DeviceInfo d;
+  d.index = index;
+  d.name = std::move(name);
+  d.host_api = std::move(api);
+  d.max_output_channels = 2;
+  d.is_default = is_default;
+  return d;
+}
+
+std::vector<std::string> names(const std::vector<DeviceInfo>& devices) {
+  std::vector<std::string> out;
+  for (const DeviceInfo& d : devices) out.push_back(d.name);
+  return out;
+}
+
+TEST(DefaultOutputOrder, AlsasDefaultGoesToDmixItselfFirst) {
+  // Debian 12 on a card without a sound server: default = plug → softvol → dmix.
+  const std::vector<DeviceInfo> outputs = {device(0, "HDA Intel: Generic Analog (hw:0,0)", "ALSA"),
+                                           device(1, "default", "ALSA", true), device(2, "dmix", "ALSA")};
+  EXPECT_EQ(names(default_output_order(outputs)), (std::vector<std::string>{"dmix", "default"}));
+}
+
+TEST(DefaultOutputOrder, AnyOtherDefaultIsTakenAsItIs) {
+  // No dmix listed (no card it could open), JACK's default, or a default by another name.
+  EXPECT_EQ(names(default_output_order({device(0, "default", "ALSA", true)})), (std::vector<std::string>{"default"}));
+  EXPECT_EQ(names(default_output_order({device(0, "system", "JACK Audio Connection Kit", true),
+                                        device(1, "dmix", "ALSA")})),
+            (std::vector<std::string>{"system"}));
+  EXPECT_EQ(names(default_output_order({device(0, "pulse", "ALSA", true), device(1, "dmix", "ALSA")})),
+            (std::vector<std::string>{"pulse"}));
+  EXPECT_TRUE(default_output_order({device(0, "dmix", "ALSA")}).empty());
+}
 
 TEST_F(PortAudioOutputTest, ListsTheDefaultDevice) {
   const std::vector<DeviceInfo> devices = list_output_devices();

@@ -471,8 +471,12 @@ std::vector<RenderNode> render_nodes() {
 
 std::optional<bool> vulkan_finds_gpu() {
   // A bare instance, no layers: only which kinds of device the installed drivers offer.
-  const VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_0};
-  const VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+  VkApplicationInfo app{};
+  app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+  app.apiVersion = VK_API_VERSION_1_0;
+  VkInstanceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+  info.pApplicationInfo = &app;
   VkInstance instance = VK_NULL_HANDLE;
   if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return std::nullopt;
   std::uint32_t count = 0;

@@ -13,6 +13,11 @@
 
 namespace mallet::app {
 
+bool operator_action_repeats(OperatorAction action) {
+  return action == OperatorAction::volume_up || action == OperatorAction::volume_down ||
+         action == OperatorAction::gain_up || action == OperatorAction::gain_down;
+}
+
 OperatorAction operator_action(int key, int mods, bool page_open) {
   if (key == GLFW_KEY_O && (mods & GLFW_MOD_CONTROL) && (mods & GLFW_MOD_ALT)) return OperatorAction::open;
   if (!page_open) return OperatorAction::none;

@@ -33,6 +33,11 @@ enum class OperatorAction {
 //! page's keys act only while it is open (`page_open`); a visitor's keys do nothing.
 OperatorAction operator_action(int key, int mods, bool page_open);
 
+//! Whether a held key's auto-repeat does the action again: only a step (the volume, the
+//! gain). A held chord must not open and close the page again and again (a remote desktop or
+//! a slow frame holds keys for seconds), nor a held key quit, reload or switch twice.
+bool operator_action_repeats(OperatorAction action);
+
 //! The page's lines on a centred translucent panel, the first bright. Long lines wrap at a
 //! semicolon, a comma, before a parenthesis or between two keys' entries onto indented
 //! continuation lines, else at a space; in the `doctor` view each line is cut to the panel

@@ -83,7 +83,7 @@ class WindowKiosk {
 
  private:
   void build(KioskSetup setup);
-  void on_key(int key, int mods);
+  void on_key(int key, int mods, bool repeat);
   void handle_keys(Nanos now);
   void reload();
   //! Keeps `text` as the last good settings in the state folder (kiosk_setup.hpp), unless it
@@ -127,7 +127,12 @@ class WindowKiosk {
   std::string notice_;                             //!< the last calibration's outcome ...
   Nanos notice_until_ = 0;                         //!< ... shown until then
   LatencyTest latency_test_;  //!< the operator page's T
-  std::vector<std::pair<int, int>> keys_;  //!< (key, mods) pressed since the last frame
+  struct Key {
+    int key;
+    int mods;
+    bool repeat;  //!< the window system's auto-repeat of a held key
+  };
+  std::vector<Key> keys_;  //!< pressed since the last frame
   std::vector<std::string> doctor_;        //!< the page's doctor lines (D); empty: the page's own
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
@@ -159,7 +164,7 @@ void WindowKiosk::install_callbacks() {
   glfwSetWindowUserPointer(win_.window->window(), this);
   glfwSetKeyCallback(win_.window->window(), [](GLFWwindow* w, int key, int, int action, int mods) {
     if (action == GLFW_PRESS || action == GLFW_REPEAT)
-      static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods);
+      static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_key(key, mods, action == GLFW_REPEAT);
   });
   glfwSetCursorPosCallback(win_.window->window(), [](GLFWwindow* w, double x, double y) {
     static_cast<WindowKiosk*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
@@ -423,15 +428,22 @@ void WindowKiosk::apply_volume() {
   stage_->rig.engine->set_actuator_gain(gain_);
 }
 
-void WindowKiosk::on_key(int key, int mods) { keys_.emplace_back(key, mods); }
+void WindowKiosk::on_key(int key, int mods, bool repeat) { keys_.push_back({key, mods, repeat}); }
 
 void WindowKiosk::handle_keys(Nanos now) {
-  for (const auto& [key, mods] : keys_) {
+  for (const auto& [key, mods, repeat] : keys_) {
     const OperatorAction action = operator_action(key, mods, states_->state() == KioskState::operator_page);
+    if (repeat && !operator_action_repeats(action)) continue;
     switch (action) {
       case OperatorAction::none: break;  // visitors' keys do nothing
-      case OperatorAction::open: states_->operator_chord(now); break;
-      case OperatorAction::close: states_->operator_page_closed(now); break;
+      case OperatorAction::open:
+        states_->operator_chord(now);
+        journal::notice("operator: page {}", states_->state() == KioskState::operator_page ? "open" : "closed");
+        break;
+      case OperatorAction::close:
+        states_->operator_page_closed(now);
+        journal::notice("operator: page closed");
+        break;
       case OperatorAction::quit:
         journal::notice("operator: quit");
         states_->quit_requested(now);
