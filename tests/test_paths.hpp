@@ -1,6 +1,7 @@
 #pragma once
 // Paths the tests need: the source tree's shipped data and a scratch directory per test.
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,12 @@
 namespace mallet::test {
 
 inline std::filesystem::path source_dir() { return MALLET_TEST_SOURCE_DIR; }
+
+//! Writes `text` to `file`, making its folders first.
+inline void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+}
 inline std::filesystem::path config_dir() { return source_dir() / "config"; }
 inline std::filesystem::path percussion_scene() { return config_dir() / "scenes" / "percussion.toml"; }
 

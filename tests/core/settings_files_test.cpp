@@ -14,17 +14,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write(const fs::path& file, const std::string& text) {
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << text;
-}
+using test::write_text;
 
 struct DropIns : ::testing::Test {
   fs::path dir = test::scratch_dir();
   fs::path main = dir / "mallet.toml";
   fs::path drop = dir / "mallet.toml.d";
   void SetUp() override {
-    write(main, "[audio]\nvolume = 0.8\nsample_rate_hz = 48000\n\n[actuator]\ngain = 0.2\n");
+    write_text(main, "[audio]\nvolume = 0.8\nsample_rate_hz = 48000\n\n[actuator]\ngain = 0.2\n");
   }
 };
 
@@ -33,10 +30,10 @@ TEST_F(DropIns, FolderIsTheFileNamePlusD) {
 }
 
 TEST_F(DropIns, ListsTomlFilesInLexicalOrderAndNothingElse) {
-  write(drop / "20-b.toml", "");
-  write(drop / "10-a.toml", "");
-  write(drop / "README", "");
-  write(drop / "9-c.toml", "");  // '9' sorts after '2' byte by byte, as systemd orders them
+  write_text(drop / "20-b.toml", "");
+  write_text(drop / "10-a.toml", "");
+  write_text(drop / "README", "");
+  write_text(drop / "9-c.toml", "");  // '9' sorts after '2' byte by byte, as systemd orders them
   fs::create_directories(drop / "30-dir.toml");
   const std::vector<fs::path> files = config::drop_in_files(drop);
   ASSERT_EQ(files.size(), 3u);
@@ -47,8 +44,8 @@ TEST_F(DropIns, ListsTomlFilesInLexicalOrderAndNothingElse) {
 }
 
 TEST_F(DropIns, LaterFilesWinKeyByKeyAndTablesMerge) {
-  write(drop / "10-volume.toml", "[audio]\nvolume = 1.5\n");
-  write(drop / "20-volume.toml", "[audio]\nvolume = 2.0\n[actuator]\ngain = 0.05\n");
+  write_text(drop / "10-volume.toml", "[audio]\nvolume = 1.5\n");
+  write_text(drop / "20-volume.toml", "[audio]\nvolume = 2.0\n[actuator]\ngain = 0.05\n");
   const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
   EXPECT_TRUE(s.refused.empty());
   EXPECT_EQ(s.drop_ins.size(), 2u);
@@ -59,10 +56,10 @@ TEST_F(DropIns, LaterFilesWinKeyByKeyAndTablesMerge) {
 }
 
 TEST_F(DropIns, ABadDropInIsRefusedWithItsFileAndLineAndTheRestStays) {
-  write(drop / "10-gain.toml", "[actuator]\ngain = 0.5\n");
-  write(drop / "20-bad.toml", "# a typo\n[audio]\nvolume = 9\n");          // out of range
-  write(drop / "30-broken.toml", "[audio\nvolume = 1\n");                     // syntax
-  write(drop / "40-volume.toml", "[audio]\nvolume = 1.25\n");
+  write_text(drop / "10-gain.toml", "[actuator]\ngain = 0.5\n");
+  write_text(drop / "20-bad.toml", "# a typo\n[audio]\nvolume = 9\n");          // out of range
+  write_text(drop / "30-broken.toml", "[audio\nvolume = 1\n");                     // syntax
+  write_text(drop / "40-volume.toml", "[audio]\nvolume = 1.25\n");
   const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
   ASSERT_EQ(s.refused.size(), 2u);
   EXPECT_EQ(s.refused[0].rfind((drop / "20-bad.toml").string() + ":3:", 0), 0u) << s.refused[0];
@@ -74,8 +71,8 @@ TEST_F(DropIns, ABadDropInIsRefusedWithItsFileAndLineAndTheRestStays) {
 }
 
 TEST_F(DropIns, AMergeThatBreaksAnotherFilesValueIsRefusedAndSaysSo) {
-  write(main, "[audio.routing]\nchannels = 2\nacoustic = 0\nactuator = 1\n");
-  write(drop / "10-mono.toml", "[audio.routing]\nchannels = 1\n");  // actuator 1 is now out of range
+  write_text(main, "[audio.routing]\nchannels = 2\nacoustic = 0\nactuator = 1\n");
+  write_text(drop / "10-mono.toml", "[audio.routing]\nchannels = 1\n");  // actuator 1 is now out of range
   const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
   ASSERT_EQ(s.refused.size(), 1u);
   EXPECT_NE(s.refused[0].find("10-mono.toml"), std::string::npos) << s.refused[0];
@@ -83,21 +80,21 @@ TEST_F(DropIns, AMergeThatBreaksAnotherFilesValueIsRefusedAndSaysSo) {
 }
 
 TEST_F(DropIns, ABadSettingsFileIsStillAnError) {
-  write(main, "[audio]\nvolume = -1\n");
+  write_text(main, "[audio]\nvolume = -1\n");
   const FileError e = test::file_error_of([&] { config::load_settings(main, {}); });
   EXPECT_EQ(e.file(), main.string());
   EXPECT_EQ(e.line(), 2u);
 }
 
 TEST_F(DropIns, WithoutASettingsFileDropInsApplyOverTheDefaults) {
-  write(drop / "10-volume.toml", "[audio]\nvolume = 0.5\n");
+  write_text(drop / "10-volume.toml", "[audio]\nvolume = 0.5\n");
   const config::LoadedSettings s = config::load_settings(std::nullopt, config::drop_in_files(drop));
   EXPECT_DOUBLE_EQ(s.config.audio.volume, 0.5);
   EXPECT_EQ(s.config.actuator.gain, AppConfig{}.actuator.gain);
 }
 
 TEST_F(DropIns, ShowNamesEachKeysFileAndParsesBackToTheSameValues) {
-  write(drop / "10-volume.toml", "[audio]\nvolume = 1.5\n[scenes]\nchoices = [\"wall.toml\", \"a b.toml\"]\n");
+  write_text(drop / "10-volume.toml", "[audio]\nvolume = 1.5\n[scenes]\nchoices = [\"wall.toml\", \"a b.toml\"]\n");
   const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
   const std::string shown = config::show_settings(s);
   EXPECT_NE(shown.find("volume = 1.5  # from " + (drop / "10-volume.toml").string() + ":2"), std::string::npos) << shown;
@@ -113,16 +110,16 @@ TEST_F(DropIns, ShowNamesEachKeysFileAndParsesBackToTheSameValues) {
 TEST_F(DropIns, KeptSettingsReadBackAsTheFilesTheyCameFromRelativePathsIncluded) {
   // The kiosk keeps show_settings' text as its last good settings, in its state folder; read
   // back, a relative [metrics] textfile still lies beside the settings it was written in.
-  write(drop / "10-metrics.toml", "[metrics]\ntextfile = \"mallet.prom\"\n");
+  write_text(drop / "10-metrics.toml", "[metrics]\ntextfile = \"mallet.prom\"\n");
   const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
-  write(dir / "state" / "kept.toml", config::show_settings(s));
+  write_text(dir / "state" / "kept.toml", config::show_settings(s));
   const config::LoadedSettings kept = config::load_kept_settings(dir / "state" / "kept.toml", main);
   EXPECT_EQ(kept.file, dir / "state" / "kept.toml");
   EXPECT_DOUBLE_EQ(kept.config.audio.volume, 0.8);
   EXPECT_EQ(kept.config.audio.sample_rate_hz, 48000);
   EXPECT_EQ(kept.config.metrics.textfile, (dir / "mallet.prom").string());
   // A bad kept file is a ConfigError naming itself.
-  write(dir / "state" / "kept.toml", "[audio\n");
+  write_text(dir / "state" / "kept.toml", "[audio\n");
   const FileError e = test::file_error_of([&] { config::load_kept_settings(dir / "state" / "kept.toml", main); });
   EXPECT_EQ(e.file(), (dir / "state" / "kept.toml").string());
 }

@@ -32,7 +32,7 @@ void KioskHealth::beat(Nanos now, const KioskStage& stage, const KioskStates& st
 }
 
 void KioskHealth::stop(Nanos now, const KioskStage& stage, const render::ProductWindow& win) {
-  notifier_.stopping();
+  // No STOPPING=1 here: see run_window_kiosk.
   journal::info("mallet run: stopping after {} frames and {} strikes", frames_, strikes(stage));
   if (metrics_file_.enabled()) write_metrics(now, stage, win);  // the final counts, as the line above
 }

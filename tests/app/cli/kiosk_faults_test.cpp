@@ -24,10 +24,7 @@ namespace fs = std::filesystem;
 using test::child_preload;
 using test::slurp;
 
-void write(const fs::path& file, const std::string& text) {
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << text;
-}
+using test::write_text;
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
@@ -64,13 +61,13 @@ TEST(KioskFaults, ABrokenSettingsFileAtStartRunsTheLastGoodSettingsAndSaysSoInOn
   const std::string input = "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
 
   // A start on good settings keeps them.
-  write(settings, input + "[audio]\nvolume = 0.5\n");
+  write_text(settings, input + "[audio]\nvolume = 0.5\n");
   ASSERT_EQ(run_window_kiosk(settings, state, dir / "good.txt"), 0) << slurp(dir / "good.txt");
   const std::string kept = slurp(state / "last-good-settings.toml");
   EXPECT_NE(kept.find("volume = 0.5  # from " + settings.string() + ":5"), std::string::npos) << kept;
 
   // Broken: the kiosk comes up all the same, on them, and says so as an error.
-  write(settings, input + "[audio]\nvolume = \"loud\n");
+  write_text(settings, input + "[audio]\nvolume = \"loud\n");
   ASSERT_EQ(run_window_kiosk(settings, state, dir / "broken.txt"), 0) << slurp(dir / "broken.txt");
   const std::string log = slurp(dir / "broken.txt");
   EXPECT_NE(log.find("<3>settings refused: " + settings.string() + ":5:"), std::string::npos) << log;
@@ -92,9 +89,9 @@ TEST(KioskFaults, HeadlessAndTheOtherCommandsStillRefuseABrokenSettingsFileWithE
   no_display();
   const fs::path dir = test::scratch_dir();
   const fs::path settings = dir / "mallet.toml";
-  write(settings, "# the operator's\n[audio]\nvolume = \"loud\n");
+  write_text(settings, "# the operator's\n[audio]\nvolume = \"loud\n");
   // Even with last good settings kept: a researcher's run does not fall back.
-  write(dir / "state" / "last-good-settings.toml", "[audio]\nvolume = 0.5\n");
+  write_text(dir / "state" / "last-good-settings.toml", "[audio]\nvolume = 0.5\n");
   for (const std::string& command :
        {"run --headless --seconds 0.1 --size 64x36 --out " + (dir / "out").string(), std::string("config show"),
         "simulate --input " + (test::config_dir() / "trajectories" / "demo.csv").string() + " --out " +
@@ -113,9 +110,9 @@ TEST(KioskFaults, AStateFolderThatCannotBeWrittenIsSaidOnceAndTheKioskPlaysOn) {
   // A regular file where the state folder should be: nothing can be written into it, as on a
   // full or read-only disk (root ignores permissions, so this is how a test as root gets it).
   const fs::path state = dir / "state";
-  write(state, "not a folder\n");
+  write_text(state, "not a folder\n");
   const fs::path settings = dir / "mallet.toml";
-  write(settings, "[input]\nsource = \"mouse\"\nmouse = \"window\"\n[metrics]\ntextfile = \"mallet.prom\"\n"
+  write_text(settings, "[input]\nsource = \"mouse\"\nmouse = \"window\"\n[metrics]\ntextfile = \"mallet.prom\"\n"
                   "interval_s = 1\n");
   ASSERT_EQ(run_window_kiosk(settings, state, dir / "log.txt"), 0) << slurp(dir / "log.txt");
   const std::string log = slurp(dir / "log.txt");
@@ -138,7 +135,7 @@ TEST(KioskFaults, DoctorSaysTheBrokenSettingsLineAndWhatTheKioskRunsOnMeanwhile)
   no_display();
   const fs::path dir = test::scratch_dir();
   const fs::path settings = dir / "mallet.toml";
-  write(settings, "[audio]\nvolume = 12\n");
+  write_text(settings, "[audio]\nvolume = 12\n");
   const test::CliResult r =
       run_with("MALLET_STATE_DIR=" + (dir / "state").string(), "doctor --config " + settings.string());
   EXPECT_EQ(r.status, 1) << r.output;

@@ -21,10 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write(const fs::path& file, const std::string& text) {
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << text;
-}
+using test::write_text;
 
 std::string read(const fs::path& file) {
   std::ifstream in(file);
@@ -40,8 +37,8 @@ void no_display() {
 
 TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
   const fs::path dir = test::scratch_dir();
-  write(dir / "mallet.toml", "[audio]\nvolume = 0.8\n[actuator]\ngain = 0.2\n");
-  write(dir / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
+  write_text(dir / "mallet.toml", "[audio]\nvolume = 0.8\n[actuator]\ngain = 0.2\n");
+  write_text(dir / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
   const test::CliResult r = test::run_mallet("config show --config " + (dir / "mallet.toml").string() + " 2>/dev/null");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("gain = 0.05  # from " + (dir / "mallet.toml.d" / "50-gain.toml").string() + ":2"),
@@ -50,7 +47,7 @@ TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
   EXPECT_NE(r.output.find("volume = 0.8  # from " + (dir / "mallet.toml").string() + ":2"), std::string::npos)
       << r.output;
   // The output is TOML: Python's own parser reads it back.
-  write(dir / "shown.toml", r.output);
+  write_text(dir / "shown.toml", r.output);
   const std::string check = "python3 -c \"import tomllib,sys; d=tomllib.load(open(sys.argv[1],'rb'));"
                             "assert d['actuator']['gain']==0.05 and d['audio']['volume']==0.8\" " +
                             (dir / "shown.toml").string();
@@ -59,9 +56,9 @@ TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
 
 TEST(ConfigShow, ABadDropInIsNamedWithItsLineAndExitsTwoWhileTheRestIsShown) {
   const fs::path dir = test::scratch_dir();
-  write(dir / "mallet.toml", "[audio]\nvolume = 0.8\n");
-  write(dir / "d" / "10-bad.toml", "[audio]\nvolume = 12\n");
-  write(dir / "d" / "20-good.toml", "[actuator]\ngain = 0.3\n");
+  write_text(dir / "mallet.toml", "[audio]\nvolume = 0.8\n");
+  write_text(dir / "d" / "10-bad.toml", "[audio]\nvolume = 12\n");
+  write_text(dir / "d" / "20-good.toml", "[actuator]\ngain = 0.3\n");
   const test::CliResult r = test::run_mallet("config show --config " + (dir / "mallet.toml").string() +
                                              " --config-dir " + (dir / "d").string());
   EXPECT_EQ(r.status, 2) << r.output;
@@ -74,7 +71,7 @@ TEST(OperatorSettings, EveryCommandReadsTheDropInsAndSaysWhichFilesItUsed) {
   const fs::path dir = test::scratch_dir();
   fs::copy(test::config_dir(), dir / "config", fs::copy_options::recursive);
   // A quieter actuator in a drop-in: `simulate`'s actuator channel must follow it, as the kiosk does.
-  write(dir / "config" / "mallet.toml.d" / "10-gain.toml", "[actuator]\ngain = 0.05\n");
+  write_text(dir / "config" / "mallet.toml.d" / "10-gain.toml", "[actuator]\ngain = 0.05\n");
   const std::string settings = (dir / "config" / "mallet.toml").string();
   const test::CliResult r = test::run_mallet("scene describe --scene " + test::percussion_scene().string() +
                                              " > /dev/null; " + std::string(MALLET_TEST_BINARY) +
@@ -108,7 +105,7 @@ TEST(OperatorSettings, SimulateUsesTheOperatorsSettingsAsTheKioskDoes) {
   fs::create_directories(dir / "data");
   fs::copy(test::config_dir(), dir / "data" / "config", fs::copy_options::recursive);
   const double shipped = simulated_actuator_peak(dir / "data", dir / "shipped");
-  write(dir / "data" / "config" / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
+  write_text(dir / "data" / "config" / "mallet.toml.d" / "50-gain.toml", "[actuator]\ngain = 0.05\n");
   const double turned_down = simulated_actuator_peak(dir / "data", dir / "turned-down");
   ASSERT_GT(shipped, 0.01);
   EXPECT_NEAR(turned_down / shipped, 0.25, 1e-3);
@@ -122,7 +119,7 @@ TEST(OperatorSettings, SimulateUsesTheOperatorsSettingsAsTheKioskDoes) {
 TEST(OperatorSettings, AMissingStartSceneIsReportedAgainstTheSettingsLineThatNamesIt) {
   no_display();
   const fs::path dir = test::scratch_dir();
-  write(dir / "mallet.toml", "# the operator's settings\n[scenes]\nstart = \"gone.toml\"\n");
+  write_text(dir / "mallet.toml", "# the operator's settings\n[scenes]\nstart = \"gone.toml\"\n");
   const test::CliResult r = test::run_mallet("run --headless --seconds 0.1 --config " + (dir / "mallet.toml").string() +
                                              " --out " + (dir / "out").string());
   EXPECT_EQ(r.status, 2) << r.output;
@@ -134,7 +131,7 @@ TEST(OperatorSettings, AMissingStartSceneIsReportedAgainstTheSettingsLineThatNam
 TEST(OperatorSettings, ABadSceneChoiceIsSkippedWithItsReasonAndTheKioskRuns) {
   no_display();
   const fs::path dir = test::scratch_dir();
-  write(dir / "mallet.toml", "[scenes]\nstart = \"percussion.toml\"\nchoices = [\"percussion.toml\", \"gone.toml\", \"wall.toml\"]\n");
+  write_text(dir / "mallet.toml", "[scenes]\nstart = \"percussion.toml\"\nchoices = [\"percussion.toml\", \"gone.toml\", \"wall.toml\"]\n");
   const test::CliResult r = test::run_mallet("run --headless --seconds 0.2 --size 64x36 --config " +
                                              (dir / "mallet.toml").string() + " --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -150,7 +147,7 @@ TEST(OperatorSettings, ABrokenModelNamesTheSceneKeyThatChoseIt) {
   const fs::path dir = test::scratch_dir();
   fs::copy(test::config_dir(), dir / "config", fs::copy_options::recursive);
   fs::copy(test::source_dir() / "models", dir / "models", fs::copy_options::recursive);
-  write(dir / "models" / "metal_bar.glb", "not a glTF file");
+  write_text(dir / "models" / "metal_bar.glb", "not a glTF file");
   // The models are found through the data folder: this copy, with its settings and scenes.
   const std::string cmd = "MALLET_DATA_DIR=" + dir.string() + " " + std::string(MALLET_TEST_BINARY) +
                           " run --headless --seconds 0.1 --size 64x36 --out " + (dir / "out2").string() + " > " +

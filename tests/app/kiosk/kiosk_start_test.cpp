@@ -13,10 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write(const fs::path& file, const std::string& text) {
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << text;
-}
+using test::write_text;
 
 struct KioskStart : ::testing::Test {
   fs::path dir = test::scratch_dir();
@@ -30,7 +27,7 @@ struct KioskStart : ::testing::Test {
 };
 
 TEST_F(KioskStart, SettingsThatLoadAreItsOwnAndAreWhatItKeeps) {
-  write(settings, "[audio]\nvolume = 0.5\n");
+  write_text(settings, "[audio]\nvolume = 0.5\n");
   const Result<KioskSetup, std::string> s = start_setup(options, last_good);
   ASSERT_TRUE(s) << s.error();
   EXPECT_TRUE(s->refused.empty());
@@ -41,12 +38,12 @@ TEST_F(KioskStart, SettingsThatLoadAreItsOwnAndAreWhatItKeeps) {
 }
 
 TEST_F(KioskStart, BrokenSettingsStartOnTheLastGoodOnesWithTheProblemInOneLine) {
-  write(settings, "[audio]\nvolume = 0.5\n[metrics]\ntextfile = \"mallet.prom\"\n");
+  write_text(settings, "[audio]\nvolume = 0.5\n[metrics]\ntextfile = \"mallet.prom\"\n");
   const Result<KioskSetup, std::string> good = start_setup(options, last_good);
   ASSERT_TRUE(good) << good.error();
-  write(last_good, last_good_text(*good));  // as the kiosk keeps it
+  write_text(last_good, last_good_text(*good));  // as the kiosk keeps it
 
-  write(settings, "[audio]\nvolume = \"loud\n");  // a missing quote
+  write_text(settings, "[audio]\nvolume = \"loud\n");  // a missing quote
   ASSERT_FALSE(load_setup(options)) << "a reload is refused: the running settings stay";
   const Result<KioskSetup, std::string> s = start_setup(options, last_good);
   ASSERT_TRUE(s) << s.error();
@@ -65,7 +62,7 @@ TEST_F(KioskStart, BrokenSettingsStartOnTheLastGoodOnesWithTheProblemInOneLine) 
 }
 
 TEST_F(KioskStart, WithoutLastGoodSettingsItStartsOnTheShippedDefaults) {
-  write(settings, "[audio]\nvolume = 0.5\nvolumes = 2\n");  // a misspelt key
+  write_text(settings, "[audio]\nvolume = 0.5\nvolumes = 2\n");  // a misspelt key
   const Result<KioskSetup, std::string> s = start_setup(options, last_good);
   ASSERT_TRUE(s) << s.error();
   EXPECT_DOUBLE_EQ(s->config.audio.volume, AppConfig{}.audio.volume);
@@ -76,8 +73,8 @@ TEST_F(KioskStart, WithoutLastGoodSettingsItStartsOnTheShippedDefaults) {
 }
 
 TEST_F(KioskStart, LastGoodSettingsThatDoNotLoadEitherAreNamedAndTheDefaultsRun) {
-  write(settings, "[audio\n");
-  write(last_good, "[audio]\nvolume = 99\n");
+  write_text(settings, "[audio\n");
+  write_text(last_good, "[audio]\nvolume = 99\n");
   const Result<KioskSetup, std::string> s = start_setup(options, last_good);
   ASSERT_TRUE(s) << s.error();
   EXPECT_NE(s->refused.find("the shipped defaults"), std::string::npos) << s->refused;
@@ -87,7 +84,7 @@ TEST_F(KioskStart, LastGoodSettingsThatDoNotLoadEitherAreNamedAndTheDefaultsRun)
 }
 
 TEST_F(KioskStart, AStartSceneThatIsGoneFallsBackToo) {
-  write(settings, "[scenes]\nstart = \"gone.toml\"\n");
+  write_text(settings, "[scenes]\nstart = \"gone.toml\"\n");
   const Result<KioskSetup, std::string> s = start_setup(options, last_good);
   ASSERT_TRUE(s) << s.error();
   EXPECT_EQ(s->refused.rfind("settings refused: " + settings.string() + ":2:", 0), 0u) << s->refused;
