@@ -24,11 +24,19 @@ fail() {
 
 # The stand-in cage: logs what it was given, then runs its client as cage does (with
 # DISPLAY set to its Xwayland's display) and ends with it.
+# FAKE_CAGE=abort-on-stop: it then stays up and, told to stop (SIGTERM), aborts as Debian 12's
+# cage 0.1.4 does at the end of every stop; FAKE_CAGE=abort: it aborts by itself.
 cat >"$scratch/fakebin/cage" <<'CAGE'
 #!/bin/sh
 echo "XDG_RUNTIME_DIR=$XDG_RUNTIME_DIR WLR_RENDERER=${WLR_RENDERER:-} args=$*" >> "$FAKE_LOG"
 [ "$1" = -- ] && shift
 DISPLAY=:7 "$@"
+case "${FAKE_CAGE:-}" in
+abort-on-stop)
+  trap 'trap - ABRT; kill -ABRT $$' TERM
+  while :; do /bin/sleep 0.05; done ;;
+abort) trap - ABRT; kill -ABRT $$ ;;
+esac
 CAGE
 # The client ends with `exec sleep infinity`: here it ends at once.
 printf '#!/bin/sh\necho "sleep $*" >> "$FAKE_LOG"\n' >"$scratch/fakebin/sleep"
@@ -76,6 +84,19 @@ rm "$scratch/dri/renderD128"
 run WLR_RENDERER=gles2 FAKE_RENDERER=pixman || fail "mallet-session exits $? with WLR_RENDERER=gles2"
 grep -q "WLR_RENDERER=gles2 args" "$scratch/log" || fail "the operator's WLR_RENDERER was overridden: $(cat "$scratch/log")"
 ! grep -q '^mallet doctor' "$scratch/log" || fail "the doctor was asked although WLR_RENDERER was set"
+
+# cage aborting at the end of a stop (cage 0.1.4): a clean stop, said in a line; cage aborting
+# with no stop asked: its status (134) is the unit's.
+run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort-on-stop &
+runner=$!
+for _ in $(seq 100); do [[ -e $scratch/run/display ]] && break; /bin/sleep 0.05; done
+/bin/sleep 0.2
+pkill -TERM -f "^/bin/sh $session\$" || fail "no mallet-session to stop"
+wait "$runner" && status=0 || status=$?
+((status == 0)) || fail "mallet-session stopped while cage aborts on its stop exits $status: $(cat "$scratch/out")"
+grep -q 'cage aborted while stopping' "$scratch/out" || fail "the stop's abort was not explained: $(cat "$scratch/out")"
+run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort && status=0 || status=$?
+((status == 134)) || fail "cage aborting by itself: mallet-session exits $status, expected 134"
 
 # --wait: the display's socket there → 0 at once; absent → 1 after the limit, with a line.
 python3 -c 'import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$scratch/x11/X7"

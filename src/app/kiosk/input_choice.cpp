@@ -111,8 +111,11 @@ std::string input_line(const KioskStage& s) {
     return line;
   }
   const input::wiimote::WiimoteState w = s.device->state();
+  // Before the link runs the remote has no identity yet: why it was chosen says which.
+  const std::string id = remote_identity(w.device);
   std::string line = s.replay ? "input: " + s.input_why + ", " + to_string(w.link)
-                             : "input: Wii Remote " + remote_identity(w.device) + ", " + to_string(w.link);
+                              : "input: Wii Remote " + (id.empty() ? "(" + s.input_why + ")" : id) + ", " +
+                                    to_string(w.link);
   if (w.link == input::wiimote::LinkState::running) {
     const std::string buf = fmt::format(", {:.0f} reports/s{}", w.remote.ir_rate_hz,
                                         w.tracking ? ", LED seen" : ", no LED");
