@@ -233,7 +233,8 @@ void PortAudioOutput::open_locked() {
       open_device_locked(devices[i]);
       return;
     } catch (const std::runtime_error& e) {
-      journal::info("{}; opening \"{}\" instead", e.what(), devices.back().name.c_str());
+      if (!fallback_said_) journal::info("{}; opening \"{}\" instead", e.what(), devices.back().name.c_str());
+      fallback_said_ = true;  // once: a device's reopening retries come every few seconds
     }
   }
   open_device_locked(devices.back());

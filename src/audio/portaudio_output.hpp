@@ -190,6 +190,7 @@ class PortAudioOutput {
   // All below with pa_mutex held.
   void open_locked();  // the configured device, or the first of default_output_order that opens
   void open_device_locked(const DeviceInfo& device);
+  bool fallback_said_ = false;  // open_locked's line when the first choice did not open
   void start_stream_locked();
   void close_locked(bool abort);
 
