@@ -17,9 +17,9 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
-//! Polls `file` every 0.1 s for up to 60 s until it contains `text`.
-inline bool wait_for(const std::filesystem::path& file, const std::string& text) {
-  for (int i = 0; i < 600; ++i) {
+//! Polls `file` every 0.1 s, `polls` times (60 s by default), until it contains `text`.
+inline bool wait_for(const std::filesystem::path& file, const std::string& text, int polls = 600) {
+  for (int i = 0; i < polls; ++i) {
     if (slurp(file).find(text) != std::string::npos) return true;
     std::system("sleep 0.1");
   }

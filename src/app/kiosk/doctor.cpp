@@ -14,7 +14,6 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <system_error>
 #include <thread>
@@ -292,18 +291,6 @@ KioskUser kiosk_user() {
   return {me ? me->pw_name : "?", false};
 }
 
-// Whether /dev/<node> (hidrawN) is a Wii Remote's: its HID device's HID_ID in sysfs
-// ("BUS:VENDOR:PRODUCT" in hex). A keyboard's or a mouse's hidraw node is none of ours.
-bool wii_remote_node(const std::string& node) {
-  std::ifstream uevent(fs::path("/sys/class/hidraw") / node / "device" / "uevent");
-  std::string line;
-  unsigned bus = 0, vendor = 0, product = 0;
-  while (std::getline(uevent, line))
-    if (std::sscanf(line.c_str(), "HID_ID=%x:%x:%x", &bus, &vendor, &product) == 3)
-      return wm::is_wii_remote(static_cast<std::uint16_t>(vendor), static_cast<std::uint16_t>(product));
-  return false;
-}
-
 DoctorCheck check_hidraw() {
   std::error_code ec;
   std::string rule;
@@ -330,12 +317,11 @@ DoctorCheck check_hidraw() {
       if (g && std::find(groups.begin(), groups.end(), g->gr_gid) == groups.end()) missing.emplace_back(want);
     }
   }
-  // Remotes present whose node this process cannot open.
+  // Remotes present whose node this process cannot open (hidapi lists them from sysfs
+  // without opening them; a keyboard's or a mouse's hidraw node is none of ours).
   std::vector<std::string> closed;
-  for (const fs::directory_entry& e : fs::directory_iterator("/dev", ec))
-    if (const std::string node = e.path().filename().string();
-        node.rfind("hidraw", 0) == 0 && wii_remote_node(node) && ::access(e.path().c_str(), R_OK | W_OK) != 0)
-      closed.push_back(e.path().string());
+  for (const wm::HidDeviceInfo& d : wm::HidTransport::enumerate())
+    if (::access(d.path.c_str(), R_OK | W_OK) != 0) closed.push_back(d.path);
   std::string found = (rule.empty() ? "udev rule " + shipped.filename().string() + " not installed" : "udev rule " + rule) +
                       "; user " + user + (service_user ? " (the service's)" : " (no mallet user: not installed)");
   if (!missing.empty()) {

@@ -158,10 +158,7 @@ TEST(StudyWindow, TheMouseCrossesTheTextureDiscAndTheCursorFollowsTheSpeedTechni
 bool strike_until(Screen& screen, const Scene& scene, int target, const fs::path& log, const std::string& text) {
   for (int stroke = 0; stroke < 5; ++stroke) {
     screen.strike(scene, target);
-    for (int i = 0; i < 50; ++i) {
-      if (test::slurp(log).find(text) != std::string::npos) return true;
-      std::system("sleep 0.1");
-    }
+    if (test::wait_for(log, text, 50)) return true;
   }
   return false;
 }
