@@ -120,6 +120,12 @@ struct AttractConfig {
   double language_every_s = 15.0;
 };
 
+//! How a CPU rasteriser's frames (lavapipe) reach an X11 window: only the pixels that
+//! changed, put into it (render/x11_image_put.hpp), or whole through Vulkan's swapchain.
+enum class SoftwarePresent { changes, swapchain };
+inline constexpr EnumNames<SoftwarePresent, 2> kSoftwarePresentNames{
+    {{SoftwarePresent::changes, "changes"}, {SoftwarePresent::swapchain, "swapchain"}}};
+
 //! [render]: the screen. Values are names so the core stays free of Vulkan.
 struct RenderConfig {
   PresentPacing present_mode = PresentPacing::fifo;  //!< fifo (vsync), mailbox or immediate; fifo where not offered
@@ -130,6 +136,7 @@ struct RenderConfig {
   //! The frame budget (core/frame_pacer.hpp), frames a second: 0 = the display's refresh;
   //! never above it.
   double max_fps = 0;
+  SoftwarePresent software_present = SoftwarePresent::changes;
 };
 
 //! [scenes]: which scene the kiosk shows, and which the operator page can switch to. File

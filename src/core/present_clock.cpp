@@ -25,15 +25,35 @@ PresentClock::PresentClock(double refresh_hz, PresentPacing pacing, Nanos frame_
       unheld_ns_(period_of(refresh_hz)),
       cost_ns_(frame_cost_ns) {}
 
+void PresentClock::set_pacing(PresentPacing pacing) {
+  if (pacing_.exchange(static_cast<int>(pacing), std::memory_order_relaxed) == static_cast<int>(pacing)) return;
+  judged_.store(0, std::memory_order_relaxed);
+  fast_.store(0, std::memory_order_relaxed);
+}
+
 void PresentClock::set_refresh_hz(double hz) {
+  if (refresh_ns_.load(std::memory_order_relaxed) != period_of(hz)) {
+    judged_.store(0, std::memory_order_relaxed);
+    fast_.store(0, std::memory_order_relaxed);
+  }
   period_ns_.store(period_of(hz), std::memory_order_relaxed);
   refresh_ns_.store(period_of(hz), std::memory_order_relaxed);
   unheld_ns_.store(period_of(hz), std::memory_order_relaxed);
 }
 
+namespace {
+//! Sooner than 85 % of the refresh period: more than a display that paces FIFO ever shows.
+bool faster_than_refresh(Nanos interval, Nanos refresh) { return interval * 20 < refresh * 17; }
+}  // namespace
+
+bool PresentClock::judged() const {
+  return pacing() != PresentPacing::fifo || judged_.load(std::memory_order_relaxed) >= kJudgedFrames;
+}
+
 bool PresentClock::unpaced() const {
-  return pacing() == PresentPacing::fifo &&
-         unheld_ns_.load(std::memory_order_relaxed) * 20 < refresh_ns_.load(std::memory_order_relaxed) * 17;
+  if (pacing() != PresentPacing::fifo) return false;
+  if (judged()) return fast_.load(std::memory_order_relaxed) > kFastAllowed;
+  return faster_than_refresh(unheld_ns_.load(std::memory_order_relaxed), refresh_ns_.load(std::memory_order_relaxed));
 }
 
 void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn) {
@@ -49,6 +69,11 @@ void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn) {
   const Nanos interval = t - last;
   const Nanos own = std::max<Nanos>(0, interval - held_ns);
   if (own > 3 * unheld) return;
+  if (pacing() == PresentPacing::fifo && judged_.load(std::memory_order_relaxed) < kJudgedFrames) {
+    if (faster_than_refresh(own, refresh_ns_.load(std::memory_order_relaxed)))
+      fast_.fetch_add(1, std::memory_order_relaxed);
+    judged_.fetch_add(1, std::memory_order_relaxed);
+  }
   period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
   unheld_ns_.store(std::max<Nanos>(500'000, unheld + (own - unheld) / 16), std::memory_order_relaxed);
 }

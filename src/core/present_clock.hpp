@@ -15,9 +15,15 @@
 // FIFO swapchain whose frames come much faster than the display's refresh is not paced by
 // it (a virtual X server: no vblank at all): its frames are shown as soon as they are done,
 // one frame's work after they start (measured with bench latency: 2–7 ms, not two
-// refreshes). Whether the display paces is judged from the frames' own pace: the interval
-// between frame starts less the time the window's frame budget (core/frame_pacer.hpp) held
-// the frame back, so slowing the frames to max_fps does not make the display look paced.
+// refreshes). Whether the display paces is judged once, from the first kJudgedFrames frames
+// drawn back to back, by their own pace: the interval between frame starts less the time
+// the window's frame budget (core/frame_pacer.hpp) held the frame back (the window holds
+// none back until the verdict). A display that paces FIFO shows no frame sooner than its
+// refresh, but for the few a new swapchain's free images take at once; a display that does
+// not shows most of them sooner. The verdict then stands until the pacing or the refresh
+// changes, so that the frame budget it engages can never make the display look paced (nor
+// the frames it holds back make it look unpaced), and one display gets one verdict, run
+// after run. Before it, a running estimate of the frames' own pace stands in.
 // Written by the render thread, read by the input threads: every field is one atomic.
 #include <atomic>
 #include <string>
@@ -48,7 +54,8 @@ class PresentClock {
   //! `learn` false: the previous start drew nothing (a still scene: no acquire, no present
   //! held it back), so the interval says nothing of the display; the grid is only anchored.
   void frame_started(Nanos t, Nanos held_ns = 0, bool learn = true);
-  void set_pacing(PresentPacing pacing) { pacing_.store(static_cast<int>(pacing), std::memory_order_relaxed); }
+  //! Another pacing or refresh than before: the display is judged again.
+  void set_pacing(PresentPacing pacing);
   void set_refresh_hz(double hz);
 
   //! When the frame that begins recording at `start` reaches the screen.
@@ -65,6 +72,14 @@ class PresentClock {
   //! budget not holding them back (a display that paces FIFO never shows them faster than
   //! its refresh): nothing paces them.
   bool unpaced() const;
+  //! Frames drawn back to back that the verdict on a FIFO display is drawn from; of them,
+  //! more than kFastAllowed coming sooner than 85 % of the refresh period: not paced.
+  static constexpr int kJudgedFrames = 48;
+  static constexpr int kFastAllowed = kJudgedFrames / 4;
+  //! Whether the display has been judged (always, but for FIFO before kJudgedFrames).
+  bool judged() const;
+  //! Of the judged frames, how many came sooner than 85 % of the refresh period (for the log).
+  int fast_frames() const { return fast_.load(std::memory_order_relaxed); }
   PresentPacing pacing() const { return static_cast<PresentPacing>(pacing_.load(std::memory_order_relaxed)); }
   //! "fifo, 60.0 Hz (measured 16.7 ms)": for the operator page.
   std::string describe() const;
@@ -76,6 +91,8 @@ class PresentClock {
   std::atomic<Nanos> refresh_ns_;      //!< the display's nominal refresh period
   std::atomic<Nanos> last_start_{-1};  //!< the latest frame start: the grid's anchor (0 before any)
   std::atomic<Nanos> unheld_ns_;  //!< the frame interval without the frame budget's wait, smoothed
+  std::atomic<int> judged_{0};    //!< frames judged so far (kJudgedFrames: the verdict is in)
+  std::atomic<int> fast_{0};      //!< of them, those sooner than 85 % of the refresh period
   const Nanos cost_ns_;  //!< one frame's work (mailbox, immediate)
   static_assert(std::atomic<Nanos>::is_always_lock_free);
 };

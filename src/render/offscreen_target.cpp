@@ -1,16 +1,19 @@
 #include "render/offscreen_target.hpp"
 
 #include <cstring>
+#include <utility>
 
 #include "render/vk_error.hpp"
 
 namespace mallet::render {
 
-OffscreenTarget::OffscreenTarget(const Context& ctx, VkExtent2D extent) : ctx_(ctx), extent_(extent) {
+OffscreenTarget::OffscreenTarget(const Context& ctx, VkExtent2D extent, VkFormat format) : ctx_(ctx), extent_(extent) {
   if (extent.width == 0 || extent.height == 0 || extent.width > 16384 || extent.height > 16384)
     throw RenderError("image size " + std::to_string(extent.width) + "x" + std::to_string(extent.height) +
                       " is out of range (1..16384)");
-  color_ = make_image(ctx, extent, kFormat,
+  if (format != kFormat && format != VK_FORMAT_B8G8R8A8_SRGB)
+    throw RenderError("an offscreen image is RGBA8 or BGRA8 (sRGB)");
+  color_ = make_image(ctx, extent, format,
                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                           VK_IMAGE_USAGE_TRANSFER_DST_BIT,  // the renderer's background is copied in
                       VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -39,13 +42,20 @@ void OffscreenTarget::draw(SceneRenderer& renderer, const FrameState& state) {
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, keep_ && drawn_,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
                   state, 0);
+  // A kept frame changed only the renderer's drawn area; the host copy holds the rest.
+  const PixelRect whole{0, 0, static_cast<int>(extent_.width), static_cast<int>(extent_.height)};
+  changed_ = keep_ && drawn_ ? intersection(renderer.last_drawn_area(), whole) : whole;
   drawn_ = true;
   VkBufferImageCopy region{};
+  region.bufferOffset = static_cast<VkDeviceSize>(changed_.y0) * row_pitch_ + static_cast<VkDeviceSize>(changed_.x0) * 4;
   region.bufferRowLength = static_cast<std::uint32_t>(row_pitch_ / 4);
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {extent_.width, extent_.height, 1};
-  vkCmdCopyImageToBuffer(cmd_, color_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer.get(), 1,
-                         &region);
+  region.imageOffset = {changed_.x0, changed_.y0, 0};
+  region.imageExtent = {static_cast<std::uint32_t>(changed_.x1 - changed_.x0),
+                        static_cast<std::uint32_t>(changed_.y1 - changed_.y0), 1};
+  if (!changed_.empty())
+    vkCmdCopyImageToBuffer(cmd_, color_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer.get(), 1,
+                           &region);
   VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
   host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
   host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -74,6 +84,8 @@ Image OffscreenTarget::read_back() const {
   const std::size_t row = std::size_t{extent_.width} * 4;
   for (std::uint32_t y = 0; y < extent_.height; ++y)
     std::memcpy(out.rgba.data() + y * row, src + y * row_pitch_, row);
+  if (color_.format == VK_FORMAT_B8G8R8A8_SRGB)
+    for (std::size_t i = 0; i < out.rgba.size(); i += 4) std::swap(out.rgba[i], out.rgba[i + 2]);
   return out;
 }
 

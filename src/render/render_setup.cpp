@@ -9,6 +9,8 @@
 #include <thread>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "core/data_paths.hpp"
 #include "core/journal.hpp"
 #include "core/pixel_size.hpp"
@@ -55,6 +57,7 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
   wo.hide_cursor = !windowed;
   wo.monitor = r.monitor;
   wo.present_mode = r.present_mode;
+  wo.put_changes = r.software_present == SoftwarePresent::changes;
   return wo;
 }
 
@@ -106,8 +109,13 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
 void ProductWindow::set_max_fps(double max_fps) {
   if (max_fps == max_fps_) return;
   max_fps_ = max_fps;
-  pace_said_ = false;
   pacer_.set_max_fps(0);
+}
+
+void ProductWindow::say_pace(std::string line) {
+  if (line == pace_said_) return;
+  journal::info("{}", line);
+  pace_said_ = std::move(line);
 }
 
 void ProductWindow::pace() {
@@ -121,28 +129,35 @@ void ProductWindow::pace() {
     held_ns_ = monotonic_now() - now;
   };
   if (max_fps_ < 0) {  // mallet run --no-frame-cap
-    if (!std::exchange(pace_said_, true)) journal::notice("render: frames not capped (--no-frame-cap)");
+    say_pace("render: frames not capped (--no-frame-cap)");
     if (window->still()) wait_for_next_start();
     return;
   }
-  // Decided before every frame from the present model, which judges the display by the
-  // frames' own pace (the budget's waits left out), so a cap never hides an unpaced display.
+  // A FIFO display is judged once from its first frames drawn back to back (the present
+  // model's verdict, PresentClock::judged): none is held back until then.
+  if (!clock.judged()) {
+    if (pacer_.max_fps() > 0) pacer_.set_max_fps(0);
+    if (window->still()) wait_for_next_start();
+    return;
+  }
   const double refresh = window->refresh_hz();
   const double cap = max_fps_ > 0 ? std::min(max_fps_, refresh) : refresh;
   const bool fifo = clock.pacing() == PresentPacing::fifo;
   const bool display_paces = fifo && !clock.unpaced();
   const bool pace = !display_paces || cap < refresh * 0.98;
   if (pace != (pacer_.max_fps() > 0)) pacer_.set_max_fps(pace ? cap : 0);
-  constexpr std::uint64_t kSettledFrames = 120;  // the present model's estimate settles in ~60
-  if (frames_ >= kSettledFrames && !std::exchange(pace_said_, true)) {
-    if (pace)
-      journal::info("render: frames paced at {:.0f} a second ({})", cap,
-                    display_paces ? "[render] max_fps, below the display's refresh"
-                    : fifo        ? "the display does not hold them back"
-                                  : "mailbox or immediate presenting");
-    else
-      journal::info("render: frames paced by the display at its {:.0f} Hz refresh", refresh);
-  }
+  const std::string judged = fmt::format("{} of its first {} frames came sooner than its {:.0f} Hz refresh",
+                                         clock.fast_frames(), PresentClock::kJudgedFrames, refresh);
+  if (!pace)
+    say_pace(fmt::format("render: frames paced by the display ({}: {})", window->presentation(), judged));
+  else if (display_paces)
+    say_pace(fmt::format("render: frames paced at {:.0f} a second ([render] max_fps, below the display's {:.0f} Hz "
+                         "refresh)",
+                         cap, refresh));
+  else
+    say_pace(fmt::format("render: frames paced at {:.0f} a second, the display's refresh ({}: {})", cap,
+                         window->presentation(), fifo ? "the display does not hold them back, " + judged
+                                                      : std::string("nothing holds them back")));
   if (!pace) {
     if (window->still()) wait_for_next_start();
     return;

@@ -112,9 +112,9 @@ struct ProductWindow {
   //! The frame budget ([render] max_fps; 0 = the refresh, never above it; < 0, only from
   //! `mallet run --no-frame-cap`: none): called before each frame, it waits until the
   //! frame's slot. A FIFO display that paces the frames itself (the present model's
-  //! judgement, from the frames' own pace) is left to do so, unless max_fps is below its
-  //! refresh. Says in the log what it chose once the model has settled (120 frames), and
-  //! again after set_max_fps with another value (a reload).
+  //! verdict, from its first frames' own pace, none held back until then) is left to do
+  //! so, unless max_fps is below its refresh. Says in the log what it chose and why, once,
+  //! and again only when that changes (a reload's max_fps, a display judged again).
   void pace();
   void set_max_fps(double max_fps);
   //! How long the last pace() held the frame back: PresentClock::frame_started's held_ns.
@@ -137,7 +137,8 @@ struct ProductWindow {
  private:
   std::uint64_t frames_ = 0, devices_lost_ = 0;
   double max_fps_ = 0;
-  bool pace_said_ = false;
+  std::string pace_said_;  //!< the pace's line last said in the log
+  void say_pace(std::string line);
   Nanos held_ns_ = 0;
   FramePacer pacer_;
   std::vector<std::uint64_t> inject_lost_at_;  //!< frame counts, ascending

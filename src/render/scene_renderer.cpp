@@ -13,6 +13,7 @@
 #include "shaders/overlay_frag.h"
 #include "shaders/overlay_vert.h"
 #include "shaders/gbuffer_frag.h"
+#include "shaders/glow_frag.h"
 #include "shaders/scene_frag.h"
 #include "shaders/scene_vert.h"
 #include "shaders/shadow_frag.h"
@@ -56,9 +57,10 @@ struct ShadowConstants {
 static_assert(sizeof(ShadowConstants) <= 128, "push constants: 128 bytes guaranteed");
 
 //! A lit bar with more triangles than this is lit on the screen from the cached bars (a pass
-//! over its rectangle, whatever the triangles); one with fewer is cheaper to redraw (the
-//! shipped bar has 12; measured at 1080p on lavapipe, the screen pass over a shipped bar's
-//! rectangle cost more than its redraw).
+//! over its rectangle, whatever the triangles); one with fewer has its glow added over its
+//! own triangles (the shipped bar has 12; measured at 1080p on lavapipe, the screen pass
+//! over a shipped bar's rectangle cost more than redrawing it with scene.frag, and that
+//! redraw cost 16 points of a core in the attract mode, which the added glow saves).
 constexpr std::uint32_t kRedrawLitBarTriangles = 1000;
 
 //! How brightly the bar `target` is lit this frame (the brighter of its lights); 0 when it
@@ -353,8 +355,11 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
   // How a pipeline uses depth: the overlay not at all; the whole scene tests and writes
   // it; drawing over the cached background only tests against it (it stays the cache).
   enum class Depth { none, test_and_write, test_only };
+  // How a pipeline's colour meets what is drawn: replaces it, straight alpha over it (the
+  // overlay), or added to it (a lit bar's glow).
+  enum class Blend { opaque, alpha_over, add };
   auto build = [&](VkShaderModule vs, VkShaderModule fs, const VkPipelineVertexInputStateCreateInfo& input,
-                   Depth depth, bool blend, VkPipelineLayout layout, const char* what,
+                   Depth depth, Blend blend, VkPipelineLayout layout, const char* what,
                    VkSampleCountFlagBits samples, std::vector<VkFormat> formats = {}) {
     if (formats.empty()) formats.push_back(color_format_);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
@@ -392,7 +397,13 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
         .dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, .colorBlendOp = VK_BLEND_OP_ADD,
         .srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE, .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
         .alphaBlendOp = VK_BLEND_OP_ADD, .colorWriteMask = kRgba};
-    const std::vector<VkPipelineColorBlendAttachmentState> atts(formats.size(), blend ? kAlphaOver : kOpaque);
+    // Light added, the alpha kept: colour = src + dst.
+    constexpr VkPipelineColorBlendAttachmentState kAdd{
+        .blendEnable = VK_TRUE, .srcColorBlendFactor = VK_BLEND_FACTOR_ONE, .dstColorBlendFactor = VK_BLEND_FACTOR_ONE,
+        .colorBlendOp = VK_BLEND_OP_ADD, .srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO,
+        .dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE, .alphaBlendOp = VK_BLEND_OP_ADD, .colorWriteMask = kRgba};
+    const std::vector<VkPipelineColorBlendAttachmentState> atts(
+        formats.size(), blend == Blend::alpha_over ? kAlphaOver : blend == Blend::add ? kAdd : kOpaque);
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<std::uint32_t>(atts.size());
     cb.pAttachments = atts.data();
@@ -427,26 +438,29 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
     const VertexInput input(sizeof(Vertex), {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                                              {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}});
-    scene_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
+    scene_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, Blend::opaque,
                             scene_pipeline_layout_.get(), "creating the scene pipeline", settings_.samples);
-    over_background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_only, false,
+    over_background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_only, Blend::opaque,
                                       scene_pipeline_layout_.get(), "creating the over-background pipeline",
                                       settings_.samples);
     if (background_samples() != settings_.samples)
-      background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, false,
+      background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, Blend::opaque,
                                    scene_pipeline_layout_.get(), "creating the background pipeline",
                                    background_samples());
-    vk::ShaderModule light = make_shader(dev, gbuffer_frag_spv);
-    if (screen_space_shadow())
-      light_pipeline_ = build(vs.get(), light.get(), input.info, Depth::test_and_write, false,
+    vk::ShaderModule light = make_shader(dev, gbuffer_frag_spv), glow = make_shader(dev, glow_frag_spv);
+    if (screen_space_shadow()) {
+      light_pipeline_ = build(vs.get(), light.get(), input.info, Depth::test_and_write, Blend::opaque,
                               scene_pipeline_layout_.get(), "creating the cached light's pipeline",
                               VK_SAMPLE_COUNT_1_BIT, {kLightFormat, kLightFormat});
+      glow_pipeline_ = build(vs.get(), glow.get(), input.info, Depth::test_only, Blend::add,
+                             scene_pipeline_layout_.get(), "creating the glow's pipeline", settings_.samples);
+    }
   }
   {
     vk::ShaderModule vs = make_shader(dev, shadow_vert_spv), fs = make_shader(dev, shadow_frag_spv);
     VkPipelineVertexInputStateCreateInfo none{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (screen_space_shadow())
-      shadow_pipeline_ = build(vs.get(), fs.get(), none, Depth::none, false, shadow_pipeline_layout_.get(),
+      shadow_pipeline_ = build(vs.get(), fs.get(), none, Depth::none, Blend::opaque, shadow_pipeline_layout_.get(),
                                "creating the shadow pipeline", settings_.samples);
   }
   {
@@ -455,7 +469,7 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
                             {{0, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, x)},
                              {1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(OverlayVertex, u)},
                              {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(OverlayVertex, color)}});
-    overlay_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::none, true, overlay_pipeline_layout_.get(),
+    overlay_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::none, Blend::alpha_over, overlay_pipeline_layout_.get(),
                               "creating the overlay pipeline", settings_.samples);
   }
 }
@@ -935,8 +949,16 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
       for (const Instance& i : instruments_)
         if (glow_of(state, i.target) > 0) redrawn_lit.push_back(&i);
     }
-    // The other lit bars again, whole, with their light (and the shadow where it falls on them).
-    for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
+    if (screen_space_shadow() && !redrawn_lit.empty()) {
+      // The other lit bars' glow, added over their own triangles to what the cache and the
+      // shadow's pass left (glow.frag: scene.frag's emissive term, at a constant's cost).
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, glow_pipeline_.get());
+      for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
+    } else {
+      // Multisampled: the lit bars again, whole, with their light and the shadow on them.
+      for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
+    }
   } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_of(state, i.target));
   }

@@ -7,8 +7,9 @@
 // size into a cached background (colour and depth, and at one sample a pixel each pixel's
 // light and bar: gbuffer.frag). Each frame copies it in, changes the instruments only inside
 // the rectangle the mallet's shadow can reach (shadow_bounds) and on the lit bars (shaded on
-// the screen from the cached light, shadow.frag, whatever the models' triangles; or, for
-// multisampled frames and for bars of few triangles, redrawn), and draws the mallet over it,
+// the screen from the cached light, shadow.frag, whatever the models' triangles; for bars
+// of few triangles, their glow added over them, glow.frag; for multisampled frames,
+// redrawn), and draws the mallet over it,
 // depth-tested against the cached depth: the pixels of drawing the whole scene (a test
 // compares them: to 1/255 on the screen, exactly when redrawn), at a small part of the cost
 // on a CPU rasteriser (`mallet bench render`). The mallet is drawn there without writing depth (the
@@ -127,8 +128,8 @@ class SceneRenderer {
   //! changes (the shadow's; each lit bar's with more than 1000 triangles, kRedrawLitBarTriangles,
   //! whose glow would cost more to redraw), whatever the models' triangles. Multisampled frames (a
   //! GPU's), whose bar edges need each sample's coverage: one per instrument whose screen box
-  //! meets the shadow's rectangle, redrawn. 0: nothing changed (a lit shipped bar is redrawn,
-  //! whole, not counted).
+  //! meets the shadow's rectangle, redrawn. 0: nothing changed (a lit shipped bar's glow,
+  //! added over its triangles or redrawn with them, is not counted).
   std::size_t shadow_passes() const { return shadow_passes_; }
   //! Whether the shadow is shaded on the screen (single-sampled frames over the cache).
   bool screen_space_shadow() const {
@@ -204,6 +205,7 @@ class SceneRenderer {
   vk::Pipeline over_background_pipeline_;  //!< depth-tested against the cached depth, never writing it
   vk::Pipeline light_pipeline_;   //!< the cached light per pixel (gbuffer.frag), one sample a pixel
   vk::Pipeline shadow_pipeline_;  //!< the shadow over the cached background, shaded on the screen
+  vk::Pipeline glow_pipeline_;    //!< a lit bar's glow added over it (glow.frag), single-sampled frames
   vk::Pipeline background_pipeline_;       //!< at background_samples, when they differ from the frames' 
   std::array<Slot, kSlots> slots_;
   VkExtent2D attachment_extent_{};

@@ -21,6 +21,13 @@ std::map<GLFWwindow*, WindowTarget*>& targets_of_windows() {
   static std::map<GLFWwindow*, WindowTarget*> targets;
   return targets;
 }
+
+//! How the present model paces a swapchain's frames.
+PresentPacing clock_pacing(VkPresentModeKHR mode) {
+  return mode == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
+         : mode == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
+                                                 : PresentPacing::fifo;
+}
 }  // namespace
 
 WindowSystem::WindowSystem() {
@@ -84,6 +91,19 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options, Pre
   glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) {
     if (const auto t = targets_of_windows().find(w); t != targets_of_windows().end()) t->second->show_again();
   });
+  if (options.put_changes && ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    auto put = X11ImagePut::open(window_);
+    if (put) {
+      put_ = std::move(*put);
+      presentation_ = "only the changed pixels, put into the X11 window";
+      format_ = VK_FORMAT_B8G8R8A8_SRGB;  // the X server's byte order
+      present_mode_ = VK_PRESENT_MODE_IMMEDIATE_KHR;
+      clock_->set_pacing(PresentPacing::immediate);  // on the server as soon as it is put
+      create_picture();
+      return;
+    }
+    put_refused_ = "; not the changed pixels alone: " + put.error();
+  }
   check(glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface_), "creating the window surface");
   VkBool32 supported = VK_FALSE;
   vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physical_device(), ctx.queue_family(), surface_, &supported);
@@ -106,6 +126,8 @@ WindowTarget::~WindowTarget() {
   rendered_.clear();
   swapchain_.reset();
   if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+  picture_.reset();
+  put_.reset();
   if (window_) {
     targets_of_windows().erase(window_);
     glfwDestroyWindow(window_);
@@ -129,6 +151,26 @@ bool WindowTarget::framebuffer_visible(std::pair<int, int> size) const {
   // Minimised: iconified, or on X11 unmapped (hidden); elsewhere a 0×0 framebuffer.
   if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED) || !glfwGetWindowAttrib(window_, GLFW_VISIBLE)) return false;
   return size.first > 0 && size.second > 0;
+}
+
+void WindowTarget::create_picture() {
+  built_for_ = framebuffer_size();
+  extent_ = {static_cast<std::uint32_t>(std::max(built_for_.first, 1)),
+             static_cast<std::uint32_t>(std::max(built_for_.second, 1))};
+  picture_.reset();  // waits for the device
+  picture_ = std::make_unique<OffscreenTarget>(ctx_, extent_, format_);
+  picture_->keep_frames(true);
+  show_again();  // a new image, never shown
+}
+
+bool WindowTarget::draw_and_put(SceneRenderer& renderer, const FrameState& state, Image* capture) {
+  if (show_again_) picture_->draw_whole();
+  picture_->draw(renderer, state);  // waits for it
+  put_->put(picture_->pixels(), static_cast<int>(extent_.width), static_cast<int>(extent_.height),
+            static_cast<std::size_t>(picture_->row_pitch()), picture_->changed());
+  show_again_ = false;
+  if (capture) *capture = picture_->read_back();
+  return true;
 }
 
 void WindowTarget::recreate_swapchain() {
@@ -165,9 +207,8 @@ void WindowTarget::create_swapchain() {
                                   : options_.present_mode == PresentMode::immediate ? VK_PRESENT_MODE_IMMEDIATE_KHR
                                                                                      : VK_PRESENT_MODE_FIFO_KHR;
   present_mode_ = std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
-  clock_->set_pacing(present_mode_ == VK_PRESENT_MODE_MAILBOX_KHR     ? PresentPacing::mailbox
-                     : present_mode_ == VK_PRESENT_MODE_IMMEDIATE_KHR ? PresentPacing::immediate
-                                                                      : PresentPacing::fifo);
+  presentation_ = std::string("a Vulkan swapchain (") + to_string(clock_pacing(present_mode_)) + ")" + put_refused_;
+  clock_->set_pacing(clock_pacing(present_mode_));
 
   if (caps.currentExtent.width != UINT32_MAX) {
     extent_ = caps.currentExtent;
@@ -224,8 +265,10 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   const std::pair<int, int> size = framebuffer_size();  // asked of the window system once a frame
   if (!framebuffer_visible(size)) {
     // Minimised: nothing to draw into. Waiting up to a refresh for the window's events keeps
-    // the callers' loops from spinning a core until it comes back.
+    // the callers' loops from spinning a core until it comes back, shown whole (an unmapped
+    // X11 window keeps no pixels; its expose may come after the next frame).
     glfwWaitEventsTimeout(1.0 / refresh_hz_);
+    show_again();
     return false;
   }
   if (const VkResult injected = std::exchange(injected_, VK_SUCCESS); injected != VK_SUCCESS)
@@ -233,10 +276,18 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   VkDevice dev = ctx_.device();
   // Not every driver says OUT_OF_DATE when the window changes size (lavapipe on X11 goes
   // on presenting the old size, measured): the window's own size is checked too.
-  if (size != built_for_) recreate_swapchain();
+  if (size != built_for_) {
+    if (put_) {
+      create_picture();
+      ++recreations_;
+    } else {
+      recreate_swapchain();
+    }
+  }
   // A frame that would change nothing is not drawn: the screen shows it already.
   still_ = options_.skip_unchanged && !capture && !show_again_ && !renderer.changes(state, extent_);
   if (still_) return false;
+  if (put_) return draw_and_put(renderer, state, capture);
   FrameSync& f = frames_[frame_];
   VkFence fence = f.done.get();
   check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");

@@ -1,5 +1,8 @@
 #pragma once
-// Rendering into a GLFW window through a Vulkan swapchain: the kiosk's screen.
+// Rendering into a GLFW window: the kiosk's screen. Through a Vulkan swapchain, or, where
+// the device is a CPU rasteriser (lavapipe) and the window is on X11, into an image in
+// memory whose changed pixels alone are put into the window (render/x11_image_put.hpp: a
+// whole frame through the X socket each time cost the kiosk more than its drawing).
 // Resizes, minimising (an iconified or hidden window, or a 0×0 framebuffer: frames are
 // skipped, nothing is recreated until it comes back) and VK_ERROR_OUT_OF_DATE_KHR / VK_SUBOPTIMAL_KHR (the swapchain is
 // recreated and the frame retried) are handled here; the caller only calls draw().
@@ -16,7 +19,9 @@
 #include "core/time.hpp"
 #include "render/gpu_resources.hpp"
 #include "render/image.hpp"
+#include "render/offscreen_target.hpp"
 #include "render/scene_renderer.hpp"
+#include "render/x11_image_put.hpp"
 
 struct GLFWwindow;
 
@@ -36,6 +41,10 @@ struct WindowOptions {
   //! draw() returns false and still() says why. Off for a fixed count of frames (`mallet
   //! render --window --frames`).
   bool skip_unchanged = true;
+  //! A CPU rasteriser's frames in an X11 window: only the pixels that changed are put
+  //! (X11ImagePut), shown as soon as they are put (PresentPacing::immediate). False: the
+  //! Vulkan swapchain (Mesa then sends each whole frame). A GPU always uses the swapchain.
+  bool put_changes = true;
 };
 
 //! GLFW itself: initialised once per process, before the Vulkan instance (which needs its
@@ -66,6 +75,11 @@ class WindowTarget {
   VkFormat format() const { return format_; }
   VkPresentModeKHR present_mode() const { return present_mode_; }
   VkExtent2D extent() const { return extent_; }
+  //! How frames reach the window, for the log: "a Vulkan swapchain (fifo)", or "only the
+  //! changed pixels, put into the X11 window" (and why not, where it was asked and not had).
+  const std::string& presentation() const { return presentation_; }
+  //! Pixels put into the X11 window so far (0 through the swapchain).
+  std::uint64_t pixels_put() const { return put_ ? put_->pixels_put() : 0; }
   bool close_requested() const;
   std::uint64_t swapchain_recreations() const { return recreations_; }
   //! Hands the GLFW window over: this target's destructor then frees its Vulkan objects
@@ -107,6 +121,8 @@ class WindowTarget {
     vk::Fence done;
   };
   void create_swapchain();
+  void create_picture();  //!< put_changes: the image frames are drawn into, at the window's size
+  bool draw_and_put(SceneRenderer& renderer, const FrameState& state, Image* capture);
   void recreate_swapchain();  //!< waits for the device, makes a new one, counts it
   bool framebuffer_visible(std::pair<int, int> size) const;
   std::pair<int, int> framebuffer_size() const;
@@ -134,6 +150,10 @@ class WindowTarget {
   PresentClock* clock_ = &own_clock_;
   VkResult injected_ = VK_SUCCESS;
   GpuBuffer capture_buffer_;
+  std::unique_ptr<X11ImagePut> put_;         //!< put_changes, had: no surface, no swapchain
+  std::unique_ptr<OffscreenTarget> picture_;  //!< what put_ shows, drawn as kept frames
+  std::string presentation_;
+  std::string put_refused_;  //!< why put_changes was not had ("; not ...: why"), or empty
 };
 
 }  // namespace mallet::render

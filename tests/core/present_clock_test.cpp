@@ -1,5 +1,7 @@
 // The present model the bounce and align = "picture" share: frames on the refresh grid
 // (FIFO), back to back (mailbox, immediate), the grid learnt from the frame starts.
+#include <cstdint>
+
 #include <gtest/gtest.h>
 
 #include "core/present_clock.hpp"
@@ -96,9 +98,95 @@ TEST(PresentClock, StillFramesAnchorTheGridButTeachItNothing) {
   // Had those starts taught it, 1 µs intervals held back by nothing would have made the
   // display look unpaced:
   PresentClock taught(60.0, PresentPacing::fifo);
-  for (int i = 0; i < 400; ++i) taught.frame_started(t += 16'666'667);
   for (int i = 0; i < 400; ++i) taught.frame_started(t += 1000, 0, true);
   EXPECT_TRUE(taught.unpaced());
+}
+
+// The frames of one display as the kiosk's loop reports them while the display is judged
+// (the budget holds none back): a display that paces FIFO shows none sooner than its
+// refresh after the first few (a new swapchain's free images), with the jitter of a loaded
+// machine; a virtual X server shows them as soon as they are drawn, each taking 3–9 ms, and
+// now and then much longer (another process had the core).
+Nanos feed(PresentClock& c, Nanos t, bool display_paces, unsigned seed, int frames) {
+  std::uint64_t x = seed * 2654435761u + 1;
+  auto uniform = [&x] {  // a small LCG: the same frames for the same seed
+    x = x * 6364136223846793005u + 1442695040888963407u;
+    return static_cast<double>(x >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < frames; ++i) {
+    Nanos interval = 0;
+    if (display_paces)
+      interval = i < 3 ? static_cast<Nanos>(2e6 + 3e6 * uniform())                   // free images at once
+                       : static_cast<Nanos>(16'666'667 * (uniform() < 0.1 ? 2 : 1) + 4e5 * (uniform() - 0.5));
+    else
+      interval = static_cast<Nanos>(uniform() < 0.15 ? 15e6 + 20e6 * uniform() : 3e6 + 6e6 * uniform());
+    c.frame_started(t += interval);
+  }
+  return t;
+}
+
+TEST(PresentClock, OneDisplayGetsOneVerdictRunAfterRun) {
+  // Twenty runs each of a display that paces and of one that does not, each run with other
+  // frames: every run of a display reaches the same verdict, within a few hundred
+  // milliseconds (a frame much longer than the frames' own pace is left out: a hiccup).
+  for (unsigned run = 0; run < 20; ++run) {
+    PresentClock paced(60.0, PresentPacing::fifo), virtual_x(60.0, PresentPacing::fifo);
+    // kJudgedFrames intervals: one frame start more (the first has none before it).
+    Nanos t = feed(paced, 0, true, run, PresentClock::kJudgedFrames);
+    EXPECT_FALSE(paced.judged());
+    paced.frame_started(t + 16'666'667);
+    ASSERT_TRUE(paced.judged()) << "run " << run;
+    EXPECT_FALSE(paced.unpaced()) << "run " << run << ": " << paced.fast_frames() << " fast";
+    EXPECT_LE(paced.fast_frames(), PresentClock::kFastAllowed);
+    t = 0;
+    int frames = 0;
+    while (!virtual_x.judged() && frames < 400) t = feed(virtual_x, t, false, run * 1000 + frames++, 1);
+    ASSERT_TRUE(virtual_x.judged()) << "run " << run;
+    EXPECT_LE(frames, 80) << "run " << run;
+    EXPECT_TRUE(virtual_x.unpaced()) << "run " << run << ": " << virtual_x.fast_frames() << " fast";
+    EXPECT_GT(virtual_x.fast_frames(), PresentClock::kFastAllowed);
+  }
+}
+
+TEST(PresentClock, TheVerdictStandsWhateverTheFrameBudgetDoesAfterIt) {
+  // The bistable judgement it replaces: a virtual X server's frames, once the budget holds
+  // them to the refresh, came 16.7 ms apart and were taken for a paced display in some runs
+  // and not in others. Held back or not, after the verdict nothing moves it.
+  PresentClock c(60.0, PresentPacing::fifo);
+  Nanos t = feed(c, 0, false, 7, 200);
+  ASSERT_TRUE(c.judged());
+  ASSERT_TRUE(c.unpaced());
+  for (int i = 0; i < 400; ++i) c.frame_started(t += 16'666'667, 0);  // held back, not said so
+  EXPECT_TRUE(c.unpaced());
+  EXPECT_EQ(c.present_of_frame_started(t), t + 3 * kMs);  // shown when done
+  // And a paced display stays paced if its frames then come fast (a still scene's wake-ups
+  // reported as frames by mistake).
+  PresentClock p(60.0, PresentPacing::fifo);
+  t = feed(p, 0, true, 7, PresentClock::kJudgedFrames);
+  ASSERT_FALSE(p.unpaced());
+  for (int i = 0; i < 400; ++i) p.frame_started(t += kMs);
+  EXPECT_FALSE(p.unpaced());
+}
+
+TEST(PresentClock, ADisplayIsJudgedAgainOnlyWhenItsPacingOrRefreshChanges) {
+  PresentClock c(60.0, PresentPacing::fifo);
+  Nanos t = feed(c, 0, false, 3, 200);
+  ASSERT_TRUE(c.judged());
+  c.set_pacing(PresentPacing::fifo);  // a new swapchain, the same mode: the verdict stands
+  c.set_refresh_hz(60.0);
+  EXPECT_TRUE(c.judged());
+  EXPECT_TRUE(c.unpaced());
+  c.set_refresh_hz(75.0);  // another monitor: judged again, from the new frames
+  EXPECT_FALSE(c.judged());
+  t = feed(c, t, true, 3, 2);
+  c.set_pacing(PresentPacing::immediate);  // nothing to judge: shown when done
+  EXPECT_TRUE(c.judged());
+  EXPECT_FALSE(c.unpaced());
+  c.set_pacing(PresentPacing::fifo);
+  EXPECT_FALSE(c.judged());
+  for (int i = 0; i < PresentClock::kJudgedFrames; ++i) c.frame_started(t += 13'333'333);  // 75 Hz, paced
+  EXPECT_TRUE(c.judged());
+  EXPECT_FALSE(c.unpaced());
 }
 
 TEST(PresentClock, ParsesTheThreePresentModes) {

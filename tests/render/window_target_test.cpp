@@ -1,8 +1,11 @@
 // The window target in this process, under a virtual X server of its own (CTest runs this
-// binary through xvfb-run): a window resized while frames are drawn gets a new swapchain
-// and the frames of its new size, drawn over the renderer's cached background (redrawn for
-// the new size); a hidden (minimised) window draws nothing and comes back when shown; a
-// frame that changes nothing is not drawn, and one that does draws only what changed.
+// binary through xvfb-run), both ways lavapipe's frames reach the window: only the changed
+// pixels put into it (the kiosk's way on a CPU rasteriser) and the Vulkan swapchain (a
+// GPU's way). A window resized while frames are drawn gets the frames of its new size, drawn
+// over the renderer's cached background (redrawn for the new size); a hidden (minimised)
+// window draws nothing and comes back when shown; a frame that changes nothing is not drawn,
+// and one that does draws only what changed. Each time the X server is asked what the
+// window shows.
 #include <GLFW/glfw3.h>
 
 #include <gtest/gtest.h>
@@ -30,7 +33,7 @@ struct OpenWindow {
   std::unique_ptr<PipelineCache> cache;
   std::unique_ptr<SceneRenderer> renderer;
 
-  explicit OpenWindow(VkSampleCountFlagBits samples) {
+  OpenWindow(VkSampleCountFlagBits samples, bool put_changes) {
     ContextOptions co;
     co.validation = Validation::required;
     co.device_name = "llvmpipe";
@@ -40,7 +43,11 @@ struct OpenWindow {
     WindowOptions wo;
     wo.width = 320;
     wo.height = 180;
+    wo.put_changes = put_changes;
     target = std::make_unique<WindowTarget>(*ctx, wo);
+    // lavapipe is a CPU rasteriser: the changed pixels are put where asked, on Xvfb.
+    EXPECT_EQ(target->presentation().starts_with("only the changed pixels"), put_changes) << target->presentation();
+    EXPECT_EQ(target->present_clock().pacing() == PresentPacing::immediate, put_changes);
     cache = std::make_unique<PipelineCache>(*ctx, "");
     RenderSettings rs;
     rs.samples = samples;
@@ -118,8 +125,8 @@ void expect_matches(const Image& shot, const Image& expected) {
   EXPECT_LT(d.differing_fraction, 0.001) << d.differing_pixels << " pixels differ, max " << d.max_channel_delta;
 }
 
-void resize_and_check(VkSampleCountFlagBits samples) {
-  OpenWindow w(samples);
+void resize_and_check(VkSampleCountFlagBits samples, bool put_changes) {
+  OpenWindow w(samples, put_changes);
   const FrameState s = mallet_over_a_bar();
   Image shot;
   ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
@@ -127,8 +134,8 @@ void resize_and_check(VkSampleCountFlagBits samples) {
 
   glfwSetWindowSize(w.target->window(), 480, 300);
   ASSERT_TRUE(framebuffer_becomes(w.target->window(), 480, 300));
-  // The swapchain learns it is out of date at the next acquire or present; within a few
-  // frames every frame has the new size.
+  // The swapchain learns it is out of date at the next acquire or present (the put image at
+  // the next frame); within a few frames every frame has the new size.
   for (int i = 0; i < 4; ++i) w.target->draw(*w.renderer, s);
   ASSERT_TRUE(w.target->draw(*w.renderer, s, &shot));
   EXPECT_GE(w.target->swapchain_recreations(), 1u);
@@ -146,12 +153,18 @@ void resize_and_check(VkSampleCountFlagBits samples) {
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
 }
 
-TEST(WindowTarget, AResizedWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_1_BIT); }
+class BothWays : public testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(WindowTarget, BothWays, testing::Values(true, false),
+                         [](const testing::TestParamInfo<bool>& i) { return i.param ? "PutChanges" : "Swapchain"; });
 
-TEST(WindowTarget, AResizedMultisampledWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_4_BIT); }
+TEST_P(BothWays, AResizedWindowGetsTheFramesOfItsNewSize) { resize_and_check(VK_SAMPLE_COUNT_1_BIT, GetParam()); }
 
-TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
-  OpenWindow w(VK_SAMPLE_COUNT_1_BIT);
+TEST_P(BothWays, AResizedMultisampledWindowGetsTheFramesOfItsNewSize) {
+  resize_and_check(VK_SAMPLE_COUNT_4_BIT, GetParam());
+}
+
+TEST_P(BothWays, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
+  OpenWindow w(VK_SAMPLE_COUNT_1_BIT, GetParam());
   const FrameState s = mallet_over_a_bar();
   ASSERT_TRUE(w.target->draw(*w.renderer, s));
   glfwHideWindow(w.target->window());  // what minimising does to an X11 window: it is unmapped
@@ -169,8 +182,8 @@ TEST(WindowTarget, AHiddenWindowDrawsNothingAndComesBackWhenShown) {
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
 }
 
-TEST(WindowTarget, AStillFrameIsNotDrawnAndAMovingOneDrawsOnlyWhatChanged) {
-  OpenWindow w(VK_SAMPLE_COUNT_1_BIT);
+TEST_P(BothWays, AStillFrameIsNotDrawnAndAMovingOneDrawsOnlyWhatChanged) {
+  OpenWindow w(VK_SAMPLE_COUNT_1_BIT, GetParam());
   FrameState s = mallet_over_a_bar();
   ASSERT_TRUE(w.target->draw(*w.renderer, s));
   EXPECT_FALSE(w.target->still());
@@ -179,6 +192,7 @@ TEST(WindowTarget, AStillFrameIsNotDrawnAndAMovingOneDrawsOnlyWhatChanged) {
   // The head moves: each swapchain image, holding a frame two or three behind, is brought up
   // to date by drawing only where the head was since and is.
   const int whole = 320 * 180;
+  const std::uint64_t put_before = w.target->pixels_put();
   for (int i = 0; i < 7; ++i) {
     s.mallet_centre.x += 0.004;
     s.mallet_centre.y -= 0.002;
@@ -187,6 +201,13 @@ TEST(WindowTarget, AStillFrameIsNotDrawnAndAMovingOneDrawsOnlyWhatChanged) {
     if (i >= 3) {
       EXPECT_LT((a.x1 - a.x0) * (a.y1 - a.y0) * 4, whole) << "frame " << i << " drew more than a quarter";
     }
+  }
+  // Only what changed went to the X server: under a quarter of the window a frame.
+  if (GetParam()) {
+    EXPECT_GT(w.target->pixels_put() - put_before, 0u);
+    EXPECT_LT(w.target->pixels_put() - put_before, 7u * whole / 4);
+  } else {
+    EXPECT_EQ(w.target->pixels_put(), 0u) << "the swapchain presents whole frames itself";
   }
   // What the X window shows is the whole frame of the last state.
   EXPECT_FALSE(w.target->draw(*w.renderer, s));

@@ -162,6 +162,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     r.device = t->string_or("device", r.device);
     t->read("monitor", r.monitor, 0, 15);
     t->read("max_fps", r.max_fps, 0, 1000);
+    r.software_present = t->choice_or("software_present", kSoftwarePresentNames, r.software_present);
     t->finish();
   }
   if (auto t = top.optional_table("scenes")) {

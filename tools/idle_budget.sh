@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# tools/idle_budget.sh: the kiosk's running cost on a PC without a GPU, this tree against the
+# last recorded one, in one run on one machine.
+#
+# The figure is `mallet bench render`'s kiosk CPU: the real kiosk fullscreen at 1920x1080 on
+# its own Xvfb (lavapipe), its sound on its own JACK server, % of one core in the attract mode
+# (nobody there), in play and still, with the frame budget (docs/researchers.md, "The kiosk's
+# CPU"). docs/bench-report/idle-budget.tsv records it with the commit it was measured at.
+# This script builds that commit's `mallet` and this tree's (release, each in its own folder;
+# once when their sources are the same), runs the benchmark with each in turn, and prints both
+# figures and their ratio. It is a benchmark that prints, never a test that fails: a ratio of
+# 1.5 or more is said on a line of its own beginning "idle budget: REGRESSION", which .ci/run
+# repeats as its last line. It exits 0 whatever it measured; 2 when it could not measure.
+#
+#   tools/idle_budget.sh            compare (needs Xvfb, jackd, git, the recorded commit)
+#   tools/idle_budget.sh --record   also append this tree's figures to the record (commit first)
+#
+# IDLE_BUDGET_SECONDS (10): seconds per phase; IDLE_BUDGET_RUNS (1): runs of each build, taken
+# in turn (this, recorded, this, ...) and averaged.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+record_file=$root/docs/bench-report/idle-budget.tsv
+seconds=${IDLE_BUDGET_SECONDS:-10}
+runs=${IDLE_BUDGET_RUNS:-1}
+record=0
+[[ "${1:-}" == --record ]] && record=1
+say() { echo "idle budget: $*"; }
+fail() { say "$*" >&2; exit 2; }
+
+for program in Xvfb jackd git cmake awk; do
+  command -v "$program" >/dev/null || fail "needs $program"
+done
+[[ -f "$record_file" ]] || fail "no record: $record_file"
+# The last record: commit, attract, play, still (tab-separated, after the comments).
+read -r recorded_commit recorded_attract recorded_play recorded_still < <(
+  awk -F'\t' '!/^#/ && NF >= 6 { c = $2; a = $4; p = $5; s = $6 } END { print c, a, p, s }' "$record_file")
+[[ -n "$recorded_commit" ]] || fail "$record_file has no record"
+
+work=$(mktemp -d /var/tmp/mallet-idle-budget.XXXXXX)
+cleanup() {
+  git -C "$root" worktree remove --force "$work/recorded" >/dev/null 2>&1 || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+# Each build in a folder of its own, never the developer's build/release.
+build() {  # build SOURCE_DIR BUILD_DIR
+  cmake -S "$1" -B "$2" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMALLET_BUILD_TESTS=OFF >"$work/cmake.log" 2>&1 ||
+    { cat "$work/cmake.log" >&2; fail "cannot configure $1"; }
+  cmake --build "$2" --target mallet >"$work/build.log" 2>&1 || { tail -n 30 "$work/build.log" >&2; fail "cannot build $1"; }
+}
+# The code that makes the kiosk: sources, shaders, build files, shipped settings and models.
+code_paths=(src shaders cmake CMakeLists.txt config models)
+this_bin=$work/this/mallet
+recorded_bin=$work/recorded-build/mallet
+started=$SECONDS
+build "$root" "$work/this"
+if ! git -C "$root" cat-file -e "$recorded_commit^{commit}" 2>/dev/null; then
+  say "the recorded commit $recorded_commit is not in this clone: only the recorded figures are compared"
+  recorded_bin=
+elif git -C "$root" diff --quiet "$recorded_commit" -- "${code_paths[@]}"; then
+  say "this tree's code is the recorded commit's ($recorded_commit): one build, run twice"
+  recorded_bin=$this_bin
+else
+  git -C "$root" worktree add --detach "$work/recorded" "$recorded_commit" >/dev/null 2>&1 ||
+    fail "cannot check out $recorded_commit"
+  build "$work/recorded" "$work/recorded-build"
+fi
+say "built in $((SECONDS - started)) s"
+
+# bench render's table rows: "| capped (max_fps = refresh) | attract | 21.3 | 58.7 | 1.8 |".
+measure() {  # measure BINARY LOG: prints "attract play still" (% of a core, the frame budget on)
+  "$1" bench render --frames 10 --sizes 1920x1080 --kiosk-cpu-seconds "$seconds" >"$2" 2>&1 ||
+    { tail -n 20 "$2" >&2; fail "bench render failed with $1"; }
+  awk -F'|' '$2 ~ /^ capped/ { gsub(/ /, "", $3); gsub(/ /, "", $4); v[$3] = $4 }
+             END { print v["attract"], v["play"], v["still"] }' "$2"
+}
+for ((run = 1; run <= runs; ++run)); do
+  measure "$this_bin" "$work/this-$run.log" >>"$work/this.txt"
+  [[ -n "$recorded_bin" ]] && measure "$recorded_bin" "$work/recorded-$run.log" >>"$work/recorded.txt"
+done
+mean() { awk '{ a += $1; p += $2; s += $3 } END { printf "%.1f %.1f %.1f\n", a / NR, p / NR, s / NR }' "$1"; }
+read -r -a this < <(mean "$work/this.txt")
+if [[ -n "$recorded_bin" ]]; then
+  read -r -a then_ < <(mean "$work/recorded.txt")
+  then_what="the recorded commit's build, measured now"
+else
+  then_=("$recorded_attract" "$recorded_play" "$recorded_still")
+  then_what="as recorded"
+fi
+above() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a + 0 >= b + 0) }'; }  # above A B: A >= B
+commit=$(git -C "$root" rev-parse --short=12 HEAD)
+dirty=$(git -C "$root" diff --quiet HEAD -- "${code_paths[@]}" || echo " (with changes)")
+say "kiosk CPU, % of a core at 1920x1080, frame budget on, $seconds s a phase, $runs run(s) each:"
+printf 'idle budget: %-34s attract %5s  play %5s  still %5s\n' "this tree ($commit$dirty)" "${this[@]}"
+printf 'idle budget: %-34s attract %5s  play %5s  still %5s\n' "recorded ($recorded_commit)" "${then_[@]}"
+say "($then_what; recorded on its day: attract $recorded_attract, play $recorded_play, still $recorded_still)"
+verdict=ok
+names=(attract play)
+for i in 0 1; do  # the still scene is too small a figure for a ratio: it has its own 2 % budget
+  ratio=$(awk -v a="${this[$i]}" -v b="${then_[$i]}" 'BEGIN { printf "%.2f", a / (b + 1e-4) }')
+  say "${names[$i]} ${ratio}x the recorded commit's"
+  if above "$ratio" 1.5; then
+    say "REGRESSION: ${names[$i]} costs ${ratio}x the recorded commit's (${this[$i]} % of a core against ${then_[$i]} %)"
+    verdict=regression
+  fi
+done
+above "${this[0]}" 25.05 && say "over budget: the attract mode costs ${this[0]} % of a core (its budget: 25 %)"
+above "${this[2]}" 2.05 && say "over budget: a still scene costs ${this[2]} % of a core (its budget: 2 %)"
+if ((record)); then
+  [[ -z "$dirty" ]] || fail "commit the code first: a record names the commit it measured"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%F)" "$commit" "$(nproc)-core $(uname -m)" "${this[@]}" \
+    "$runs run(s) of $seconds s a phase" >>"$record_file"
+  say "recorded in $record_file"
+fi
+say "verdict: $verdict"
