@@ -98,6 +98,7 @@ say "($then_what; recorded on its day: attract $recorded_attract, play $recorded
 verdict=ok
 names=(attract play)
 for i in 0 1; do  # the still scene is too small a figure for a ratio: it has its own 2 % budget
+  [[ "${then_[$i]}" =~ ^[0-9.]+$ ]] || { say "${names[$i]}: no recorded figure to compare with"; continue; }
   ratio=$(awk -v a="${this[$i]}" -v b="${then_[$i]}" 'BEGIN { printf "%.2f", a / (b + 1e-4) }')
   say "${names[$i]} ${ratio}x the recorded commit's"
   if above "$ratio" 1.5; then
