@@ -145,6 +145,11 @@ class Test:
             problems.append(f"the session chose {renderer[-1] if renderer else 'no renderer'}, "
                             f"mallet doctor --print-renderer says {doctor_says}")
         time.sleep(10)  # a few frames at TCG's pace
+        # A PC without a GPU driver (virtio-gpu without 3D: lavapipe): only each frame's changed
+        # pixels are put into Xwayland's window (render/x11_image_put), and the kiosk paces them.
+        paced = self.journal(0, grep="^render: frames").strip().splitlines()
+        if not paced or "only the changed pixels, put into the X11 window" not in paced[-1]:
+            problems.append(f"the kiosk's frames are not put as changed pixels: {paced[-1] if paced else 'no line'}")
         width, height, rgb = self.screen("vm-first-boot")
         sig = signature(width, height, rgb)
         bright = sum(sum(c) for c in sig) / (3 * len(sig))
@@ -164,7 +169,7 @@ class Test:
             raise VmError("; ".join(problems))
         return (f"active after {waited:.0f} s of waiting, {u['MainPID']} is the kiosk; screen {width}x{height}, "
                 f"{'distance %.1f from the reference' % distance if distance is not None else 'reference written'}; "
-                f"{renderer[-1] if renderer else 'no renderer line'}")
+                f"{renderer[-1] if renderer else 'no renderer line'}; {paced[-1] if paced else 'no pace line'}")
 
     def mouse(self):
         """A visitor's downstroke with a USB mouse reaches the kiosk through evdev."""
