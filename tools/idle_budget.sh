@@ -107,6 +107,7 @@ for i in 0 1; do  # the still scene is too small a figure for a ratio: it has it
   fi
 done
 above "${this[0]}" 25.05 && say "over budget: the attract mode costs ${this[0]} % of a core (its budget: 25 %)"
+above "${this[1]}" 25.05 && say "over budget: play costs ${this[1]} % of a core (its budget: 25 %)"
 above "${this[2]}" 2.05 && say "over budget: a still scene costs ${this[2]} % of a core (its budget: 2 %)"
 if ((record)); then
   [[ -z "$dirty" ]] || fail "commit the code first: a record names the commit it measured"
