@@ -1,6 +1,6 @@
 #include "render/x11_image_put.hpp"
 
-#include <algorithm>
+#include <utility>
 
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
