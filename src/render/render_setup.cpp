@@ -146,18 +146,12 @@ void ProductWindow::pace() {
   const bool display_paces = fifo && !clock.unpaced();
   const bool pace = !display_paces || cap < refresh * 0.98;
   if (pace != (pacer_.max_fps() > 0)) pacer_.set_max_fps(pace ? cap : 0);
-  const std::string judged = fmt::format("{} of its first {} frames came sooner than its {:.0f} Hz refresh",
-                                         clock.fast_frames(), PresentClock::kJudgedFrames, refresh);
-  if (!pace)
-    say_pace(fmt::format("render: frames paced by the display ({}: {})", window->presentation(), judged));
-  else if (display_paces)
-    say_pace(fmt::format("render: frames paced at {:.0f} a second ([render] max_fps, below the display's {:.0f} Hz "
-                         "refresh)",
-                         cap, refresh));
-  else
-    say_pace(fmt::format("render: frames paced at {:.0f} a second, the display's refresh ({}: {})", cap,
-                         window->presentation(), fifo ? "the display does not hold them back, " + judged
-                                                      : std::string("nothing holds them back")));
+  // The line is made only when the choice changes, not on every frame.
+  const PaceChoice choice{pace, display_paces, cap, refresh, clock.fast_frames(), window.get()};
+  if (choice != pace_chosen_) {
+    pace_chosen_ = choice;
+    say_pace_choice(choice);
+  }
   if (!pace) {
     if (window->still()) wait_for_next_start();
     return;
@@ -167,6 +161,22 @@ void ProductWindow::pace() {
   if (wake <= now) return;
   sleep_until_monotonic(wake);
   held_ns_ = monotonic_now() - now;
+}
+
+void ProductWindow::say_pace_choice(const PaceChoice& c) {
+  const bool fifo = clock.pacing() == PresentPacing::fifo;
+  const std::string judged = fmt::format("{} of its first {} frames came sooner than its {:.0f} Hz refresh",
+                                         c.fast_frames, PresentClock::kJudgedFrames, c.refresh);
+  if (!c.pace)
+    say_pace(fmt::format("render: frames paced by the display ({}: {})", window->presentation(), judged));
+  else if (c.display_paces)
+    say_pace(fmt::format("render: frames paced at {:.0f} a second ([render] max_fps, below the display's {:.0f} Hz "
+                         "refresh)",
+                         c.cap, c.refresh));
+  else
+    say_pace(fmt::format("render: frames paced at {:.0f} a second, the display's refresh ({}: {})", c.cap,
+                         window->presentation(), fifo ? "the display does not hold them back, " + judged
+                                                      : std::string("nothing holds them back")));
 }
 
 bool ProductWindow::draw_or_recover(render::SceneRenderer& renderer, const render::FrameState& state,

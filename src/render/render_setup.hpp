@@ -139,6 +139,16 @@ struct ProductWindow {
   double max_fps_ = 0;
   std::string pace_said_;  //!< the pace's line last said in the log
   void say_pace(std::string line);
+  //! What pace() chose, and from what: its line is said when this changes.
+  struct PaceChoice {
+    bool pace = false, display_paces = false;
+    double cap = 0, refresh = 0;
+    int fast_frames = 0;
+    const render::WindowTarget* window = nullptr;
+    bool operator==(const PaceChoice&) const = default;
+  };
+  PaceChoice pace_chosen_;
+  void say_pace_choice(const PaceChoice& choice);
   Nanos held_ns_ = 0;
   FramePacer pacer_;
   std::vector<std::uint64_t> inject_lost_at_;  //!< frame counts, ascending

@@ -949,16 +949,13 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
       for (const Instance& i : instruments_)
         if (glow_of(state, i.target) > 0) redrawn_lit.push_back(&i);
     }
-    if (screen_space_shadow() && !redrawn_lit.empty()) {
-      // The other lit bars' glow, added over their own triangles to what the cache and the
-      // shadow's pass left (glow.frag: scene.frag's emissive term, at a constant's cost).
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, glow_pipeline_.get());
-      for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
-    } else {
-      // Multisampled: the lit bars again, whole, with their light and the shadow on them.
-      for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
-    }
+    // The other lit bars: single-sampled, their glow added over their own triangles to what
+    // the cache and the shadow's pass left (glow.frag: scene.frag's emissive term, at a
+    // constant's cost); multisampled, redrawn whole with their light and the shadow on them.
+    const bool add_glow = screen_space_shadow() && !redrawn_lit.empty();
+    if (add_glow) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, glow_pipeline_.get());
+    for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
+    if (add_glow) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
   } else if (state.draw_instruments) {
     for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_of(state, i.target));
   }
