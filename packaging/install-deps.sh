@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package Mallet needs to build, test and run.
 # Idempotent and non-interactive: packages already present are left alone.
-#   packaging/install-deps.sh            build + run-time packages
-#   packaging/install-deps.sh --runtime  run-time packages only
+#   packaging/install-deps.sh            build + run-time packages (the kiosk's and the benchmarks')
+#   packaging/install-deps.sh --runtime  the kiosk's run-time packages only
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
 lists=("$here/deps-run.txt")
-[[ "${1:-}" == "--runtime" ]] || lists+=("$here/deps-build.txt")
+[[ "${1:-}" == "--runtime" ]] || lists+=("$here/deps-build.txt" "$here/deps-bench.txt")
 mapfile -t packages < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "${lists[@]}" | grep -v '^$' | sort -u)
 
 missing=()

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The .deb that dpkg-buildpackage built, looked at as dpkg sees it: its files and their
-# modes, its control fields (Depends: every package of packaging/deps-run.txt), its
-# conffiles (every file under /etc), its maintainer scripts (run against stubs: they must
-# survive a machine with no running systemd or udev) and its systemd unit.
+# The .debs that dpkg-buildpackage built, looked at as dpkg sees them. The kiosk's, mallet: its
+# files and their modes, its control fields (Depends: every package of packaging/deps-run.txt,
+# and no library only the benchmarks use), its conffiles (every file under /etc), its
+# maintainer scripts (run against stubs: they must survive a machine with no running systemd or
+# udev) and its systemd unit. The benchmarks', mallet-bench: its files, and Depends on this
+# very mallet and on every package of packaging/deps-bench.txt.
 #   check_package.sh DEB_DIR SOURCE_DIR VERSION
 set -euo pipefail
 dir=$1 src=$2 version=$3
@@ -103,6 +105,12 @@ mapfile -t wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/dep
 ((${#wanted[@]} > 5)) || fail "deps-run.txt read as ${#wanted[@]} packages"
 for p in "${wanted[@]}"; do
   [[ -n ${depends[$p]+x} ]] || fail "Depends lacks $p (from deps-run.txt): $(field Depends)"
+done
+# The kiosk carries nothing only a benchmark uses (the package mallet-bench does).
+for name in "${!depends[@]}"; do
+  case $name in
+  libjack* | libxtst* | libstk*) fail "Depends names $name, which only the benchmarks use: $(field Depends)" ;;
+  esac
 done
 
 # --- Conffiles: exactly the files under /etc ---------------------------------------------
@@ -209,8 +217,43 @@ else
   echo "package: systemd-analyze not installed: the units were not given to systemd's parser"
 fi
 
+# --- The benchmarks' package ------------------------------------------------------------
+bench=$dir/mallet-bench_${version}_${arch}.deb
+if [[ ! -f $bench ]]; then
+  fail "no $bench; $dir holds: $(ls "$dir")"
+else
+  bench_files=0
+  while read -r perms who path; do
+    path=${path#.}
+    [[ $perms == d* ]] && continue
+    bench_files=$((bench_files + 1))
+    [[ $who == root/root ]] || fail "mallet-bench: $path is owned by $who, not root/root"
+    case $path in
+    /usr/bin/mallet-bench) [[ $perms == -rwxr-xr-x ]] || fail "mallet-bench: $path has mode $perms" ;;
+    /usr/share/man/man1/mallet-bench.1.gz | /usr/share/doc/mallet-bench/*) ;;
+    *) fail "mallet-bench: unexpected file $path" ;;
+    esac
+  done < <(dpkg-deb -c "$bench" | awk '{print $1, $2, $6}')
+  dpkg-deb -c "$bench" | grep -q ' ./usr/bin/mallet-bench$' || fail "mallet-bench: no /usr/bin/mallet-bench"
+  dpkg-deb -c "$bench" | grep -q ' ./usr/share/man/man1/mallet-bench.1.gz$' || fail "mallet-bench: no man page"
+  [[ $(dpkg-deb -f "$bench" Package) == mallet-bench ]] || fail "mallet-bench: Package: $(dpkg-deb -f "$bench" Package)"
+  [[ $(dpkg-deb -f "$bench" Version) == "$version" ]] || fail "mallet-bench: Version: $(dpkg-deb -f "$bench" Version)"
+  bench_depends=$(dpkg-deb -f "$bench" Depends)
+  grep -Eq "(^|, )mallet \(= $version\)(,|$)" <<<"$bench_depends" ||
+    fail "mallet-bench does not depend on mallet (= $version): $bench_depends"
+  mapfile -t bench_wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/deps-bench.txt" | grep -v '^$')
+  ((${#bench_wanted[@]} >= 3)) || fail "deps-bench.txt read as ${#bench_wanted[@]} packages"
+  for p in "${bench_wanted[@]}"; do
+    grep -Eq "(^|, )$p( |,|$)" <<<"$bench_depends" || fail "mallet-bench: Depends lacks $p (from deps-bench.txt): $bench_depends"
+  done
+  for p in jackd2 xvfb; do
+    grep -Eq "(^|, )$p(,|$)" <<<"$(dpkg-deb -f "$bench" Recommends)" || fail "mallet-bench: Recommends lacks $p"
+  done
+fi
+
 if ((failures > 0)); then
   echo "package: $failures problem(s) in $deb" >&2
   exit 1
 fi
 echo "package: $deb: ${#mode[@]} files, control fields, conffiles, scripts and unit as expected"
+echo "package: $bench: $bench_files files; Depends on mallet (= $version) and the benchmarks' libraries, which mallet's Depends name none of"

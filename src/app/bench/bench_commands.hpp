@@ -1,13 +1,13 @@
 #pragma once
-// `mallet bench`'s subcommands, each registered by its own file in this folder
-// (cli/cmd_bench.cpp adds them to `mallet bench`).
+// `mallet-bench`'s subcommands, each registered by its own file in this folder
+// (bench_main.cpp adds them, at the top or under `mallet bench`).
 #include <CLI/CLI.hpp>
 
 #include "app/common/command_support.hpp"
 
 namespace mallet::app {
 
-//! `mallet bench` subcommands, each in its own file.
+//! The benchmarks' subcommands, each in its own file.
 void add_bench_audio(CLI::App& bench);
 void add_bench_input(CLI::App& bench);
 void add_bench_render(CLI::App& bench);

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/common/programs.hpp"
+
 namespace mallet::app::latency {
 
 namespace {
@@ -65,11 +67,12 @@ void require_x_and_jack(const std::string& bench) {
       throw std::runtime_error(bench + " needs " + program + ": install the Debian package " + package);
 }
 
-std::filesystem::path this_executable(const std::string& bench) {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error(bench + ": cannot find this executable (/proc/self/exe)");
-  return exe;
+std::filesystem::path kiosk_executable(const std::string& bench) {
+  const std::filesystem::path kiosk = sibling_program("mallet");
+  if (kiosk.empty())
+    throw std::runtime_error(bench + ": cannot find the kiosk, mallet: it is neither beside this program nor on PATH "
+                             "(install the Debian package mallet)");
+  return kiosk;
 }
 
 void write_text(const std::filesystem::path& p, const std::string& text) {

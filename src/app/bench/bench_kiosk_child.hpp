@@ -53,8 +53,9 @@ std::string read_all(const std::filesystem::path& p);
 //! Throws "BENCH needs PROGRAM: install the Debian package PACKAGE" unless Xvfb and jackd
 //! are installed: every bench that runs the real kiosk starts its own servers.
 void require_x_and_jack(const std::string& bench);
-//! This program's own executable (/proc/self/exe), to start the kiosk under test from.
-std::filesystem::path this_executable(const std::string& bench);
+//! The kiosk under test's program: `mallet` beside this one (mallet-bench), else on PATH.
+//! Throws "BENCH: cannot find the kiosk, mallet: …" when there is none.
+std::filesystem::path kiosk_executable(const std::string& bench);
 
 //! LD_PRELOAD without the Vulkan validation layer (the sanitizer tests preload it; GLFW
 //! looks vkGetInstanceProcAddr up by name and a preloaded layer would answer). Nothing

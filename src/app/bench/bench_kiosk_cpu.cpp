@@ -81,7 +81,7 @@ void measure_one(bool capped, int width, int height, double seconds, const std::
   latency::VirtualDisplay x(width, height);
   latency::JackServer jack("mallet-cpu-" + std::to_string(getpid()), 48000, 256);
   latency::FakePointer hand(x.name());
-  const std::filesystem::path exe = latency::this_executable("bench render");
+  const std::filesystem::path exe = latency::kiosk_executable("bench render");
   latency::ChildOptions o;
   // The attract mode after this long with nobody there: long enough for the still phase
   // (the visitor's pointer at rest) to be measured before it comes back.

@@ -468,7 +468,7 @@ ConfigResult run_config(Rig& rig, const Config& config_in, int strokes, const st
   const std::filesystem::path settings = rig.folders.temp.path() / ("settings-" + config.preset + "-" + config.align + ".toml");
   write_text(settings, settings_text(config));
 
-  const std::filesystem::path exe = this_executable("bench latency");
+  const std::filesystem::path exe = kiosk_executable("bench latency");
   auto log = std::make_shared<KioskLog>();
   ChildOptions o;
   o.argv = {exe.string(),

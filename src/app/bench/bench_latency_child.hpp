@@ -67,7 +67,4 @@ class Child {
   std::thread reader_;
 };
 
-//! The full path of `program` in PATH, empty when it is not installed.
-std::string find_program(const std::string& program);
-
 }  // namespace mallet::app::latency

@@ -216,7 +216,7 @@ int run_bench_soak(const SoakOptions& options) {
   auto log = std::make_shared<KioskLog>();
   log->file.open(options.out / "kiosk.log");
   if (!log->file) throw std::runtime_error("bench soak: cannot write " + (options.out / "kiosk.log").string());
-  const std::filesystem::path exe = latency::this_executable("bench soak");
+  const std::filesystem::path exe = latency::kiosk_executable("bench soak");
   latency::ChildOptions o;
   o.argv = {exe.string(), "run", "--windowed", "--size", std::to_string(kWidth) + "x" + std::to_string(kHeight),
             "--config", folders.settings.string()};

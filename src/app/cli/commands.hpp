@@ -19,6 +19,9 @@ void register_analyze(CLI::App& app);
 void register_trajectory(CLI::App& app);
 void register_audio(CLI::App& app);
 void register_bench(CLI::App& app);
+//! `mallet bench ARGS…`: execs mallet-bench (beside this program, else on PATH) with ARGS;
+//! returns 1, having said in one line which package to install, when it is not installed.
+int run_bench_program(const std::vector<std::string>& args);
 void register_wiimote(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_render(CLI::App& app);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/file_error.hpp"
 #include "core/pixel_size.hpp"
 #include "core/time.hpp"
 
@@ -50,5 +51,36 @@ CLI::Validator pixel_size() {
 
 void say_when_done(std::string line) { g_when_done.push_back(std::move(line)); }
 const std::vector<std::string>& lines_when_done() { return g_when_done; }
+
+std::string exit_status_footer(const std::string& program) {
+  return "Exit status: 0 ok, 1 failure (I/O, device), 2 bad input.\nRun `" + program +
+         " <command> --help` for each command's options and file formats.";
+}
+
+int run_command_line(CLI::App& app, int argc, char** argv) {
+  const std::string program = app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::RuntimeError& e) {  // a command's own status (finish_with): it said why
+    return e.get_exit_code();
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  } catch (const FileError& e) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), e.what());
+    return 1;
+  }
+  for (const std::string& line : lines_when_done()) std::fprintf(stderr, "%s\n", line.c_str());
+  return 0;
+}
 
 }  // namespace mallet::app

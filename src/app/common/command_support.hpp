@@ -49,4 +49,14 @@ void say_when_done(std::string line);
 //! The lines said so far (main prints them when the command ends with status 0).
 const std::vector<std::string>& lines_when_done();
 
+//! Parses the command line and runs the command it names; returns the process's exit status:
+//! 0 ok, 1 a failure (I/O, a device), 2 bad input (a flag, or a file: FileError), or the
+//! command's own (finish_with). A failure is one line on stderr, "PROGRAM: what went wrong";
+//! help and version print as CLI11 prints them. Both programs' main (`mallet`, `mallet-bench`).
+int run_command_line(CLI::App& app, int argc, char** argv);
+
+//! The footer of every command's help: the exit statuses, and where each command's options
+//! are ("Run `PROGRAM <command> --help` …"). CLI11 hands it on to the subcommands.
+std::string exit_status_footer(const std::string& program);
+
 }  // namespace mallet::app
