@@ -3,7 +3,9 @@
 # tree without root rights): --version, a headless frame whose log names the scene under
 # ROOT/etc/mallet, and proofs that the models come from ROOT/usr/share/mallet and the
 # settings from ROOT/etc/mallet/mallet.toml — never from the source tree this binary was
-# built from. Run outside the source tree, with no MALLET_DATA_DIR and no display.
+# built from. Run outside the source tree, with no MALLET_DATA_DIR and no display. Then the
+# benchmarks: `mallet bench` naming their package while only mallet is unpacked, and running
+# mallet-bench from the same root once its package is unpacked beside.
 #   run_installed.sh DEB_DIR SCRATCH VERSION [VAR=VALUE...]
 # The VAR=VALUEs are set for mallet only (under ASan: the Vulkan driver's preload).
 set -euo pipefail
@@ -73,8 +75,29 @@ else
   echo "package: a Wii Remote is connected: the hint is not printed, not compared"
 fi
 
+# The benchmarks are their own package. Without it, `mallet bench` names it in one line and
+# exits 1 (PATH emptied: an installed mallet-bench elsewhere must not answer).
+status=0
+output=$(env -u MALLET_DATA_DIR -u DISPLAY PATH=/nonexistent "${env_vars[@]}" "$root/usr/bin/mallet" bench prediction 2>&1) ||
+  status=$?
+[[ $status == 1 && $(wc -l <<<"$output") == 1 && $output == *"install the Debian package mallet-bench"* ]] ||
+  fail "mallet bench without mallet-bench: status $status (expected 1 and one line naming the package): $output"
+# With it unpacked beside, `mallet bench` runs /usr/bin/mallet-bench: its help, its refusal of a
+# bad flag (status 2), its scene found in the unpacked root, and a whole benchmark (1 s).
+dpkg -x "$dir/mallet-bench_${version}_$(dpkg --print-architecture).deb" "$root"
+run bench --help
+[[ $status == 0 && $output == *"Usage: mallet bench"* && $output == *"latency"* && $output == *"soak"* ]] ||
+  fail "mallet bench --help: status $status: $output"
+run bench prediction --bogus
+[[ $status == 2 && $output == *"--bogus"* ]] || fail "mallet bench prediction --bogus: status $status (expected 2): $output"
+run bench prediction --help
+[[ $status == 0 && $output == *"$root/etc/mallet/scenes/percussion.toml"* ]] ||
+  fail "mallet bench prediction --help: status $status (its scene must default to $root's): $output"
+run bench prediction
+[[ $status == 0 && $output == *"contact prediction on"* ]] || fail "mallet bench prediction: status $status: $output"
+
 if ((failures > 0)); then
   echo "package: $failures problem(s) running the kiosk unpacked in $root" >&2
   exit 1
 fi
-echo "package: the kiosk runs from $root with its settings from $root/etc/mallet"
+echo "package: the kiosk runs from $root with its settings from $root/etc/mallet, and mallet bench runs mallet-bench beside it"

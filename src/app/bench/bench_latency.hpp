@@ -9,8 +9,13 @@
 //   picture        the first frame in the X server's framebuffer that shows the mallet at
 //                  the bar (where the bounce starts; the bench's scene has no bounce)
 //
-// The matching and the statistics are pure functions here; the machinery (Xvfb, XTest,
-// XGetImage, jackd, the recorder, the kiosk process) is in bench_latency_{x11,jack,child}.
+// The matching and the statistics are pure functions here (bench_latency_match.cpp). The
+// bench is carved by job: bench_latency.cpp runs every configuration and prints the table;
+// bench_latency_rig what the runs share (the servers, the still scene, the two bars);
+// bench_latency_run one configuration's run of the kiosk, from its start to its cues;
+// bench_latency_strokes the hand's strokes (the mouse's, and the remote's recording). The
+// machinery (Xvfb, XTest, XGetImage, jackd, the recorder, the kiosk process) is in
+// bench_latency_{x11,jack,child}.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -19,6 +24,13 @@
 #include "core/time.hpp"
 
 namespace mallet::app::latency {
+
+inline constexpr Nanos kMs = 1'000'000;
+inline constexpr Nanos kStrikeWindow = 50 * kMs;  //!< a logged strike within ±50 ms of a contact is its strike
+inline constexpr Nanos kCueBefore = 50 * kMs;     //!< a cue may lead its contact (prediction) by this much
+inline constexpr Nanos kCueAfter = 300 * kMs;     //!< and lag it by this much at most
+//! ns → ms, the nearest double (12 ms is 12.0).
+inline double ms_of(Nanos dt) { return static_cast<double>(dt) / 1e6; }
 
 struct LatencyOptions {
   std::filesystem::path out = ".";
