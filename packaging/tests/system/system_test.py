@@ -144,6 +144,16 @@ class Test:
         if not renderer or not renderer[-1].endswith(doctor_says):
             problems.append(f"the session chose {renderer[-1] if renderer else 'no renderer'}, "
                             f"mallet doctor --print-renderer says {doctor_says}")
+        # The kiosk alone: the machine has neither the package mallet-bench nor a library only
+        # the benchmarks link (XTest, STK), and the kiosk ran without them; `mallet bench` says
+        # in one line which package to install.
+        libraries = self.out("ldd /usr/bin/mallet")
+        for wanted_absent in ("libXtst", "libstk", "not found"):
+            if wanted_absent in libraries:
+                problems.append(f"ldd /usr/bin/mallet shows {wanted_absent}: {libraries}")
+        status, said = self.sh("mallet bench report --quick 2>&1")
+        if status != 1 or "install the Debian package mallet-bench" not in said:
+            problems.append(f"mallet bench without mallet-bench: status {status}: {said.strip()}")
         time.sleep(10)  # a few frames at TCG's pace
         # A PC without a GPU driver (virtio-gpu without 3D: lavapipe): only each frame's changed
         # pixels are put into Xwayland's window (render/x11_image_put), and the kiosk paces them.
