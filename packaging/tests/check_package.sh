@@ -223,6 +223,7 @@ if [[ ! -f $bench ]]; then
   fail "no $bench; $dir holds: $(ls "$dir")"
 else
   bench_files=0
+  bench_listing=$(dpkg-deb -c "$bench")
   while read -r perms who path; do
     path=${path#.}
     [[ $perms == d* ]] && continue
@@ -233,9 +234,9 @@ else
     /usr/share/man/man1/mallet-bench.1.gz | /usr/share/doc/mallet-bench/*) ;;
     *) fail "mallet-bench: unexpected file $path" ;;
     esac
-  done < <(dpkg-deb -c "$bench" | awk '{print $1, $2, $6}')
-  dpkg-deb -c "$bench" | grep -q ' ./usr/bin/mallet-bench$' || fail "mallet-bench: no /usr/bin/mallet-bench"
-  dpkg-deb -c "$bench" | grep -q ' ./usr/share/man/man1/mallet-bench.1.gz$' || fail "mallet-bench: no man page"
+  done < <(awk '{print $1, $2, $6}' <<<"$bench_listing")
+  grep -q ' ./usr/bin/mallet-bench$' <<<"$bench_listing" || fail "mallet-bench: no /usr/bin/mallet-bench"
+  grep -q ' ./usr/share/man/man1/mallet-bench.1.gz$' <<<"$bench_listing" || fail "mallet-bench: no man page"
   [[ $(dpkg-deb -f "$bench" Package) == mallet-bench ]] || fail "mallet-bench: Package: $(dpkg-deb -f "$bench" Package)"
   [[ $(dpkg-deb -f "$bench" Version) == "$version" ]] || fail "mallet-bench: Version: $(dpkg-deb -f "$bench" Version)"
   bench_depends=$(dpkg-deb -f "$bench" Depends)
