@@ -169,9 +169,11 @@ void run_bench_latency(const LatencyOptions& options) {
     if (r.xruns > 0)
       disturbed += (disturbed.empty() ? "" : ", ") + r.config.source + "/" + r.config.preset + "/" + r.config.align;
   std::printf(
-      "  JACK: %llu xruns in all (start-ups included), %llu cycles the recorder had no room for. This machine:\n"
-      "    %ld CPUs online, load average %s.\n",
-      static_cast<unsigned long long>(xruns), static_cast<unsigned long long>(dropped), sysconf(_SC_NPROCESSORS_ONLN),
+      "  JACK: %llu xruns in all (start-ups included), %llu cycles the recorder had no room for; the kiosk\n"
+      "    reopened its stream %llu times (underruns: a larger buffer asked), its new ports connected each time.\n"
+      "    This machine: %ld CPUs online, load average %s.\n",
+      static_cast<unsigned long long>(xruns), static_cast<unsigned long long>(dropped),
+      static_cast<unsigned long long>(rig.recorder->reopens_followed()), sysconf(_SC_NPROCESSORS_ONLN),
       load_average().c_str());
   if (!disturbed.empty())
     std::printf(

@@ -234,7 +234,15 @@ void JackRecorder::forget_before(AudioTrack& track, std::size_t index) {
   track_origin_ += index;
 }
 
+bool JackRecorder::follow_source() {
+  const bool wired = std::all_of(ports_.begin(), ports_.end(), [](jack_port_t* p) { return jack_port_connected(p) > 0; });
+  if (wired || connect_source(std::chrono::milliseconds(0)).empty()) return false;
+  ++reopens_followed_;
+  return true;
+}
+
 void JackRecorder::drain(AudioTrack& track) {
+  follow_source();
   const std::uint64_t w = frames_written_.load(std::memory_order_acquire);
   const std::uint64_t r = frames_read_.load(std::memory_order_relaxed);
   for (std::size_t c = 0; c < ports_.size(); ++c)

@@ -80,7 +80,15 @@ class JackRecorder {
   void start_recording(AudioTrack& track);
   //! Moves what the ring holds into `track` (the main thread, often enough: the ring holds
   //! 10 s); the cycle times converted to the monotonic clock and a device's playback time.
+  //! First follows the source if it reopened its stream (follow_source).
   void drain(AudioTrack& track);
+  //! When the kiosk reopens its stream (a larger buffer after underruns: a new PortAudio
+  //! client, whose ports nobody has connected), connects its new ports, as a sound card stays
+  //! wired through a reopen; the recording goes on. True when it did. Without it the
+  //! recorder heard silence from the reopen on.
+  bool follow_source();
+  //! How often follow_source connected a reopened stream.
+  std::uint64_t reopens_followed() const { return reopens_followed_; }
   void stop_recording() { recording_.store(false, std::memory_order_release); }
   //! Drops the track's samples (and cycle stamps) before sample `index`, so that a recording
   //! of hours keeps only what is still to be looked at; indices shift down by `index`.
@@ -110,6 +118,7 @@ class JackRecorder {
   int rate_ = 0, period_ = 0;
   Nanos playback_latency_ns_ = 0;
   Nanos clock_offset_ns_ = 0;
+  std::uint64_t reopens_followed_ = 0;  //!< the main thread's
   std::atomic<std::uint64_t> xruns_{0}, cycles_{0}, dropped_{0};
   std::atomic<bool> recording_{false};
   // The SPSC rings: the callback writes samples (per channel) and cycle stamps and then
