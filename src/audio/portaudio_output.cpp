@@ -468,6 +468,7 @@ void PortAudioOutput::supervise() {
   const auto grow_after = static_cast<std::uint64_t>(config_.grow_after_underruns);
   std::uint64_t xruns_seen = xruns_.load(std::memory_order_relaxed), window_base = 0;
   bool window_open = false, ceiling_logged = false;
+  bool fixed_buffer = false;  // a reopen with a larger buffer asked came back no larger
   Clock::time_point window_start{};
 
   // The stream is closed (the audio thread joined): run silent and retry with backoff.
@@ -513,12 +514,12 @@ void PortAudioOutput::supervise() {
         window_base = xruns_seen;
       }
       xruns_seen = xruns;
-      const bool asked = grow_requested_.exchange(false, std::memory_order_relaxed);
-      const bool repeated = grow_after > 0 && window_open && xruns - window_base >= grow_after;
+      const bool asked = grow_requested_.exchange(false, std::memory_order_relaxed) && !fixed_buffer;
+      const bool repeated = grow_after > 0 && !fixed_buffer && window_open && xruns - window_base >= grow_after;
       if (asked || repeated) {
         window_open = false;
         std::string name, failure;
-        double before = 0, after = 0;
+        double before = 0, after = 0, asked_s = 0;
         bool grown = false;
         {
           std::lock_guard lock(pa_mutex());
@@ -530,11 +531,19 @@ void PortAudioOutput::supervise() {
             failure = e.what();
           }
           after = latency_s_;
+          asked_s = requested_latency_s_;
           watched_callbacks_ = callbacks_.load(std::memory_order_relaxed);
           last_progress_ = Clock::now();
         }
         if (!failure.empty()) {
           lose(name, "reopening it with a larger buffer failed: " + failure, now);
+        } else if (grown && after <= before * 1.001) {
+          fixed_buffer = true;
+          journal::warning(
+              "audio: \"{}\" came back with the same output latency, {:.1f} ms, when reopened with a larger "
+              "buffer asked ({:.0f} ms): its server or driver sets the buffer (JACK: its period), so underruns "
+              "there are no longer answered by reopening it",
+              name.c_str(), after * 1e3, asked_s * 1e3);
         } else if (grown && !repeated) {
           growths_.fetch_add(1, std::memory_order_relaxed);
           journal::info("audio: reopened \"{}\" with a larger buffer as asked, output latency {:.1f} ms "

@@ -67,6 +67,11 @@
 // reopens the same device with twice the latency, up to max_latency_ms, logs one warning
 // line and counts it (OutputCounters::buffer_growths), while the engine's timeline goes on
 // (FRAME 0'S TIME). A grown buffer stays for this object's life (device reopens included).
+// A device that comes back with no longer an output latency than before keeps its buffer
+// whatever is asked (a JACK server sets its own period; a driver may fix the buffer): one
+// warning says so, the reopen is not counted as a growth, and underruns there are no longer
+// answered by reopening it (each reopen is a gap in the sound, and, on JACK, a new client
+// whose ports must be connected again).
 //
 // LOGGING. Plain stderr lines with journald priority prefixes: "<4>" warning, "<6>" info,
 // written only by the supervisor and the caller's threads.

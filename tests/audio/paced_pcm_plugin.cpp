@@ -9,6 +9,8 @@
 // playback (counted from each start), all at once: a guest descheduled by its host (the
 // QEMU VM where the kiosk aborted) or a machine too busy to run the audio thread. A buffer
 // shorter than stall_ms then underruns at every stall, a longer one rides it out.
+// `buffer_bytes` (optional) fixes the buffer at that size whatever the application asks, as a
+// driver may, and as a JACK server keeps its own period.
 //
 //   pcm_type.mallet_paced { lib "/path/to/libasound_module_pcm_mallet_paced.so" }
 //   pcm.paced { type mallet_paced stall_ms 30 every_ms 60 }
@@ -150,7 +152,7 @@ snd_pcm_ioplug_callback_t callbacks() {
 }
 const snd_pcm_ioplug_callback_t kCallbacks = callbacks();
 
-int constrain(snd_pcm_ioplug_t* io) {
+int constrain(snd_pcm_ioplug_t* io, long buffer_bytes) {
   static const unsigned int access[] = {SND_PCM_ACCESS_MMAP_INTERLEAVED, SND_PCM_ACCESS_RW_INTERLEAVED};
   static const unsigned int formats[] = {SND_PCM_FORMAT_S16_LE, SND_PCM_FORMAT_FLOAT_LE};
   int err = 0;
@@ -158,6 +160,12 @@ int constrain(snd_pcm_ioplug_t* io) {
   if ((err = snd_pcm_ioplug_set_param_list(io, SND_PCM_IOPLUG_HW_FORMAT, 2, formats)) < 0) return err;
   if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_CHANNELS, 1, 8)) < 0) return err;
   if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_RATE, 8000, 192000)) < 0) return err;
+  if (buffer_bytes > 0) {
+    const auto fixed = static_cast<unsigned int>(buffer_bytes);
+    if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_PERIOD_BYTES, 64, fixed / 2)) < 0) return err;
+    if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_PERIODS, 2, 1024)) < 0) return err;
+    return snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_BUFFER_BYTES, fixed, fixed);
+  }
   if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_PERIOD_BYTES, 64, 1 << 20)) < 0) return err;
   if ((err = snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_PERIODS, 2, 1024)) < 0) return err;
   return snd_pcm_ioplug_set_param_minmax(io, SND_PCM_IOPLUG_HW_BUFFER_BYTES, 128, 1 << 22);
@@ -170,14 +178,17 @@ extern "C" {
 int _snd_pcm_mallet_paced_open(snd_pcm_t** pcmp, const char* name, snd_config_t*, snd_config_t* conf,
                                snd_pcm_stream_t stream, int mode) {
   if (stream != SND_PCM_STREAM_PLAYBACK) return -EINVAL;
-  long stall_ms = 0, every_ms = 0;
+  long stall_ms = 0, every_ms = 0, buffer_bytes = 0;
   snd_config_iterator_t i, next;
   snd_config_for_each(i, next, conf) {
     snd_config_t* n = snd_config_iterator_entry(i);
     const char* id = nullptr;
     if (snd_config_get_id(n, &id) < 0) continue;
     if (!std::strcmp(id, "comment") || !std::strcmp(id, "type") || !std::strcmp(id, "hint")) continue;
-    long* value = !std::strcmp(id, "stall_ms") ? &stall_ms : !std::strcmp(id, "every_ms") ? &every_ms : nullptr;
+    long* value = !std::strcmp(id, "stall_ms")       ? &stall_ms
+                  : !std::strcmp(id, "every_ms")     ? &every_ms
+                  : !std::strcmp(id, "buffer_bytes") ? &buffer_bytes
+                                                     : nullptr;
     if (!value || snd_config_get_integer(n, value) < 0 || *value < 0) {
       SNDERR("mallet_paced: bad or unknown argument %s", id);
       return -EINVAL;
@@ -206,7 +217,7 @@ int _snd_pcm_mallet_paced_open(snd_pcm_t** pcmp, const char* name, snd_config_t*
     delete p;
     return err;
   }
-  if ((err = constrain(&p->io)) < 0) {
+  if ((err = constrain(&p->io, buffer_bytes)) < 0) {
     snd_pcm_ioplug_delete(&p->io);  // calls close_pcm
     return err;
   }

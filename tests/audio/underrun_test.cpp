@@ -119,6 +119,37 @@ TEST_F(UnderrunTest, RepeatedUnderrunsGrowTheBufferUpToItsCeilingWhileThePlayGoe
   EXPECT_DOUBLE_EQ(out.requested_latency_s(), 0.040);
 }
 
+// A card whose buffer stays 10 ms whatever is asked (as a JACK server keeps its period): the
+// first reopen comes back no larger, and the underruns that go on are not answered by another
+// (each reopen is a gap in the sound; on JACK, a new client nobody has connected).
+TEST_F(UnderrunTest, ADeviceThatKeepsItsBufferIsReopenedOnceNotOverAndOver) {
+  {
+    std::ofstream conf(dir_ / "asound.conf");
+    conf << "pcm_type.mallet_paced { lib \"" << MALLET_TEST_PACED_PCM << "\" }\n"
+         << "pcm.paced { type mallet_paced stall_ms 30 every_ms 60 buffer_bytes 1920 }\n"  // 480 stereo S16 frames
+         << "pcm.!default { type plug slave { pcm \"paced\" format S16_LE } }\n";
+    ASSERT_TRUE(conf);
+  }
+  AppConfig c = config();
+  c.audio.grow_after_underruns = 2;
+  c.audio.underrun_window_ms = 60000;
+  c.audio.max_latency_ms = 100;  // doubled up to here, were each reopen taken for a growth
+  AudioRig rig = make_audio_rig(test::percussion(), c, kRate, false);
+  PortAudioOutput out(*rig.engine, c.audio);
+  const double first_latency = out.output_latency_s(), first_asked = out.requested_latency_s();
+  ASSERT_LT(2 * first_asked, c.audio.max_latency_ms / 1000);  // room for more than one doubling
+  out.start();
+  // Underruns well past what four more reopens would have needed (two each).
+  ASSERT_TRUE(wait_until([&] { return out.counters().xruns >= 14; })) << out.counters().xruns << " underruns";
+  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  out.stop();
+  const OutputCounters n = out.counters();
+  EXPECT_EQ(n.buffer_growths, 0u);                     // the one reopen grew nothing
+  EXPECT_DOUBLE_EQ(out.requested_latency_s(), 2 * first_asked);  // asked for more once, never again
+  EXPECT_DOUBLE_EQ(out.output_latency_s(), first_latency);
+  EXPECT_EQ(n.device_losses, 0u);
+}
+
 TEST_F(UnderrunTest, AGrownBufferSurvivesADeviceReopen) {
   AppConfig c = config();
   c.audio.grow_after_underruns = 2;
