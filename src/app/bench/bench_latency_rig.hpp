@@ -4,8 +4,6 @@
 // framebuffer's reader and its watch on the bars (the eye); the still scene the kiosk plays
 // and the two bars the hand strikes, with the window's pixels mapped to world metres; and
 // the whole run's bound.
-#include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>

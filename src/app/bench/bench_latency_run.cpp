@@ -66,7 +66,6 @@ std::string settings_text(const Config& c) {
   latency::kiosk_failed(kiosk, "bench latency", what);
 }
 
-
 //! A run's recorded cues matched to its true contacts; stops the kiosk.
 ConfigResult finish_run(Rig& rig, Child& kiosk, KioskLog& log, Recording& rec, AudioTrack& track, Nanos begin,
                         Nanos end, std::uint64_t xruns_before, ConfigResult& result) {
@@ -154,7 +153,6 @@ ConfigResult run_remote(Rig& rig, Child& kiosk, KioskLog& log, const RemoteScrip
 //! strikes each bar once to find where the head rests on it, then makes the measured strokes.
 ConfigResult run_mouse(Rig& rig, Child& kiosk, KioskLog& log, ConfigResult& result, int strokes,
                        const Deadline& deadline) {
-
   // Take over from the attract mode's ghost: a first sample anchors, a second moves.
   rig.hand->move_to(kWidth / 2, kHeight / 6);
   sleep_ms(40);
@@ -198,7 +196,7 @@ ConfigResult run_mouse(Rig& rig, Child& kiosk, KioskLog& log, ConfigResult& resu
     if (!kiosk.running()) kiosk_failed(kiosk, "exited during the strokes");
     const Nanos started = monotonic_now();
     const int bar = s % 2;
-    const double v = kStrokeSpeeds[static_cast<std::size_t>(s) % 5];
+    const double v = stroke_speed(s);
     const Nanos contact = mouse_stroke(rig, rig.bars[static_cast<std::size_t>(bar)], v, {});
     if (contact >= 0) rec.contacts.push_back({contact, bar, v});
     rig.recorder->drain(track);

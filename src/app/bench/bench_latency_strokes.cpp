@@ -64,7 +64,7 @@ RemoteScript write_remote_script(const Rig& rig, const std::filesystem::path& fi
   for (int k = 0; k < strokes; ++k) {
     const Nanos start = lead + k * 600 * kMs + (k * 3'300'000) % (10 * kMs);
     const int bar = k % 2;
-    const double v = kStrokeSpeeds[static_cast<std::size_t>(k) % 5];
+    const double v = stroke_speed(k);
     plan.push_back({start, bar, v});
     script.contacts.push_back({start + static_cast<Nanos>(std::llround(kAboveM / v * 1e9)), bar, v});
   }

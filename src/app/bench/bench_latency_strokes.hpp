@@ -4,6 +4,7 @@
 // Remote's IR reports, written before the run and played by the kiosk as a live remote.
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <vector>
 
 #include "app/bench/bench_latency.hpp"
@@ -16,6 +17,8 @@ namespace mallet::app::latency {
 inline constexpr double kAboveM = 0.04, kBelowM = 0.03;
 //! The downswings' speeds, m/s, in turn.
 inline constexpr double kStrokeSpeeds[] = {1.0, 1.5, 2.0, 1.25, 1.75};
+//! Stroke k's speed (k ≥ 0), m/s: kStrokeSpeeds in turn, the mouse's and the remote's alike.
+inline double stroke_speed(int k) { return kStrokeSpeeds[static_cast<std::size_t>(k) % std::size(kStrokeSpeeds)]; }
 
 //! The hand (the sphere's centre) at world (x, y): the pointer at that window pixel.
 struct Hand {

@@ -34,9 +34,9 @@ void add_benchmarks(CLI::App& bench) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool as_mallet_bench = argc >= 2 && std::filesystem::path(argv[0]).filename() == "mallet" &&
+  const bool forwarded_by_mallet = argc >= 2 && std::filesystem::path(argv[0]).filename() == "mallet" &&
                                std::string_view(argv[1]) == "bench";
-  if (as_mallet_bench) {
+  if (forwarded_by_mallet) {
     CLI::App forwarded{kAbout, "mallet"};
     forwarded.footer(mallet::app::exit_status_footer("mallet"));
     add_benchmarks(*forwarded.add_subcommand("bench", kBenchAbout));
