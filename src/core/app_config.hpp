@@ -74,11 +74,29 @@ struct WiimoteConfig {
   double reconnect_max_ms = 5000;    //!< ... up to this
 };
 
+//! [camera]: a V4L2 camera (a UVC webcam or a global-shutter USB camera behind an 850 nm
+//! filter) as the IR tracker, with [input] source = "camera" (src/input/camera/).
+struct CameraConfig {
+  //! "auto" (the first video capture device under /dev), a node (/dev/video2, or a stable
+  //! /dev/v4l/by-id/... link), or a part of the camera's name as `mallet camera list` shows it.
+  std::string device = "auto";
+  int width = 640;         //!< pixels asked for; the driver may give the nearest size it has
+  int height = 480;
+  double rate_hz = 120;    //!< frames a second asked for; the achieved rate is shown and measured
+  //! Exposure in µs, set by hand (the LED is bright: short exposures freeze the stroke and
+  //! darken everything else); 0 = the camera's automatic exposure. Below one frame's time.
+  int exposure_us = 500;
+  int gain = -1;           //!< the camera's own gain units (`mallet camera list`); -1 = leave it
+  std::string format = "auto";  //!< "auto" (grey, else yuyv, else mjpeg), "grey", "yuyv" or "mjpeg"
+};
+inline constexpr const char* kCameraFormats[] = {"auto", "grey", "yuyv", "mjpeg"};
+
 //! [input]: where the mallet's position comes from.
 struct InputConfig {
   //! "auto": the Wii Remote when one is found at start-up, else the mouse (said on screen);
   //! "wiimote": the Wii Remote only (none found: the attract mode and a hint, looked for
-  //! forever); "mouse": the mouse only (a test bench, or no remote at all); "replay":
+  //! forever); "camera": a V4L2 camera ([camera]), looked for forever as the remote is;
+  //! "mouse": the mouse only (a test bench, or no remote at all); "replay":
   //! replay_file, a `mallet wiimote monitor --record` file, played as a live remote (looping).
   std::string source = "auto";
   std::string replay_file;  //!< for "replay"; relative to the settings file's folder
@@ -190,6 +208,7 @@ struct AppConfig {
   IrTrackerConfig tracking;  //!< [tracking]: which IR dot is the stick's LED
   InputConfig input;
   WiimoteConfig wiimote;
+  CameraConfig camera;
   RenderConfig render;
   AttractConfig attract;
   ScenesConfig scenes;

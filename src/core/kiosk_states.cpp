@@ -122,7 +122,7 @@ bool KioskStates::remote_connected(Nanos t_ns, bool connected) {
   const KioskState before = state_;
   const Nanos t = advance(t_ns);
   remote_connected_ = connected;
-  if (!connected && source_ == InputSource::wiimote) {
+  if (!connected && live_ir_tracker(source_)) {
     if (tracking_) {
       tracking_ = false;
       lost_since_ = t;
@@ -208,7 +208,7 @@ KioskOverlay KioskStates::overlay() const {
   o.mouse_notice = (state_ == KioskState::attract || state_ == KioskState::play) && source_ == InputSource::mouse;
   o.close_needs_chord = close_refused_ && now_ - close_refused_at_ < close_notice_ns_;
   o.remote_missing = (state_ == KioskState::attract || state_ == KioskState::play) &&
-                     source_ == InputSource::wiimote && !remote_connected_;
+                     live_ir_tracker(source_) && !remote_connected_;
   return o;
 }
 

@@ -66,7 +66,10 @@ inline constexpr EnumNames<KioskState, 4> kKioskStateNames{{
     {KioskState::operator_page, "operator"}}};
 const char* to_string(KioskState state);
 
-enum class InputSource { wiimote, mouse, replay };
+//! camera: a V4L2 camera as the IR tracker, in every state the same as the Wii Remote.
+enum class InputSource { wiimote, mouse, replay, camera };
+//! A live IR tracker (the remote or the camera): missing = the mallet rests, staff is asked.
+constexpr bool live_ir_tracker(InputSource s) { return s == InputSource::wiimote || s == InputSource::camera; }
 
 //! What the overlay may show besides the state's own screen; several may be true at once.
 struct KioskOverlay {

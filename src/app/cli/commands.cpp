@@ -10,6 +10,7 @@ void register_commands(CLI::App& app) {
   register_audio(app);
   register_bench(app);
   register_wiimote(app);
+  register_camera(app);
   register_calibrate(app);
   register_render(app);
   register_run(app);

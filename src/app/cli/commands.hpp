@@ -23,6 +23,7 @@ void register_bench(CLI::App& app);
 //! returns 1, having said in one line which package to install, when it is not installed.
 int run_bench_program(const std::vector<std::string>& args);
 void register_wiimote(CLI::App& app);
+void register_camera(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_render(CLI::App& app);
 void register_run(CLI::App& app);

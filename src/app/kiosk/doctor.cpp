@@ -39,6 +39,10 @@
 #include "core/calibration_file.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/visitor_language.hpp"
+#include "app/kiosk/input_choice.hpp"
+#include "input/camera/camera_device.hpp"
+#include "input/camera/v4l2_grabber.hpp"
+#include "input/camera/v4l2_node.hpp"
 #include "input/clock.hpp"
 #include "input/wiimote/hid_transport.hpp"
 #include "input/wiimote/wiimote_device.hpp"
@@ -167,7 +171,7 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
 
 DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
   const std::string& source = config.input.source;
-  if (source == "mouse" || source == "replay")
+  if (source == "mouse" || source == "replay" || source == "camera")
     return {"wiimote", CheckLevel::ok, "not used: [input] source = \"" + source + "\"", ""};
   wm::HidDeviceFinder finder;
   std::optional<wm::HidDeviceInfo> found;
@@ -212,6 +216,52 @@ DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::
   if (s.remote.battery_low) {
     c.level = CheckLevel::warn;
     c.fix = "the batteries are low: change them";
+  }
+  return c;
+}
+
+//! The V4L2 camera as the kiosk opens it, watched for camera_wait_s: its mode, the rate
+//! achieved, the exposure and whether it sees the LED.
+DoctorCheck check_camera(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
+  namespace cam = input::camera;
+  if (config.input.source != "camera") {
+    const cam::CameraScan scan = cam::scan_cameras(cam::kDefaultVideoDir, false);
+    std::string found = "not used: [input] source = \"" + config.input.source + "\"";
+    if (!scan.cameras.empty())
+      found += fmt::format("; {} camera(s) found, the first {} ({})", scan.cameras.size(), scan.cameras.front().path,
+                           scan.cameras.front().name);
+    return {"camera", CheckLevel::ok, found, ""};
+  }
+  input::SteadyClock clock;
+  cam::CameraDeviceConfig dc;
+  dc.lost_after_ms = config.tracking.lost_after_ms;
+  cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(config.camera), clock, dc);
+  device.start();
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.camera_wait_s));
+  cam::CameraStatus s = device.status();
+  const std::string described = device.describe();
+  device.stop();
+  if (s.counters.frames == 0)
+    return fail("camera", described + (s.connected ? ": no frame came" : "") +
+                              (s.problem.empty() || s.connected ? "" : ": " + s.problem),
+                "plug the camera in and check `mallet camera list`; the kiosk's user must be in the 'video' group; "
+                "[camera] device names it");
+  identity = camera_identity(s.mode);
+  DoctorCheck c{"camera", CheckLevel::ok,
+                described + fmt::format(", {:.0f} frames/s achieved, exposure {} µs ({}), LED {}", s.rate_hz,
+                                        s.mode.exposure_us, s.mode.exposure_manual ? "manual" : "automatic",
+                                        s.led_seen && s.led ? fmt::format("seen at {:.1f},{:.1f}", s.led->x, s.led->y)
+                                                            : std::string("not seen")),
+                ""};
+  if (s.rate_hz < 0.9 * config.camera.rate_hz) {
+    c.level = CheckLevel::warn;
+    c.fix = fmt::format("the camera gives {:.0f} of the {:g} frames a second asked: see `mallet camera list` for the "
+                        "rates it offers at this size and format; a long exposure can slow it",
+                        s.rate_hz, config.camera.rate_hz);
+  } else if (!s.led_seen) {
+    c.level = CheckLevel::warn;
+    c.fix = "hold the stick's LED in the camera's view; if it is lit and not seen, check the 850 nm filter and "
+            "`mallet camera monitor`";
   }
   return c;
 }
@@ -509,7 +559,7 @@ CompositorRenderer kiosk_compositor_renderer(bool ask_unit) {
 }
 
 std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDeviceFacts& facts) {
-  std::vector<DoctorCheck> checks{facts.vulkan, check_compositor(), facts.audio, facts.wiimote};
+  std::vector<DoctorCheck> checks{facts.vulkan, check_compositor(), facts.audio, facts.wiimote, facts.camera};
   KioskOptions ko;
   ko.config = o.config;
   ko.config_dir = o.config_dir;
@@ -564,13 +614,15 @@ std::vector<DoctorCheck> run_doctor(const DoctorOptions& o) {
     scene = std::move(setup->scene);
   } catch (const std::exception& e) {  // the settings check says why; the devices need them
     const DoctorCheck skipped = fail("", "not checked: the settings or the scene cannot be read", "see `settings`");
-    facts.vulkan = skipped, facts.audio = skipped, facts.wiimote = skipped;
+    facts.vulkan = skipped, facts.audio = skipped, facts.wiimote = skipped, facts.camera = skipped;
     facts.vulkan.name = "vulkan", facts.audio.name = "audio", facts.wiimote.name = "wiimote";
+    facts.camera.name = "camera";
     return run_doctor_with(o, facts);
   }
   facts.vulkan = check_vulkan(o, config, scene);
   facts.audio = check_audio(config, scene);
   facts.wiimote = check_wiimote(o, config, facts.connected_remote);
+  facts.camera = check_camera(o, config, facts.connected_remote);
   return run_doctor_with(o, facts);
 }
 

@@ -18,6 +18,7 @@ struct DoctorOptions {
   std::optional<std::filesystem::path> config_dir;  //!< its drop-ins
   std::string device;                               //!< Vulkan device (substring of its name)
   double remote_wait_s = 4.0;                       //!< how long a found remote may take to start its camera
+  double camera_wait_s = 2.0;                       //!< how long a V4L2 camera is watched (rate, LED)
 };
 
 //! What the running kiosk already knows of its devices (the operator page).
@@ -25,6 +26,7 @@ struct KioskDeviceFacts {
   DoctorCheck vulkan;
   DoctorCheck audio;
   DoctorCheck wiimote;
+  DoctorCheck camera;
   std::optional<std::string> connected_remote;  //!< its identity, for the calibration check
   //! Why the kiosk's last write into its state folder failed (state_folder.hpp); empty: it
   //! did not, or the doctor runs alone (it then tries a write of its own).

@@ -8,6 +8,7 @@
 #include "core/journal.hpp"
 #include "core/saved_calibration.hpp"
 #include "core/strike_line.hpp"
+#include "input/camera/v4l2_grabber.hpp"
 
 namespace mallet::app {
 
@@ -42,12 +43,36 @@ void choose_mouse(KioskStage& stage, const InputDevices& devices) {
 
 }  // namespace
 
+void choose_camera(KioskStage& stage, const InputDevices& devices) {
+  stage.source = InputSource::camera;
+  stage.input_why = "the settings say camera";
+  SavedCalibration saved = load_saved_calibration(calibration_path());
+  stage.calibration = std::move(saved.calibration);
+  stage.calibration_status = std::move(saved.status);
+  if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
+  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine,
+                                                 &devices.window.window->present_clock(), &devices.window.aspect);
+  stage.remote->set_calibration(stage.calibration);
+  input::camera::CameraDeviceConfig dc;
+  dc.lost_after_ms = stage.config.tracking.lost_after_ms;
+  stage.camera = std::make_unique<input::camera::CameraDevice>(
+      std::make_unique<input::camera::V4l2Grabber>(stage.config.camera), devices.clock, dc);
+  KioskStage* s = &stage;
+  stage.remote->on_strike = [s](const Impact& i) { s->tally->record(i); };
+  stage.camera->set_sample_sink(
+      [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
+}
+
 void choose_input(KioskStage& stage, const InputDevices& devices) {
   const std::string& want = stage.config.input.source;
   stage.source = InputSource::mouse;
   if (want == "mouse") {
     stage.input_why = "the settings say mouse";
     choose_mouse(stage, devices);
+    return;
+  }
+  if (want == "camera") {
+    choose_camera(stage, devices);
     return;
   }
   if (want == "replay") {
@@ -101,7 +126,47 @@ void choose_input(KioskStage& stage, const InputDevices& devices) {
       [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
 }
 
+std::string camera_identity(const input::camera::CameraMode& mode) { return "camera " + mode.name; }
+
+IrLink ir_link(const KioskStage& s) {
+  IrLink link;
+  if (s.camera) {
+    const input::camera::CameraStatus c = s.camera->status();
+    link.present = true;
+    link.up = c.connected;
+    if (!c.mode.device.empty()) link.identity = camera_identity(c.mode);
+    link.problem = c.problem;
+  } else if (s.device) {
+    const input::wiimote::WiimoteState w = s.device->state();
+    link.present = true;
+    link.up = w.link == input::wiimote::LinkState::running;
+    link.identity = remote_identity(w.device);
+    link.problem = w.problem;
+  }
+  return link;
+}
+
+void start_ir_tracker(KioskStage& stage) {
+  if (stage.device) stage.device->start();
+  if (stage.camera) stage.camera->start();
+}
+
+void stop_ir_tracker(KioskStage& stage) {
+  if (stage.device) stage.device->stop();
+  if (stage.camera) stage.camera->stop();
+}
+
 std::string input_line(const KioskStage& s) {
+  if (s.camera) {
+    const input::camera::CameraStatus c = s.camera->status();
+    std::string line = "input: " + (c.mode.device.empty() ? std::string("camera") : s.camera->describe()) + " (" +
+                       s.input_why + ")";
+    if (c.connected)
+      line += fmt::format(", {:.0f} frames/s{}", c.rate_hz, c.led_seen ? ", LED seen" : ", no LED");
+    else
+      line += ", not streaming (" + c.problem + ")";
+    return line;
+  }
   if (s.source == InputSource::mouse) {
     std::string line = "input: mouse (" + s.input_why + "); " + s.mouse_line;
     if (s.evdev) {

@@ -1,7 +1,8 @@
 #pragma once
 // How the kiosk chooses its input ([input] source): "mouse"; "wiimote"; "auto", a Wii Remote
-// found at start-up, else the mouse; "replay", a recording played through the remote's own
-// device path. The mouse is read at its source (evdev, [input] mouse) when it can be opened,
+// found at start-up, else the mouse; "camera", a V4L2 camera as the IR tracker, through the
+// same pointer and calibration as the remote; "replay", a recording played through the
+// remote's own device path. The mouse is read at its source (evdev, [input] mouse) when it can be opened,
 // else from the window system's events once a frame. A remote comes with the saved
 // calibration (a replay without one sees the camera's view mirrored onto the screen) and its
 // reading thread strikes through its own route.
@@ -27,6 +28,21 @@ struct InputDevices {
 //! Chooses and opens the stage's input: its source, why (for the operator page), and the
 //! remote's device and pointer or the mouse's. A bad replay file throws (FileError).
 void choose_input(KioskStage& stage, const InputDevices& devices);
+
+//! The IR tracker's link (the remote or the camera): the kiosk's states, log and metrics
+//! treat both alike.
+struct IrLink {
+  bool present = false;  //!< the stage has a remote or a camera
+  bool up = false;       //!< it runs (the remote's IR start-up done; the camera streams)
+  std::string identity;  //!< "Wii Remote 00:1f:…" / "camera USB Camera (usb-…)": the calibration's owner
+  std::string problem;   //!< why it is not up
+};
+IrLink ir_link(const KioskStage& stage);
+//! "camera USB Camera": a calibration's owner (not its /dev/videoN, which a replug may change).
+std::string camera_identity(const input::camera::CameraMode& mode);
+//! Starts or stops the stage's IR tracker's reading thread (nothing without one).
+void start_ir_tracker(KioskStage& stage);
+void stop_ir_tracker(KioskStage& stage);
 
 //! The input as the operator page and the doctor say it: the source, why, and its state
 //! (reports a second, the LED seen, a lost mouse or remote and why).

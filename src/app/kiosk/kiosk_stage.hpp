@@ -20,6 +20,7 @@
 #include "core/kiosk_states.hpp"
 #include "core/scene.hpp"
 #include "core/study/study_protocol.hpp"
+#include "input/camera/camera_device.hpp"
 #include "input/evdev/evdev_mouse.hpp"
 #include "input/wiimote/hid_transport.hpp"
 #include "input/wiimote/replay_transport.hpp"
@@ -57,6 +58,9 @@ struct KioskStage {
   std::unique_ptr<input::wiimote::ReplayFinder> replay;
   std::unique_ptr<RemotePointer> remote;
   std::unique_ptr<input::wiimote::WiimoteDevice> device;
+  //! Or a V4L2 camera as the IR tracker ([input] source = "camera"), feeding `remote` the
+  //! same way; at most one of `device` and `camera` is set.
+  std::unique_ptr<input::camera::CameraDevice> camera;
   bool link_up = false;
   bool checked_calibration = false;  //!< against the first connected remote's identity
   // The mouse read at its source (input.mouse = auto | evdev): its reading thread feeds

@@ -276,7 +276,7 @@ void WindowKiosk::build(KioskSetup setup) {
   }
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
-  if (stage_ && stage_->device) stage_->device->stop();
+  if (stage_) stop_ir_tracker(*stage_);
   if (stage_ && stage_->evdev) stage_->evdev->stop();
   // Null: the scene plays silently.
   stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);
@@ -307,9 +307,9 @@ void WindowKiosk::build(KioskSetup setup) {
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
   if (on_page) states_->operator_chord(now);
   states_->input_source(now, stage_->source);
-  if (stage_->device) {
+  if (stage_->device || stage_->camera) {
     states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
-    stage_->device->start();
+    start_ir_tracker(*stage_);
   }
   if (stage_->evdev) {
     MousePointer* m = stage_->mouse.get();
@@ -337,22 +337,24 @@ std::string WindowKiosk::timing_line() const {
 
 void WindowKiosk::poll_remote(Nanos now) {
   KioskStage& s = *stage_;
-  const input::wiimote::WiimoteState w = s.device->state();
-  const bool up = w.link == input::wiimote::LinkState::running;
+  const IrLink link = ir_link(s);
+  const bool up = link.up;
+  const char* what = s.camera ? "" : "Wii Remote ";
   if (up != s.link_up) {
     s.link_up = up;
     states_->remote_connected(now, up);
-    if (up) journal::notice("Wii Remote {} connected", remote_identity(w.device));
-    else journal::warning("Wii Remote {} lost: {}", remote_identity(w.device), w.problem);
+    if (up) journal::notice("{}{} connected", what, link.identity.c_str());
+    else journal::warning("{}{} lost: {}", what, link.identity.empty() ? "camera" : link.identity.c_str(),
+                          link.problem.c_str());
     // A recording's timeline on the kiosk's clock (`mallet bench latency` maps its strokes' true
     // contacts with it).
     if (up && s.replay)
       journal::info("replay: the recording's time 0 is t={}", format_seconds(s.replay->last_origin()).c_str());
   }
-  if (up && !s.checked_calibration && s.source == InputSource::wiimote) {
-    // Start-up: no valid calibration, or one made with another remote → calibrate now.
+  if (up && !s.checked_calibration && live_ir_tracker(s.source)) {
+    // Start-up: no valid calibration, or one made with another remote or camera → calibrate now.
     s.checked_calibration = true;
-    const std::string id = remote_identity(w.device);
+    const std::string& id = link.identity;
     if (!s.calibration || (!s.calibration->remote.empty() && s.calibration->remote != id)) {
       journal::notice("calibration needed: {}",
                       s.calibration ? "it was made with " + s.calibration->remote + ", this remote is " + id
@@ -369,7 +371,7 @@ void WindowKiosk::poll_remote(Nanos now) {
   }
   if (calibration_) {
     calibration_->dot_seen(s.remote->tracking());
-    if (const std::optional<std::string> preset = calibration_->sensitivity_request())
+    if (const std::optional<std::string> preset = calibration_->sensitivity_request(); preset && s.device)
       s.device->request_sensitivity(*preset);
   }
 }
@@ -387,13 +389,14 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (!calibration_) {
     CalibrationSessionConfig cc;
     cc.screen = {static_cast<double>(win_.window->extent().width), static_cast<double>(win_.window->extent().height)};
-    const bool remote = stage_->device != nullptr;
-    // A replay calibrates in memory only: the file belongs to the real remote.
-    const bool save = stage_->source == InputSource::wiimote;
+    const bool remote = stage_->device != nullptr || stage_->camera != nullptr;
+    // A replay calibrates in memory only: the file belongs to the real remote (or camera).
+    const bool save = live_ir_tracker(stage_->source);
     calibration_ = std::make_unique<CalibrationScreen>(
         cc, save ? std::optional<std::filesystem::path>(calibration_path()) : std::nullopt,
-        remote ? remote_identity(stage_->device->state().device) : std::string("mouse"));
-    if (remote) calibration_->tune_sensitivity({}, kiosk_sensitivity(stage_->config, stage_->calibration));
+        remote ? ir_link(*stage_).identity : std::string("mouse"));
+    // The Wii camera's sensitivity blocks are the remote's; a V4L2 camera's exposure is set.
+    if (stage_->device) calibration_->tune_sensitivity({}, kiosk_sensitivity(stage_->config, stage_->calibration));
   }
   // The mouse stands in for the IR dot while it is the input.
   if (stage_->source == InputSource::mouse && mouse_screen) {
@@ -411,7 +414,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     if (stage_->remote) {
       stage_->calibration = calibration_->result();
       stage_->remote->set_calibration(stage_->calibration);
-      stage_->calibration_status = stage_->source == InputSource::wiimote
+      stage_->calibration_status = live_ir_tracker(stage_->source)
                                        ? "calibration: " + calibration_path().string() + " (" + notice_ + ")"
                                        : "calibration: in memory (" + notice_ + ")";
     }
@@ -662,7 +665,7 @@ int WindowKiosk::run() {
     const bool mouse = stage_->source == InputSource::mouse;
     if (mouse)
       for (const PointerSample& p : cursor) states_->pointer(p.t_ns, {p.x, p.y});
-    if (stage_->device) poll_remote(now);
+    if (stage_->device || stage_->camera) poll_remote(now);
     states_->tick(now);
     const std::optional<Vec2> screen = last_cursor_;
     const bool inside = screen && screen->x >= 0 && screen->x <= 1 && screen->y >= 0 && screen->y <= 1;
@@ -736,7 +739,7 @@ int WindowKiosk::run() {
   }
   health_.stop(monotonic_now(), *stage_, win_);
   vkDeviceWaitIdle(win_.ctx->device());
-  if (stage_->device) stage_->device->stop();
+  stop_ir_tracker(*stage_);
   if (stage_->evdev) stage_->evdev->stop();
   if (stage_->output) stage_->output->stop();
   if (win_.ctx->validation_messages() > 0) {

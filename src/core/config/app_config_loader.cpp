@@ -1,5 +1,10 @@
 #include "core/config/app_config_loader.hpp"
 
+#include <algorithm>
+#include <iterator>
+
+#include <fmt/format.h>
+
 #include "core/config/app_config_table.hpp"
 #include "core/config/toml_reader.hpp"
 #include "core/present_clock.hpp"
@@ -106,11 +111,31 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->read("reconnect_max_ms", w.reconnect_max_ms, w.reconnect_min_ms, 600000);
     t->finish();
   }
+  if (auto t = top.optional_table("camera")) {
+    CameraConfig& k = c.camera;
+    k.device = t->string_or("device", k.device);
+    if (k.device.empty()) t->fail("device", "empty: give \"auto\", a /dev/video* node or a part of the camera's name");
+    t->read("width", k.width, 16, 8192);
+    t->read("height", k.height, 16, 8192);
+    t->read("rate_hz", k.rate_hz, 1, 1000);
+    t->read("exposure_us", k.exposure_us, 0, 1000000);
+    if (k.exposure_us > 0 && k.exposure_us * k.rate_hz > 1e6)
+      t->fail(t->has("exposure_us") ? "exposure_us" : "rate_hz",
+              fmt::format("exposure_us {} is longer than one frame at rate_hz {:g} ({:.0f} µs)", k.exposure_us,
+                          k.rate_hz, 1e6 / k.rate_hz));
+    t->read("gain", k.gain, -1, 1000000);
+    k.format = t->string_or("format", k.format);
+    if (std::find(std::begin(kCameraFormats), std::end(kCameraFormats), k.format) == std::end(kCameraFormats))
+      t->fail("format", "expected \"auto\", \"grey\", \"yuyv\" or \"mjpeg\", got \"" + k.format + "\"");
+    t->finish();
+  }
   if (auto t = top.optional_table("input")) {
     InputConfig& i = c.input;
     i.source = t->string_or("source", i.source);
-    if (i.source != "auto" && i.source != "wiimote" && i.source != "mouse" && i.source != "replay")
-      t->fail("source", "expected \"auto\", \"wiimote\", \"mouse\" or \"replay\", got \"" + i.source + "\"");
+    if (i.source != "auto" && i.source != "wiimote" && i.source != "camera" && i.source != "mouse" &&
+        i.source != "replay")
+      t->fail("source",
+              "expected \"auto\", \"wiimote\", \"camera\", \"mouse\" or \"replay\", got \"" + i.source + "\"");
     i.replay_file = t->string_or("replay_file", i.replay_file);
     if (i.source == "replay" && i.replay_file.empty())
       t->fail("source", "\"replay\" needs replay_file (a `mallet wiimote monitor --record` file)");

@@ -165,7 +165,7 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   no_display();
   const fs::path dir = test::scratch_dir();
   const test::CliResult r = test::run_mallet("doctor 2>/dev/null");
-  const char* names[] = {"vulkan", "compositor", "audio", "wiimote", "settings", "models", "soundfont", "languages",
+  const char* names[] = {"vulkan", "compositor", "audio", "wiimote", "camera", "settings", "models", "soundfont", "languages",
                          "hidraw", "calibration", "disk", "service", "watchdog"};
   std::istringstream lines(r.output);
   std::string line;
@@ -196,7 +196,7 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   EXPECT_EQ(j.status, r.status);
   const std::string check =
       "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
-      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','settings','models','soundfont','languages','hidraw',"
+      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','hidraw',"
       "'calibration','disk','service','watchdog'];"
       "assert all(x['status'] in ('ok','warn','fail') for x in c);"
       "assert d['fail']==sum(x['status']=='fail' for x in c) and d['ok']+d['warn']+d['fail']==len(c)\" " +
