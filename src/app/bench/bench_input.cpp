@@ -14,7 +14,8 @@
 // for the camera. The truth of each strike is the scripted time and speed.
 //
 // The workload is bench_input_workload's, the measures bench_input_score's; this file
-// prints the sweep, the choice and the per-speed table.
+// prints the sweep, the choice and the per-speed table. Then the V4L2 camera's LED finder
+// (bench_input_camera): its cost per frame and its centroid's noise (`--camera-only`).
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -24,6 +25,7 @@
 #include <fmt/format.h>
 
 #include "app/bench/bench_commands.hpp"
+#include "app/bench/bench_input_camera.hpp"
 #include "app/bench/bench_input_score.hpp"
 #include "app/bench/bench_input_workload.hpp"
 #include "core/config/scene_config.hpp"
@@ -208,11 +210,19 @@ void add_bench_input(CLI::App& bench) {
   auto scene = std::make_shared<std::filesystem::path>(default_scene());
   auto seed = std::make_shared<std::uint64_t>(20120505);
   auto strikes = std::make_shared<int>(40);
-  CLI::App* cmd = bench.add_subcommand("input", "Pointer filter trade: jitter vs lag vs impact error on synthetic tracks");
+  auto camera_frames = std::make_shared<int>(3000);
+  auto camera_only = std::make_shared<bool>(false);
+  CLI::App* cmd = bench.add_subcommand(
+      "input", "Pointer filter trade: jitter vs lag vs impact error on synthetic tracks; the camera LED finder's cost and noise");
   cmd->add_option("--scene", *scene, "Scene file")->capture_default_str();
   cmd->add_option("--seed", *seed, "Random seed (the tables are deterministic for a seed)")->capture_default_str();
   cmd->add_option("--strikes", *strikes, "Strikes per speed track")->capture_default_str();
-  cmd->callback([scene, seed, strikes] { run_bench_input(*scene, *seed, std::max(1, *strikes)); });
+  cmd->add_option("--camera-frames", *camera_frames, "Frames timed per row of the camera table")->capture_default_str();
+  cmd->add_flag("--camera-only", *camera_only, "Only the camera section (the LED finder), not the filter sweep");
+  cmd->callback([scene, seed, strikes, camera_frames, camera_only] {
+    if (!*camera_only) run_bench_input(*scene, *seed, std::max(1, *strikes));
+    input_bench::print_camera_section(*seed, std::max(1, *camera_frames));
+  });
 }
 
 }  // namespace mallet::app
