@@ -98,8 +98,7 @@ void CameraDevice::run() {
       grabber_->close();
       open = false;
       next_attempt = clock_.now() + (got.error().gone ? config_.reopen_interval_ns : 0);
-      sample = tracker_.poll(clock_.now() + 1'000'000'000'000);  // gone: tracking is lost now
-      if (sample) sample->t_ns = clock_.now();
+      sample = tracker_.lose(clock_.now());
       publish(false, got.error().message);
     } else if (*got) {
       rate_.add(frame.t_ns);

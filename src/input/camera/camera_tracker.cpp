@@ -53,6 +53,11 @@ std::optional<wiimote::LedSample> CameraTracker::on_frame(const CameraFrame& fra
 
 std::optional<wiimote::LedSample> CameraTracker::poll(Nanos now_ns) {
   if (!tracking_ || !last_seen_ns_ || now_ns - *last_seen_ns_ < lost_after_ns_) return std::nullopt;
+  return lose(now_ns);
+}
+
+std::optional<wiimote::LedSample> CameraTracker::lose(Nanos now_ns) {
+  if (!tracking_) return std::nullopt;
   tracking_ = false;
   ++counters_.lost;
   finder_.reset();

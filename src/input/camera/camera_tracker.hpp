@@ -41,6 +41,8 @@ class CameraTracker {
   std::optional<wiimote::LedSample> on_frame(const CameraFrame& frame);
   //! Frames stopped (a camera gone): `lost` once the time-out has run out, at that time.
   std::optional<wiimote::LedSample> poll(Nanos now_ns);
+  //! The camera went away: `lost` now, if the LED was being tracked.
+  std::optional<wiimote::LedSample> lose(Nanos now_ns);
   //! A new connection: the LED is looked for afresh and the sequence starts again.
   void restart();
 
