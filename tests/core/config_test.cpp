@@ -253,6 +253,34 @@ TEST(AppConfig, InputSectionsAreRead) {
   EXPECT_TRUE(validate(c.tracking));
 }
 
+TEST(AppConfig, TheCameraSectionIsRead) {
+  const AppConfig d;
+  EXPECT_EQ(d.camera.device, "auto");
+  EXPECT_EQ(d.camera.width, 640);
+  EXPECT_EQ(d.camera.height, 480);
+  EXPECT_EQ(d.camera.exposure_us, 500);
+  EXPECT_EQ(d.camera.gain, -1);
+  EXPECT_EQ(d.camera.format, "auto");
+  const AppConfig c = config::parse_app_config(
+      "[input]\nsource = \"camera\"\n[camera]\ndevice = \"/dev/v4l/by-id/usb-Cam-video-index0\"\nwidth = 320\n"
+      "height = 240\nrate_hz = 240.0\nexposure_us = 300\ngain = 8\nformat = \"yuyv\"\n",
+      "c.toml");
+  EXPECT_EQ(c.input.source, "camera");
+  EXPECT_EQ(c.camera.device, "/dev/v4l/by-id/usb-Cam-video-index0");
+  EXPECT_EQ(c.camera.width, 320);
+  EXPECT_EQ(c.camera.height, 240);
+  EXPECT_EQ(c.camera.rate_hz, 240.0);
+  EXPECT_EQ(c.camera.exposure_us, 300);
+  EXPECT_EQ(c.camera.gain, 8);
+  EXPECT_EQ(c.camera.format, "yuyv");
+  // Automatic exposure has no frame-length bound.
+  EXPECT_EQ(config::parse_app_config("[camera]\nexposure_us = 0\nrate_hz = 1000\n", "c.toml").camera.exposure_us, 0);
+  // The shipped file documents every key with its default.
+  const AppConfig shipped = config::load_app_config(test::config_dir() / "mallet.toml");
+  EXPECT_EQ(shipped.camera.rate_hz, d.camera.rate_hz);
+  EXPECT_EQ(shipped.camera.exposure_us, d.camera.exposure_us);
+}
+
 TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
   struct Case {
     const char* text;
@@ -278,7 +306,20 @@ TEST(AppConfig, BadInputValuesNameTheirKeyAndLine) {
        "wiimote.reconnect_max_ms: must be in [1000, 600000], got 900"},
       {"[wiimote]\nrumble_on_impact = \"yes\"\n", 2, "wiimote.rumble_on_impact: expected true or false"},
       {"[input]\nsource = \"joystick\"\n", 2,
-       "input.source: expected \"auto\", \"wiimote\", \"mouse\" or \"replay\", got \"joystick\""},
+       "input.source: expected \"auto\", \"wiimote\", \"camera\", \"mouse\" or \"replay\", got \"joystick\""},
+      {"[camera]\nwidth = 8\n", 2, "camera.width: must be in [16, 8192], got 8"},
+      {"[camera]\nheight = 9000\n", 2, "camera.height: must be in [16, 8192], got 9000"},
+      {"[camera]\nrate_hz = 0\n", 2, "camera.rate_hz: must be in [1, 1000], got 0"},
+      {"[camera]\n\nexposure_us = -1\n", 3, "camera.exposure_us: must be in [0, 1e+06], got -1"},
+      {"[camera]\nrate_hz = 240\nexposure_us = 5000\n", 3,
+       "camera.exposure_us: exposure_us 5000 is longer than one frame at rate_hz 240 (4167 µs)"},
+      {"[camera]\nexposure_us = 20000\n", 2,
+       "camera.exposure_us: exposure_us 20000 is longer than one frame at rate_hz 120 (8333 µs)"},
+      {"[camera]\ngain = -2\n", 2, "camera.gain: must be in [-1, 1e+06], got -2"},
+      {"[camera]\nformat = \"rgb\"\n", 2,
+       "camera.format: expected \"auto\", \"grey\", \"yuyv\" or \"mjpeg\", got \"rgb\""},
+      {"[camera]\ndevice = \"\"\n", 2, "camera.device: empty"},
+      {"[camera]\nwidth_px = 640\n", 2, "camera.width_px: unknown key"},
       {"[input]\nsource = \"replay\"\n", 2, "input.source: \"replay\" needs replay_file"},
       {"[render]\npresent_mode = \"vsync\"\n", 2,
        "render.present_mode: expected \"fifo\", \"mailbox\" or \"immediate\", got \"vsync\""},

@@ -425,6 +425,24 @@ TEST(KioskStates, ALostRemoteEndsPlayAtOnceAndSaysSoUntilItIsBack) {
   EXPECT_EQ(k.hint(), KioskHint::invitation);
 }
 
+TEST(KioskStates, ALostCameraIsALostRemote) {
+  // The V4L2 camera is the IR tracker in the remote's place: unplugged, the mallet rests.
+  KioskStates k({}, kStart);
+  k.input_source(kStart, InputSource::camera);
+  EXPECT_FALSE(k.tracking());  // a camera, like the remote, tracks only once it sees the LED
+  k.pointer(kStart + kMs, {0.5, 0.5});
+  k.pointer(kStart + 2 * kMs, {0.6, 0.5});
+  ASSERT_EQ(k.state(), S::play);
+  EXPECT_TRUE(k.remote_connected(kStart + 3 * kMs, false));
+  EXPECT_EQ(k.state(), S::attract);
+  EXPECT_EQ(k.hint(), KioskHint::remote_missing);
+  k.remote_connected(kStart + 4 * kMs, true);
+  EXPECT_FALSE(k.overlay().remote_missing);
+  EXPECT_TRUE(live_ir_tracker(InputSource::camera));
+  EXPECT_FALSE(live_ir_tracker(InputSource::replay));
+  EXPECT_FALSE(live_ir_tracker(InputSource::mouse));
+}
+
 TEST(KioskStates, TheMouseHasNoRemoteToMiss) {
   KioskStates k({}, kStart);
   k.input_source(kStart, InputSource::mouse);
