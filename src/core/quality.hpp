@@ -38,9 +38,13 @@
 //                                                           64 voices and costs up to 12 % of full scale; the
 //                                                           knob stays for instruments with many modes
 //   timing.predict_horizon_ms 10        10        0         contact prediction (bench prediction, 1200 human-like
-//                                                           strokes per rate): at 100 Hz the median from contact to
-//                                                           strike 4.3 → 1.8 ms, no false or missed note added, the
-//                                                           speed error's p99 on fast strikes 43 → 50 %; exact waits
+//                                                           strokes per camera and rate): Wii at 100 Hz, the median
+//                                                           from contact to strike 4.45 → 1.99 ms, no false or
+//                                                           missed note added, the speed error's p99 on fast strikes
+//                                                           44 → 45 %; a V4L2 camera at 240 Hz 2.15 → 0.80 ms
+//                                                           (120 Hz 4.23 → 1.84), p99 4.64 → 4.47 (8.99 → 8.70):
+//                                                           the camera's targets (p99 ≤ 3 / 5 ms) are not met by
+//                                                           any level (bench_prediction.cpp says why); exact waits
 //                                                           for the samples (its constant 12 ms covers the camera)
 //   pointer (1€ filter)       the same in all three         the filter costs ~nothing; its point on the jitter/lag
 //                                                           front (bench input) suits every preset

@@ -27,6 +27,7 @@ constexpr double kTruthStepS = 1e-4;               //!< scan step of the noise-f
 class Rng {
  public:
   explicit Rng(std::uint32_t seed) : engine_(seed) {}
+  explicit Rng(std::seed_seq& seeds) : engine_(seeds) {}
   //! In (0, 1), never 0 (Box–Muller takes its log).
   double unit() { return (static_cast<double>(engine_()) + 0.5) * 0x1p-32; }
   double uniform(double lo, double hi) { return lo + (hi - lo) * unit(); }
@@ -320,22 +321,22 @@ Path make_path(StrokeKind kind, const Scene& scene, Rng& rng) {
   return make_strike(scene, rng);
 }
 
-//! The camera's view of the path at `rate_hz`, the grid at a random phase.
-std::vector<PointerSample> observe(const Path& path, Nanos origin, double rate_hz, const Scene& scene,
-                                   const CorpusConfig& config, Rng& rng) {
+//! The camera's view of the path, the grid at a random phase.
+std::vector<PointerSample> observe(const Path& path, Nanos origin, const CameraModel& camera, const Scene& scene,
+                                   Rng& rng) {
   const ScreenToWorld& view = scene.screen_to_world;
-  const double m_per_px = metres_per_camera_px(scene, config);
+  const double m_per_px = metres_per_camera_px(scene, camera);
   const double phase = rng.unit();
   std::vector<PointerSample> out;
   for (long k = 0;; ++k) {
-    const double t = (static_cast<double>(k) + phase) / rate_hz;
+    const double t = (static_cast<double>(k) + phase) / camera.rate_hz;
     if (t > path.duration()) break;
     const Vec2 p = path.at(t);
-    double px = (p.x - view.left_m) / m_per_px + config.noise_px * rng.normal();
-    double py = (view.top_m - p.y) / m_per_px + config.noise_px * rng.normal();
-    const bool dropped = rng.unit() < config.drop_probability;
+    double px = (p.x - view.left_m) / m_per_px + camera.noise_px * rng.normal();
+    double py = (view.top_m - p.y) / m_per_px + camera.noise_px * rng.normal();
+    const bool dropped = rng.unit() < camera.drop_probability;
     if (dropped) continue;
-    if (config.quantise_px) {
+    if (camera.quantise_px) {
       px = std::round(px);
       py = std::round(py);
     }
@@ -344,10 +345,40 @@ std::vector<PointerSample> observe(const Path& path, Nanos origin, double rate_h
   return out;
 }
 
+//! A camera's own stream for one shape: the same for the same seed, shape and rate,
+//! whatever else the corpus holds.
+Rng own_stream(std::uint32_t seed, int shape, const CameraModel& camera) {
+  std::seed_seq seeds{seed, static_cast<std::uint32_t>(shape),
+                      static_cast<std::uint32_t>(std::llround(camera.rate_hz * 1000.0))};
+  return Rng(seeds);
+}
+
 }  // namespace
 
-double metres_per_camera_px(const Scene& scene, const CorpusConfig& config) {
-  return std::fabs(scene.screen_to_world.right_m - scene.screen_to_world.left_m) / config.camera_width_px;
+CameraModel wii_camera(double rate_hz) {
+  CameraModel c;
+  c.rate_hz = rate_hz;
+  return c;
+}
+
+CameraModel v4l2_camera(double rate_hz) {
+  CameraModel c;
+  c.name = "v4l2";
+  c.rate_hz = rate_hz;
+  c.noise_px = kV4l2CentroidNoisePx;
+  c.camera_width_px = 640;
+  c.quantise_px = false;
+  c.drop_probability = 0.005;
+  c.own_stream = true;
+  return c;
+}
+
+std::vector<CameraModel> every_camera() {
+  return {wii_camera(100.0), wii_camera(200.0), v4l2_camera(120.0), v4l2_camera(240.0)};
+}
+
+double metres_per_camera_px(const Scene& scene, const CameraModel& camera) {
+  return std::fabs(scene.screen_to_world.right_m - scene.screen_to_world.left_m) / camera.camera_width_px;
 }
 
 std::vector<Stroke> make_stroke_corpus(const Scene& scene, const CorpusConfig& config) {
@@ -367,10 +398,16 @@ std::vector<Stroke> make_stroke_corpus(const Scene& scene, const CorpusConfig& c
       truth.shape = shape;
       truth.peak_speed_m_per_s = path.peak_speed();
       find_truth(path, zones, origin, truth);
-      for (double rate : config.rates_hz) {
+      for (const CameraModel& camera : config.cameras) {
         Stroke s = truth;
-        s.rate_hz = rate;
-        s.samples = observe(path, origin, rate, scene, config, rng);
+        s.camera = camera.name;
+        s.rate_hz = camera.rate_hz;
+        if (camera.own_stream) {
+          Rng own = own_stream(config.seed, shape, camera);
+          s.samples = observe(path, origin, camera, scene, own);
+        } else {
+          s.samples = observe(path, origin, camera, scene, rng);
+        }
         corpus.push_back(std::move(s));
       }
     }

@@ -86,10 +86,11 @@ CleanErrors clean_strike_errors(const PredictionConfig& config, double rate_hz) 
   CorpusConfig corpus;
   corpus.seed = 99;
   corpus.shapes_per_kind = 150;
-  corpus.noise_px = 0;
-  corpus.quantise_px = false;
-  corpus.drop_probability = 0;
-  corpus.rates_hz = {rate_hz};
+  CameraModel camera = wii_camera(rate_hz);
+  camera.noise_px = 0;
+  camera.quantise_px = false;
+  camera.drop_probability = 0;
+  corpus.cameras = {camera};
   const std::vector<ContactZone> zones = contact_zones(percussion());
   CleanErrors e;
   for (const Stroke& s : make_stroke_corpus(percussion(), corpus)) {

@@ -2,7 +2,8 @@
 // The trade contact prediction makes (core/contact_predictor.hpp), measured on the stroke
 // corpus (core/stroke_corpus.hpp) through the real StrikeDetector: how long after the true
 // contact a strike is decided, against false notes, missed notes and speed error, for
-// each prediction horizon × confidence level × pointer rate.
+// each prediction horizon × confidence level × camera (the Wii's at 100 and 200 Hz, a
+// V4L2 camera's at 120 and 240 Hz).
 //
 // `mallet bench prediction [--scene FILE] [--config FILE]` prints it; `mallet bench report`
 // includes it.
@@ -24,8 +25,10 @@ struct PredictionLevel {
   PredictionConfig config;  //!< horizon_ms is overwritten by the sweep
 };
 
-//! One row of the table: one rate, one horizon, one confidence level, the whole corpus.
+//! One row of the table: one camera at one rate, one horizon, one confidence level, the
+//! whole corpus.
 struct PredictionBenchRow {
+  std::string camera;         //!< CameraModel::name
   double rate_hz = 0;
   double horizon_ms = 0;
   std::string level;
@@ -35,6 +38,9 @@ struct PredictionBenchRow {
   //! True contact → strike decided (the sample it was decided on), matched strikes, ms;
   //! a predicted strike counts max(0, decision − contact).
   double latency_median_ms = 0, latency_p99_ms = 0, latency_max_ms = 0;
+  //! |heard − true contact| (heard: the later of the strike's time and its decision, as the
+  //! strike route schedules a strike with align = asap), matched strikes, 99th percentile, ms.
+  double sound_p99_ms = 0;
   //! Predicted strikes' scheduled time − true contact time, ms (1st and 99th percentiles).
   double schedule_error_p1_ms = 0, schedule_error_p99_ms = 0;
   double false_pct = 0;       //!< strikes matching no contact, per 100 true contacts
@@ -53,16 +59,17 @@ inline constexpr std::uint32_t kPredictionCorpusSeed = 20240611;
 //! The confidence levels the bench sweeps, from the most eager to the most careful.
 std::vector<PredictionLevel> prediction_levels();
 
-//! Runs the corpus through StrikeDetector for each rate in `corpus.rates_hz` × horizon ×
-//! level (horizon 0 once per rate: prediction off, the exact solver). A strike matches a
-//! true contact on the same bar within 25 ms; each contact matches at most one strike.
+//! Runs the corpus through StrikeDetector for each camera in `corpus.cameras` × horizon ×
+//! level (horizon 0 once per camera: prediction off, the exact solver). A strike is decided
+//! at its sample's time plus the camera's read_delay_ms. A strike matches a true contact on
+//! the same bar within 25 ms; each contact matches at most one strike.
 std::vector<PredictionBenchRow> measure_prediction_trade(const Scene& scene, const ContactConfig& contact,
                                                          const CorpusConfig& corpus,
                                                          const std::vector<double>& horizons_ms,
                                                          const std::vector<PredictionLevel>& levels);
 
-//! Prints the table for horizons {0, 5, 10, 15} ms × prediction_levels() × {100, 200} Hz on
-//! the default corpus. Returns 0.
+//! Prints the table for horizons {0, 5, 10, 15} ms × prediction_levels() × every_camera()
+//! (Wii 100, 200 Hz; V4L2 120, 240 Hz) on the bench's corpus. Returns 0.
 int run_bench_prediction(const Scene& scene, const ContactConfig& contact, std::ostream& out);
 
 }  // namespace mallet::app
