@@ -4,73 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <deque>
 #include <mutex>
 #include <thread>
 
 #include "input/camera/camera_device.hpp"
 #include "input/camera/frame_stream.hpp"
+#include "input/camera/scripted_grabber.hpp"
 #include "input/wiimote/wiimote_test_support.hpp"
 
 namespace mallet::input::camera {
 namespace {
-
-//! A camera that plays frames, then may go away; opening may fail the first `refuse` times.
-class ScriptedGrabber final : public FrameGrabber {
- public:
-  struct Script {
-    std::vector<test::StreamFrame> frames;
-    std::size_t gone_after = SIZE_MAX;  //!< next() fails ("went away") after this many frames
-    int refuse_opens = 0;
-  };
-  explicit ScriptedGrabber(Script script) : script_(std::move(script)) {}
-
-  Result<CameraMode, std::string> open() override {
-    std::lock_guard lock(mutex_);
-    ++opens_;
-    if (opens_ <= script_.refuse_opens) return tl::unexpected(std::string("no camera among /dev/video*"));
-    CameraMode m;
-    m.device = "/dev/video7";
-    m.name = "Scripted Camera";
-    m.driver = "test";
-    m.width = 160;
-    m.height = 120;
-    m.rate_hz = 240;
-    open_ = true;
-    return m;
-  }
-  Result<bool, GrabError> next(int, CameraFrame& frame) override {
-    std::unique_lock lock(mutex_);
-    if (delivered_ == script_.gone_after) {
-      script_.gone_after = SIZE_MAX;  // gone once; the next open brings it back
-      return tl::unexpected(GrabError{"/dev/video7: No such device", true});
-    }
-    if (delivered_ >= script_.frames.size()) {
-      lock.unlock();
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));  // a camera with nothing new: a real wait
-      return false;
-    }
-    frame = script_.frames[delivered_++].frame();
-    return true;
-  }
-  void close() override {
-    std::lock_guard lock(mutex_);
-    open_ = false;
-  }
-  void wake() override {}
-  std::string stamping() const override { return "scripted"; }
-  int opens() const {
-    std::lock_guard lock(mutex_);
-    return opens_;
-  }
-
- private:
-  mutable std::mutex mutex_;
-  Script script_;
-  std::size_t delivered_ = 0;
-  int opens_ = 0;
-  bool open_ = false;
-};
 
 std::vector<test::StreamFrame> frames(int n) {
   test::StreamSpec spec;
@@ -103,7 +46,7 @@ bool eventually(F done) {
 
 TEST(CameraDevice, EveryFramesSampleReachesTheSinkInOrder) {
   wiimote::test::FakeClock clock;
-  auto grabber = std::make_unique<ScriptedGrabber>(ScriptedGrabber::Script{frames(30)});
+  auto grabber = std::make_unique<test::ScriptedGrabber>(test::ScriptedGrabber::Script{frames(30)});
   CameraDevice device(std::move(grabber), clock);
   Collected got;
   device.set_sample_sink([&](std::span<const wiimote::LedSample> s, Nanos) {
@@ -129,9 +72,9 @@ TEST(CameraDevice, EveryFramesSampleReachesTheSinkInOrder) {
 
 TEST(CameraDevice, ACameraThatGoesAwayIsLostThenOpenedAgain) {
   wiimote::test::FakeClock clock;
-  ScriptedGrabber::Script script{frames(20), 10, 0};
-  auto owned = std::make_unique<ScriptedGrabber>(script);
-  ScriptedGrabber* grabber = owned.get();
+  test::ScriptedGrabber::Script script{frames(20), 10, 0};
+  auto owned = std::make_unique<test::ScriptedGrabber>(script);
+  test::ScriptedGrabber* grabber = owned.get();
   CameraDevice device(std::move(owned), clock);
   Collected got;
   device.set_sample_sink([&](std::span<const wiimote::LedSample> s, Nanos) {
@@ -157,9 +100,9 @@ TEST(CameraDevice, ACameraThatGoesAwayIsLostThenOpenedAgain) {
 
 TEST(CameraDevice, ACameraNotThereYetIsWaitedForAndSaidWhy) {
   wiimote::test::FakeClock clock;
-  ScriptedGrabber::Script script{frames(5), SIZE_MAX, 3};
-  auto owned = std::make_unique<ScriptedGrabber>(script);
-  ScriptedGrabber* grabber = owned.get();
+  test::ScriptedGrabber::Script script{frames(5), SIZE_MAX, 3};
+  auto owned = std::make_unique<test::ScriptedGrabber>(script);
+  test::ScriptedGrabber* grabber = owned.get();
   CameraDevice device(std::move(owned), clock);
   std::atomic<int> samples{0};
   device.set_sample_sink([&](std::span<const wiimote::LedSample> s, Nanos) { samples += static_cast<int>(s.size()); });
@@ -174,8 +117,8 @@ TEST(CameraDevice, ACameraNotThereYetIsWaitedForAndSaidWhy) {
 
 TEST(CameraDevice, StopEndsTheThreadOfACameraThatNeverOpens) {
   wiimote::test::FakeClock clock;
-  ScriptedGrabber::Script script{{}, SIZE_MAX, 1 << 30};
-  CameraDevice device(std::make_unique<ScriptedGrabber>(script), clock);
+  test::ScriptedGrabber::Script script{{}, SIZE_MAX, 1 << 30};
+  CameraDevice device(std::make_unique<test::ScriptedGrabber>(script), clock);
   device.start();
   ASSERT_TRUE(eventually([&] { return device.status().problem == "no camera among /dev/video*"; }));
   device.stop();
