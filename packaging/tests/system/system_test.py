@@ -29,7 +29,7 @@ SETTINGS = "/etc/mallet/mallet.toml"
 BREAK_SETTINGS = f"cp {SETTINGS} /root/mallet.toml.good && printf '\\n[audio\\n' >> {SETTINGS}"
 MEND_SETTINGS = f"cp /root/mallet.toml.good {SETTINGS}"
 SCENARIOS = ["first-boot", "mouse", "reload", "bad-settings", "watchdog", "state-full", "quit", "update",
-             "wiimote", "remote-off-on", "reboot"]
+             "wiimote", "remote-off-on", "camera", "reboot"]
 
 
 class Test:
@@ -339,6 +339,51 @@ class Test:
         back, _ = self.wait("'Wii Remote … connected' again",
                             lambda: self.journal(since2, grep="Wii Remote .* connected").strip(), 300)
         return f"{lost.splitlines()[0]}; {back.splitlines()[0]}"
+
+    def camera(self):
+        """A V4L2 camera as the IR tracker: the kernel's vivid driver as the camera (its
+        capture node only), listed and monitored, the kiosk streaming from it, unplugged
+        (vivid's Disconnect) and back, and the doctor's camera check."""
+        dropin = "/etc/mallet/mallet.toml.d/50-camera-test.toml"
+        self.out("modprobe vivid node_types=0x1 n_devs=1 && udevadm settle", timeout=120)
+        node, _ = self.wait("a vivid /dev/video node",
+                            lambda: self.out("grep -l vivid /sys/class/video4linux/video*/name 2>/dev/null | head -1"), 60)
+        node = "/dev/" + node.split("/")[-2]
+        listed = self.out("runuser -u mallet -- mallet camera list")
+        if node not in listed or "vivid" not in listed:
+            raise VmError(f"mallet camera list does not show {node} (vivid): {listed[-400:]}")
+        code, mon = self.sh(f"runuser -u mallet -- mallet camera monitor --seconds 4 --device {node}", timeout=180)
+        summary = [l.strip() for l in mon.splitlines() if "rate achieved" in l or "stamping" in l or "summary" in l]
+        if code != 0 or "streaming" not in mon or len(summary) < 3:
+            raise VmError(f"mallet camera monitor on vivid exited {code}: {mon[-600:]}")
+        if "the kernel's stamp" not in mon:
+            raise VmError(f"the frames are not stamped by the kernel: {summary}")
+        since = self.guest_time()
+        self.out(f"printf '[input]\\nsource = \"camera\"\\n[camera]\\ndevice = \"{node}\"\\nwidth = 320\\n"
+                 f"height = 180\\nrate_hz = 30\\n' > {dropin}")
+        try:
+            old = self.unit()["MainPID"]
+            self.out("systemctl restart mallet", timeout=600)
+            self.wait_active(600, not_pid=old)
+            connected, _ = self.wait("'camera … connected' in journalctl -u mallet",
+                                     lambda: self.journal(since, grep="camera .* connected").strip(), 300)
+            since2 = self.guest_time()
+            self.out(f"python3 /opt/mallet-test/v4l2_disconnect.py {node}")
+            lost, _ = self.wait("'camera … lost' after vivid's Disconnect",
+                                lambda: self.journal(since2, grep="camera .* lost").strip(), 180)
+            back, _ = self.wait("'camera … connected' again",
+                                lambda: self.journal(since2, grep="camera .* connected").strip(), 300)
+            if self.unit()["ActiveState"] != "active":
+                raise VmError("the kiosk did not play on through the camera's unplugging")
+            code, doctor = self.sh("runuser -u mallet -- mallet doctor 2>&1", timeout=300)
+            line = [l for l in doctor.splitlines() if re.match(r"^(ok|warn|fail)\s+camera\b", l)]
+            if not line or line[0].startswith("fail") or "frames/s achieved" not in line[0]:
+                raise VmError(f"mallet doctor's camera check: {line or doctor[-400:]}")
+        finally:
+            self.sh(f"rm -f {dropin}; systemctl restart mallet", timeout=600)
+        self.wait_active(600)
+        return (f"{summary[0]}; {'; '.join(summary[1:])}; {connected.splitlines()[0]}; {lost.splitlines()[0]}; "
+                f"{back.splitlines()[-1]}; doctor: {line[0]}")
 
     def quit(self):
         """The operator page's Q: the kiosk stays stopped until `systemctl start`."""
