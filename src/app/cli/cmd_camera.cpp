@@ -1,6 +1,5 @@
 // `mallet camera ...`: the operator's window into a V4L2 camera as the IR tracker.
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -40,9 +39,6 @@ and still exits 0: "none found" is an answer, not a failure.)");
   });
 }
 
-std::atomic<bool> g_interrupted{false};
-void on_interrupt(int) { g_interrupted.store(true); }
-
 struct MonitorCli {
   CameraMonitorOptions options;
   std::optional<std::filesystem::path> config = default_settings();
@@ -61,13 +57,9 @@ void run_monitor(const MonitorCli& cli) {
   cam::CameraDeviceConfig dc;
   dc.lost_after_ms = config.tracking.lost_after_ms;
   cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(camera, cli.dir), clock, dc);
-  g_interrupted.store(false);
-  const auto previous_int = std::signal(SIGINT, on_interrupt);
-  const auto previous_term = std::signal(SIGTERM, on_interrupt);
-  const int status = run_camera_monitor(device, clock, cli.options, g_interrupted, stdout);
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
-  finish_with(status);
+  finish_with(run_until_interrupted([&](const std::atomic<bool>& interrupted) {
+    return run_camera_monitor(device, clock, cli.options, interrupted, stdout);
+  }));
 }
 
 void add_monitor(CLI::App& camera) {

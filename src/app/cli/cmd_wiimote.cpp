@@ -1,6 +1,5 @@
 // `mallet wiimote ...`: the operator's and the tests' window into the Wii Remote protocol.
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <iterator>
@@ -92,9 +91,6 @@ When none is found it says so, with the pairing and udev-rule hints, and still e
   });
 }
 
-std::atomic<bool> g_interrupted{false};
-void on_interrupt(int) { g_interrupted.store(true); }
-
 struct MonitorCli {
   MonitorOptions options;
   std::optional<std::filesystem::path> config = default_settings();
@@ -118,20 +114,9 @@ void run_monitor(const MonitorCli& cli) {
   input::SteadyClock clock;
   wm::WiimoteDevice device(finder, clock, device_config);
 
-  g_interrupted.store(false);
-  const auto previous_int = std::signal(SIGINT, on_interrupt);
-  const auto previous_term = std::signal(SIGTERM, on_interrupt);
-  int status = 1;
-  try {
-    status = run_live_monitor(device, clock, cli.options, g_interrupted, stdout);
-  } catch (...) {
-    std::signal(SIGINT, previous_int);
-    std::signal(SIGTERM, previous_term);
-    throw;
-  }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
-  finish_with(status);
+  finish_with(run_until_interrupted([&](const std::atomic<bool>& interrupted) {
+    return run_live_monitor(device, clock, cli.options, interrupted, stdout);
+  }));
 }
 
 void add_monitor(CLI::App& wiimote) {

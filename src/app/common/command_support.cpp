@@ -1,5 +1,6 @@
 #include "app/common/command_support.hpp"
 
+#include <csignal>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -81,6 +82,25 @@ int run_command_line(CLI::App& app, int argc, char** argv) {
   }
   for (const std::string& line : lines_when_done()) std::fprintf(stderr, "%s\n", line.c_str());
   return 0;
+}
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+void on_interrupt(int) { g_interrupted.store(true); }
+}  // namespace
+
+int run_until_interrupted(const std::function<int(const std::atomic<bool>& interrupted)>& body) {
+  g_interrupted.store(false);
+  const auto previous_int = std::signal(SIGINT, on_interrupt);
+  const auto previous_term = std::signal(SIGTERM, on_interrupt);
+  struct Restore {
+    decltype(previous_int) int_handler, term_handler;
+    ~Restore() {
+      std::signal(SIGINT, int_handler);
+      std::signal(SIGTERM, term_handler);
+    }
+  } restore{previous_int, previous_term};
+  return body(g_interrupted);
 }
 
 }  // namespace mallet::app

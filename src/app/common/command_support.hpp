@@ -1,6 +1,8 @@
 #pragma once
 // What every command of `mallet` shares, whichever product it runs: how it ends with a
 // status, the line said once it has succeeded, and the flags' own checks beyond CLI11's.
+#include <atomic>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,11 @@ CLI::Option* add_choice(CLI::App& cmd, const std::string& flag, E& value, const 
 //! RuntimeError, which main turns into the process's exit status without a message of its
 //! own (the command has said why).
 void finish_with(int status);
+
+//! Runs `body` with SIGINT and SIGTERM setting the flag it is given (Ctrl+C ends a monitor
+//! with its summary instead of killing it), the previous handlers restored afterwards, also
+//! when it throws. Returns what `body` returns.
+int run_until_interrupted(const std::function<int(const std::atomic<bool>& interrupted)>& body);
 
 //! A line for stderr once the command has succeeded (which settings it used): said after
 //! its work, so that a command refusing bad input still says exactly one line.
