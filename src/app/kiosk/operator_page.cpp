@@ -128,8 +128,11 @@ std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render
   std::vector<std::string> lines;
   int failing = 0;
   for (const DoctorCheck& c : checks) {
-    // On the page what was found; in the journal the whole line with its fix.
-    lines.push_back(format_check({c.name, c.level, c.found, ""}));
+    // On the page what was found (not the tracker the settings do not use: the page has a
+    // line for each of the others, and a 720p screen no more); in the journal every whole
+    // line with its fix.
+    if (!(c.level == CheckLevel::ok && c.found.rfind("not used", 0) == 0))
+      lines.push_back(format_check({c.name, c.level, c.found, ""}));
     journal::notice("doctor: {}", format_check(c).c_str());
     failing += c.level == CheckLevel::fail;
   }
