@@ -204,7 +204,11 @@ std::optional<PredictedContact> ContactPredictor::predict(const std::vector<Cont
   verdict_ = PredictionVerdict::speeding_up;
   if (!(f->ay_m_per_s2(0) >= -config_.max_speedup_m_per_s2)) return std::nullopt;
 
-  const double next_s = to_seconds(*interval);
+  // A camera's frame is held sample_delay_ms after its time: a crossing before the next
+  // one is held is still earlier than the solver can call it. The horizon still counts
+  // from the last sample's time: how far the fit is trusted. No delay (the Wii): the next
+  // sample's time itself.
+  const double next_s = to_seconds(*interval) + config_.sample_delay_ms * 1e-3;
   const double ahead_s = std::min(config_.horizon_ms * 1e-3, next_s);
   const double stopping_m = down_m_per_s * down_m_per_s / (2.0 * config_.braking_m_per_s2);
   const double y_now = f->y_m(0);

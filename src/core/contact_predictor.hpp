@@ -19,7 +19,8 @@
 //                  half of its move, and will brake before the bar by an amount nothing in
 //                  the samples tells. Extrapolating it made predicted speeds 2–3× too high.
 //  5. no_crossing  the fit meets no plane below the hand before the next expected sample
-//                  (the median of the recent intervals), at min_predicted_speed or more.
+//                  (the median of the recent intervals) is held (sample_delay_ms after
+//                  its time: a camera's read-out), at min_predicted_speed or more.
 //  6. could_stop   the hand, braking at braking_m_per_s2 from its fitted speed u, could still
 //                  stop clearance_m or more above the plane: y − plane − clearance ≥ u²/2b.
 //                  This is the guarantee: a hand that stops clearance_m or more above a
@@ -31,8 +32,8 @@
 //  8. uncertain    camera noise alone (σ = noise_m per sample, through the fit's
 //                  covariance) makes the contact time uncertain by more than
 //                  max_timing_sigma_ms or its speed by more than max_speed_sigma_pct.
-//  9. grazing      the fit would not be min_overshoot_m below the plane by the next
-//                  sample: a crossing that only grazes the plane is one that noise, or a
+//  9. grazing      the fit would not be min_overshoot_m below the plane by the time the
+//                  next sample is held: a crossing that only grazes the plane is one that noise, or a
 //                  stop just above, could fake.
 // 10. outside_zone the crossing's x is not in that plane's zone.
 // A prediction reports the predicted contact time and the fitted downward speed there.
@@ -66,6 +67,11 @@ struct PredictionConfig {
   double max_timing_sigma_ms = 4.0;          //!< the noise's share of the contact time's error
   double max_speed_sigma_pct = 80;           //!< the noise's share of the speed's error
   double min_overshoot_m = 0.0005;           //!< the fit must be this far below by the next sample
+  //! From a sample's time to the detector holding it (a camera frame's read-out: 0 for the
+  //! Wii, stamped on arrival). The next sample is held one interval + this after the last
+  //! one's time, so crossings up to then are predicted (horizon_ms still counts from the
+  //! last sample's time: how far ahead the fit is trusted).
+  double sample_delay_ms = 0;
 };
 
 //! What the exact solver alone does: no prediction.

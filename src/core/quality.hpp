@@ -41,11 +41,17 @@
 //                                                           strokes per camera and rate): Wii at 100 Hz, the median
 //                                                           from contact to strike 4.45 → 1.99 ms, no false or
 //                                                           missed note added, the speed error's p99 on fast strikes
-//                                                           44 → 45 %; a V4L2 camera at 240 Hz 2.15 → 0.80 ms
-//                                                           (120 Hz 4.23 → 1.84), p99 4.64 → 4.47 (8.99 → 8.70):
-//                                                           the camera's targets (p99 ≤ 3 / 5 ms) are not met by
-//                                                           any level (bench_prediction.cpp says why); exact waits
-//                                                           for the samples (its constant 12 ms covers the camera)
+//                                                           44 → 45 %. A V4L2 camera (σ 0.02 px measured, read-out
+//                                                           500 µs/2 + one frame) runs the level tuned for it
+//                                                           (core/camera_prediction.hpp): 240 Hz contact → sound
+//                                                           6.53 → 0.28 ms median, p99 8.57 → 8.42 (speed error
+//                                                           p99 21 → 92 %); 120 Hz 12.82 → 10.27, p99 16.90 →
+//                                                           16.89; none added false or missed. The camera's targets
+//                                                           (p99 ≤ 3 / 5 ms) are not met by any level: the read-out
+//                                                           alone is 4.4 / 8.6 ms and ~4 in 10 contacts cannot be
+//                                                           extrapolated (bench_prediction.cpp); exact waits for the
+//                                                           samples (its constant 12 ms covers the Wii, not a camera
+//                                                           frame's read-out)
 //   pointer (1€ filter)       the same in all three         the filter costs ~nothing; its point on the jitter/lag
 //                                                           front (bench input) suits every preset
 //

@@ -355,32 +355,6 @@ Rng own_stream(std::uint32_t seed, int shape, const CameraModel& camera) {
 
 }  // namespace
 
-CameraModel wii_camera(double rate_hz) {
-  CameraModel c;
-  c.rate_hz = rate_hz;
-  return c;
-}
-
-CameraModel v4l2_camera(double rate_hz) {
-  CameraModel c;
-  c.name = "v4l2";
-  c.rate_hz = rate_hz;
-  c.noise_px = kV4l2CentroidNoisePx;
-  c.camera_width_px = 640;
-  c.quantise_px = false;
-  c.drop_probability = 0.005;
-  c.own_stream = true;
-  return c;
-}
-
-std::vector<CameraModel> every_camera() {
-  return {wii_camera(100.0), wii_camera(200.0), v4l2_camera(120.0), v4l2_camera(240.0)};
-}
-
-double metres_per_camera_px(const Scene& scene, const CameraModel& camera) {
-  return std::fabs(scene.screen_to_world.right_m - scene.screen_to_world.left_m) / camera.camera_width_px;
-}
-
 std::vector<Stroke> make_stroke_corpus(const Scene& scene, const CorpusConfig& config) {
   std::vector<Stroke> corpus;
   if (scene.targets.empty()) return corpus;

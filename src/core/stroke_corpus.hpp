@@ -7,20 +7,14 @@
 // minimum-jerk segments (Flash & Hogan 1985: x(τ) = x0 + D·(10τ³ − 15τ⁴ + 6τ⁵), the
 // profile of a practised reaching movement, peak speed 1.875·D/T). Its true contacts are
 // found on the continuous path, so the truth owes nothing to the samples. The path is then
-// seen the way the kiosk sees a hand, through a camera model (CameraModel): sampled at its
-// rate with a random phase between the contact and the sample grid, Gaussian centroid
-// noise (σ in camera pixels, turned into metres through the scene's screen_to_world: one
-// isotropic scale over the screen's width), positions quantised to whole camera pixels or
-// not, and frames dropped at random. Two cameras are modelled:
-//  * "wii": the Wii Remote's camera at 100 and 200 Hz: 1024 px over the screen's width
-//    (≈0.82 mm/px for the shipped percussion scene), σ 0.5 px, whole pixels, 2 % dropped.
-//  * "v4l2": any V4L2 camera at 640×480 behind an IR filter, at 120 and 240 Hz: 640 px over
-//    the width (≈1.3 mm/px), an intensity-weighted centroid (subpixel, not quantised),
-//    σ kV4l2CentroidNoisePx, 0.5 % of frames dropped.
-// A sample's time is the instant its position is of (the Wii's report stamped on arrival,
-// the camera's frame at mid-exposure) and the bench decides a strike there: neither the
-// Wii's radio nor the camera's read-out (at most one frame interval) is in the model
-// (CameraModel::read_delay_ms is 0 for both), so the two cameras' rows compare like for like.
+// seen the way the kiosk sees a hand, through a camera model (core/camera_model.hpp: the
+// Wii's at 100 and 200 Hz, a V4L2 camera's at 120 and 240 Hz): sampled at its rate with a
+// random phase between the contact and the sample grid, Gaussian centroid noise (σ in
+// camera pixels, turned into metres through the scene's screen_to_world: one isotropic
+// scale over the screen's width), positions quantised to whole camera pixels or not, and
+// frames dropped at random. A sample's time is the instant its position is of (the Wii's
+// report stamped on arrival, the camera's frame at mid-exposure); the camera's read-out
+// after it is CameraModel::read_delay_ms, which the bench adds to every decision.
 //
 // Deterministic for a seed on every standard library: only std::mt19937's raw output is
 // used (its sequence is fixed by the standard); uniforms and normals (Box–Muller) are
@@ -30,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/camera_model.hpp"
 #include "core/enum_names.hpp"
 #include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
@@ -72,35 +67,6 @@ struct Stroke {
   double peak_speed_m_per_s = 0;       //!< of the noise-free path's fastest segment
 };
 
-//! How one camera at one rate sees the hand (the corpus's observation model).
-struct CameraModel {
-  std::string_view name = "wii";   //!< what the bench's rows call it
-  double rate_hz = 100;
-  double noise_px = 0.5;           //!< centroid noise σ per axis, camera pixels
-  double camera_width_px = 1024;   //!< over the screen's width (isotropic pixels)
-  bool quantise_px = true;         //!< whole camera pixels (the Wii); false: subpixel centroids
-  double drop_probability = 0.02;  //!< each frame independently
-  //! From a sample's time to the kiosk holding it; the bench decides a strike then.
-  double read_delay_ms = 0;
-  //! Where its phase, noise and drops are drawn. false: from the corpus's one stream, right
-  //! after the shape's path (how the Wii corpus has always been drawn, so its strokes for a
-  //! seed stay bit for bit what they were; adding or removing such a camera changes every
-  //! later shape). true: from a stream of its own, seeded by the corpus seed, the shape and
-  //! the rate, so adding or removing it changes no other stroke.
-  bool own_stream = false;
-};
-
-//! The camera's centroid noise, σ per axis in camera pixels (measured on the tracker: 0.05–0.15).
-inline constexpr double kV4l2CentroidNoisePx = 0.1;
-
-//! The Wii Remote's camera at `rate_hz` (100 or 200): the defaults above.
-CameraModel wii_camera(double rate_hz);
-//! A 640×480 V4L2 camera at `rate_hz` (120 or 240): subpixel centroids, σ kV4l2CentroidNoisePx.
-CameraModel v4l2_camera(double rate_hz);
-//! Every camera at every rate the kiosk runs: the Wii at 100 and 200 Hz, then the V4L2
-//! camera at 120 and 240 Hz (the bench's corpus).
-std::vector<CameraModel> every_camera();
-
 struct CorpusConfig {
   std::uint32_t seed = 1;
   int shapes_per_kind = 200;
@@ -113,8 +79,5 @@ struct CorpusConfig {
 //! adjacent, and share one continuous path and its truth). The scene must have targets;
 //! strokes use its bars and its screen mapping.
 std::vector<Stroke> make_stroke_corpus(const Scene& scene, const CorpusConfig& config);
-
-//! Metres per camera pixel for a scene's screen mapping (the noise model's scale).
-double metres_per_camera_px(const Scene& scene, const CameraModel& camera);
 
 }  // namespace mallet

@@ -5,8 +5,9 @@
 // each prediction horizon × confidence level × camera (the Wii's at 100 and 200 Hz, a
 // V4L2 camera's at 120 and 240 Hz).
 //
-// `mallet bench prediction [--scene FILE] [--config FILE]` prints it; `mallet bench report`
-// includes it.
+// `mallet bench prediction [--scene FILE] [--config FILE] [--camera-noise-px X]
+// [--camera-read-delay-ms X]` prints it (the V4L2 camera's rows also with the presets tuned
+// for it, core/camera_prediction.hpp); `mallet bench report` includes it.
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -23,6 +24,15 @@ namespace mallet::app {
 struct PredictionLevel {
   std::string name;
   PredictionConfig config;  //!< horizon_ms is overwritten by the sweep
+  //! Tuned for each camera by prediction_for_camera (the kiosk's camera route); measured on
+  //! the V4L2 camera only: the Wii's route runs the presets as they are.
+  bool for_camera = false;
+};
+
+//! What `mallet bench prediction` may change in the V4L2 camera's model.
+struct PredictionBenchOptions {
+  double camera_noise_px = kV4l2CentroidNoisePx;  //!< its centroid noise σ per axis
+  double camera_read_delay_ms = -1;               //!< < 0: v4l2_read_delay_ms at 500 µs
 };
 
 //! One row of the table: one camera at one rate, one horizon, one confidence level, the
@@ -58,6 +68,8 @@ inline constexpr std::uint32_t kPredictionCorpusSeed = 20240611;
 
 //! The confidence levels the bench sweeps, from the most eager to the most careful.
 std::vector<PredictionLevel> prediction_levels();
+//! The same levels tuned for the camera ("eager*", "balanced*", "exact*").
+std::vector<PredictionLevel> camera_prediction_levels();
 
 //! Runs the corpus through StrikeDetector for each camera in `corpus.cameras` × horizon ×
 //! level (horizon 0 once per camera: prediction off, the exact solver). A strike is decided
@@ -69,7 +81,9 @@ std::vector<PredictionBenchRow> measure_prediction_trade(const Scene& scene, con
                                                          const std::vector<PredictionLevel>& levels);
 
 //! Prints the table for horizons {0, 5, 10, 15} ms × prediction_levels() × every_camera()
-//! (Wii 100, 200 Hz; V4L2 120, 240 Hz) on the bench's corpus. Returns 0.
-int run_bench_prediction(const Scene& scene, const ContactConfig& contact, std::ostream& out);
+//! (Wii 100, 200 Hz; V4L2 120, 240 Hz, with `options`' noise and read delay; for them also
+//! camera_prediction_levels()) on the bench's corpus. Returns 0.
+int run_bench_prediction(const Scene& scene, const ContactConfig& contact, const PredictionBenchOptions& options,
+                         std::ostream& out);
 
 }  // namespace mallet::app
