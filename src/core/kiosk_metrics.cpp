@@ -200,7 +200,7 @@ std::string render_prometheus_text(const KioskMetrics& m) {
            "Vulkan device memory the renderer holds (its buffers and images; not the swapchain's).",
            number(m.vulkan_device_memory_bytes));
   t.single("mallet_remote_connected", "gauge",
-           "1 while the Wii Remote's link runs, else 0.",
+           "1 while the IR tracker runs (the Wii Remote's link, or the camera streaming), else 0.",
            m.remote_connected ? "1" : "0");
   t.single("mallet_remote_battery_ratio", "gauge",
            "The Wii Remote's battery, 1 = fresh cells (NaN: no remote or no report yet).",

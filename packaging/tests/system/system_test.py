@@ -359,7 +359,7 @@ class Test:
         if "the kernel's stamp" not in mon:
             raise VmError(f"the frames are not stamped by the kernel: {summary}")
         since = self.guest_time()
-        self.out(f"printf '[input]\\nsource = \"camera\"\\n[camera]\\ndevice = \"{node}\"\\nwidth = 320\\n"
+        self.out(f"mkdir -p {os.path.dirname(dropin)} && printf '[input]\\nsource = \"camera\"\\n[camera]\\ndevice = \"{node}\"\\nwidth = 320\\n"
                  f"height = 180\\nrate_hz = 30\\n' > {dropin}")
         try:
             old = self.unit()["MainPID"]

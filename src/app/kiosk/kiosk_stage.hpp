@@ -61,6 +61,9 @@ struct KioskStage {
   //! Or a V4L2 camera as the IR tracker ([input] source = "camera"), feeding `remote` the
   //! same way; at most one of `device` and `camera` is set.
   std::unique_ptr<input::camera::CameraDevice> camera;
+  //! The settings the camera's strike route runs on: the stage's, with contact prediction
+  //! tuned for the camera (core/camera_prediction.hpp). `remote` holds it by reference.
+  std::optional<AppConfig> camera_route_config;
   bool link_up = false;
   bool checked_calibration = false;  //!< against the first connected remote's identity
   // The mouse read at its source (input.mouse = auto | evdev): its reading thread feeds

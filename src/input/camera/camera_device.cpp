@@ -97,7 +97,9 @@ void CameraDevice::run() {
     if (!got) {
       grabber_->close();
       open = false;
-      next_attempt = clock_.now() + (got.error().gone ? config_.reopen_interval_ns : 0);
+      // Gone or failing: either way the next open waits, so a camera that opens and then
+      // fails at once is not reopened in a busy loop.
+      next_attempt = clock_.now() + config_.reopen_interval_ns;
       sample = tracker_.lose(clock_.now());
       publish(false, got.error().message);
     } else if (*got) {

@@ -28,7 +28,7 @@ std::optional<wiimote::LedSample> CameraTracker::on_frame(const CameraFrame& fra
   if (!luma) {
     ++counters_.bad_frames;
     bad_frame_ = luma.error();
-    return std::nullopt;
+    return poll(frame.t_ns);  // unreadable frames are frames without the LED: it may be lost
   }
   const auto found = finder_.find(*luma);
   wiimote::LedSample s;

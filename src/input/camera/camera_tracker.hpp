@@ -37,7 +37,8 @@ class CameraTracker {
   explicit CameraTracker(LedFinderConfig finder = {}, double lost_after_ms = 150.0);
 
   //! The frame's sample: a point when the LED was found, an event when tracking changed;
-  //! nothing for a frame that could not be read (bad_frame() then says why).
+  //! for a frame that could not be read (bad_frame() then says why) nothing, or `lost`
+  //! when the LED has not been seen for lost_after_ms.
   std::optional<wiimote::LedSample> on_frame(const CameraFrame& frame);
   //! Frames stopped (a camera gone): `lost` once the time-out has run out, at that time.
   std::optional<wiimote::LedSample> poll(Nanos now_ns);

@@ -118,6 +118,24 @@ TEST(CameraTracker, AnUnreadableFrameIsCountedAndSaidNotGuessed) {
   EXPECT_EQ(next->event, IrTrackerEvent::none);  // still tracking across the bad frame
 }
 
+TEST(CameraTracker, OnlyUnreadableFramesLoseTheLedAfterTheTimeOut) {
+  std::vector<StreamFrame> frames = test::make_frame_stream(moving(60));
+  for (std::size_t i = 1; i < frames.size(); ++i) frames[i].bytes.resize(10);  // a camera sending garbage
+  CameraTracker tracker({}, 150.0);
+  ASSERT_TRUE(tracker.on_frame(frames[0].frame()));
+  int lost = 0;
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    const std::optional<wiimote::LedSample> s = tracker.on_frame(frames[i].frame());
+    if (s) {
+      EXPECT_EQ(s->event, IrTrackerEvent::lost);
+      EXPECT_GE(s->t_ns - frames[0].t_ns, 150'000'000);
+      ++lost;
+    }
+  }
+  EXPECT_EQ(lost, 1);
+  EXPECT_EQ(tracker.counters().bad_frames, frames.size() - 1);
+}
+
 TEST(CameraTracker, FramesThatStopComingAreLostOnceByPoll) {
   const std::vector<StreamFrame> frames = test::make_frame_stream(moving(2));
   CameraTracker tracker({}, 150.0);
