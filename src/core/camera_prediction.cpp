@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/camera_model.hpp"
+
 namespace mallet {
 
 PredictionConfig prediction_for_camera(const PredictionConfig& preset, double rate_hz, double noise_m,
@@ -18,6 +20,16 @@ PredictionConfig prediction_for_camera(const PredictionConfig& preset, double ra
   const double next_held_ms = 1e3 / rate_hz + read_delay_ms;
   if (read_delay_ms >= 0 && next_held_ms <= c.horizon_ms) c.sample_delay_ms = read_delay_ms;
   return c;
+}
+
+CameraRouteTiming camera_route_timing(const AppConfig& config, const Scene& scene) {
+  CameraModel model = v4l2_camera(config.camera.rate_hz, config.camera.exposure_us);
+  model.camera_width_px = config.camera.width;
+  CameraRouteTiming t;
+  t.noise_m = model.noise_px * metres_per_camera_px(scene, model);
+  t.read_delay_ms = model.read_delay_ms;
+  t.predict = prediction_for_camera(config.timing.predict, config.camera.rate_hz, t.noise_m, t.read_delay_ms);
+  return t;
 }
 
 }  // namespace mallet

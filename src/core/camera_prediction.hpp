@@ -20,7 +20,9 @@
 // higher (balanced* at 240 Hz: p99 speed error on strikes ≥ 1 m/s ≈90 % against the
 // solver's 21 % and the untuned preset's 35 %). Only the camera's strike route uses it:
 // the Wii's stays the preset, bit for bit.
+#include "core/app_config.hpp"
 #include "core/contact_predictor.hpp"
+#include "core/scene.hpp"
 
 namespace mallet {
 
@@ -33,5 +35,16 @@ inline constexpr double kCameraFitWindowFrames = 4.5;
 //! (horizon_ms 0) stays off; a rate that is not positive leaves the preset as it is.
 PredictionConfig prediction_for_camera(const PredictionConfig& preset, double rate_hz, double noise_m,
                                        double read_delay_ms);
+
+//! How the kiosk's camera route times its strikes, from the settings: the camera modelled at
+//! [camera] rate_hz, exposure_us and width (core/camera_model.hpp; its noise in metres on
+//! `scene`) and [timing]'s prediction tuned for it. The live route and `simulate --causal
+//! --camera` both take it from here.
+struct CameraRouteTiming {
+  PredictionConfig predict;
+  double noise_m = 0;        //!< the centroid's noise on the scene, σ metres
+  double read_delay_ms = 0;  //!< from a frame's mid-exposure to the kiosk holding it
+};
+CameraRouteTiming camera_route_timing(const AppConfig& config, const Scene& scene);
 
 }  // namespace mallet

@@ -34,6 +34,12 @@ events.csv then adds after its columns  contact_t,sound_t,shown_t,predicted:
   sound_t    when both channels start in audio.wav (s)
   shown_t    the present time of the first frame that shows the bounce (s)
   predicted  1 when the strike was scheduled from a prediction, else 0
+With --causal --camera the strikes are decided as the kiosk's camera route decides them
+([input] source = "camera"): contact prediction tuned for the camera the settings'
+[camera] describe (rate_hz, exposure_us, width: its noise, a fit window of at most 4.5
+frames, and at 240 Hz prediction up to the next frame's arrival), and --input-delay-ms,
+unless given, the camera's read-out (exposure_us / 2 + one frame: 4.42 ms at 240 Hz).
+The trajectory's samples are then the camera's frames at their mid-exposure times.
 Without --causal every output is the exact stimulus, as before.
 TRAJ.csv has a header naming t,x,y; t in seconds (not decreasing); x,y normalised screen
 (0..1, origin top-left) or, with --input-space world, the mallet centre in metres.
@@ -62,17 +68,21 @@ SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and ex
   cmd->add_flag("--allow-long", options->allow_long,
                 "Simulate a trajectory whose t goes past 3600 s (one hour) instead of refusing it");
   cmd->add_flag("--causal", options->causal, "Decide strikes as the live kiosk does (see below)");
-  cmd->add_option("--input-delay-ms", options->input_delay_ms,
-                  "With --causal: from a sample's time to the kiosk knowing it (ms)")
-      ->check(CLI::Range(0.0, 1000.0))
-      ->capture_default_str();
+  CLI::Option* delay = cmd->add_option("--input-delay-ms", options->input_delay_ms,
+                                       "With --causal: from a sample's time to the kiosk knowing it (ms)")
+                           ->check(CLI::Range(0.0, 1000.0))
+                           ->capture_default_str();
+  cmd->add_flag("--camera", options->camera,
+                "With --causal: strikes as the kiosk's camera route decides them (see below)")
+      ->needs("--causal");
   cmd->add_option("--display-hz", options->display_hz, "With --causal: the display's refresh rate (Hz)")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   add_choice(*cmd, "--present-mode", options->present_mode, kPresentPacingNames,
              "With --causal: fifo, mailbox or immediate");
-  cmd->callback([options, rate, space] {
+  cmd->callback([options, rate, space, delay] {
     if (*rate != 0) options->sample_rate_hz = *rate;
+    options->input_delay_given = delay->count() > 0;
     options->input_space = *space == "world" ? InputSpace::world : InputSpace::screen;
     SimulateResult r;
     try {

@@ -241,9 +241,13 @@ DoctorCheck check_camera(const DoctorOptions& o, const AppConfig& config, std::o
   cam::CameraStatus s = device.status();
   const std::string described = device.describe();
   device.stop();
+  // describe() names the camera once it was opened, else says why it was not.
+  const std::string problem = s.mode.device.empty() || s.connected ? "" : ": " + s.problem;
+  if (s.counters.frames == 0 && s.problem.find(cam::kCameraInUse) != std::string::npos)
+    return {"camera", CheckLevel::warn, described + problem,
+            "the running kiosk streams from it: its operator page's D checks it from inside (Ctrl+Alt+O, then D)"};
   if (s.counters.frames == 0)
-    return fail("camera", described + (s.connected ? ": no frame came" : "") +
-                              (s.problem.empty() || s.connected ? "" : ": " + s.problem),
+    return fail("camera", described + (s.connected ? ": no frame came" : problem),
                 "plug the camera in and check `mallet camera list`; the kiosk's user must be in the 'video' group; "
                 "[camera] device names it");
   identity = camera_identity(s.mode);

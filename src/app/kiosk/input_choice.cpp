@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include "core/camera_model.hpp"
 #include "core/camera_prediction.hpp"
 #include "core/data_paths.hpp"
 #include "core/journal.hpp"
@@ -54,17 +53,13 @@ void choose_camera(KioskStage& stage, const InputDevices& devices) {
   if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
   // Contact prediction tuned for the camera: its noise, its rate and its read-out, at the
   // rate asked for (the doctor and the log say when the camera gives less).
-  const CameraConfig& asked = stage.config.camera;
+  const CameraRouteTiming timing = camera_route_timing(stage.config, stage.scene);
   AppConfig& tuned = stage.camera_route_config.emplace(stage.config);
-  CameraModel model = v4l2_camera(asked.rate_hz, asked.exposure_us);
-  model.camera_width_px = asked.width;
-  tuned.timing.predict = prediction_for_camera(stage.config.timing.predict, asked.rate_hz,
-                                               model.noise_px * metres_per_camera_px(stage.scene, model),
-                                               model.read_delay_ms);
-  if (tuned.timing.predict.horizon_ms > 0)
+  tuned.timing.predict = timing.predict;
+  if (timing.predict.horizon_ms > 0)
     journal::info("camera: contact prediction tuned for {:g} Hz: fit window {:.2f} ms, noise {:.3f} mm, read-out "
-                  "{:.2f} ms{}", asked.rate_hz, tuned.timing.predict.fit_window_ms, tuned.timing.predict.noise_m * 1e3,
-                  model.read_delay_ms, tuned.timing.predict.sample_delay_ms > 0 ? " (predicted up to it)" : "");
+                  "{:.2f} ms{}", stage.config.camera.rate_hz, timing.predict.fit_window_ms, timing.noise_m * 1e3,
+                  timing.read_delay_ms, timing.predict.sample_delay_ms > 0 ? " (predicted up to it)" : "");
   stage.remote = std::make_unique<RemotePointer>(stage.scene, tuned, *stage.rig.engine,
                                                  &devices.window.window->present_clock(), &devices.window.aspect);
   stage.remote->set_calibration(stage.calibration);

@@ -16,6 +16,7 @@
 #include "app/common/settings_source.hpp"
 #include "audio/wav_file.hpp"
 #include "core/actuator_signal.hpp"
+#include "core/camera_prediction.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
@@ -148,10 +149,16 @@ void check_stream(std::ofstream& out, const fs::path& path) {
 
 SimulateResult run_simulate(const SimulateOptions& options) {
   // --- everything that can be wrong with the input is found before anything is written
-  const AppConfig config = command_settings(options.config, options.config_dir, "simulate");
+  AppConfig config = command_settings(options.config, options.config_dir, "simulate");
   SimulateResult result;
   result.scene = config::load_scene(options.scene);
   const Scene& scene = result.scene;
+  double input_delay_ms = options.input_delay_ms;
+  if (options.causal && options.camera) {  // the kiosk's camera route, from the same settings
+    const CameraRouteTiming camera = camera_route_timing(config, scene);
+    config.timing.predict = camera.predict;
+    if (!options.input_delay_given) input_delay_ms = camera.read_delay_ms;
+  }
   const std::string trajectory_text = text::read_file(options.input);
   const input::Trajectory trajectory = input::parse_trajectory_csv(trajectory_text, options.input.string());
 
@@ -182,7 +189,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   std::optional<CausalTiming> causal;
   const PresentClock picture(options.display_hz, options.present_mode);
   if (options.causal)
-    causal = CausalTiming{static_cast<Nanos>(std::llround(options.input_delay_ms * 1e6)), &picture};
+    causal = CausalTiming{static_cast<Nanos>(std::llround(input_delay_ms * 1e6)), &picture};
   const Replay replay(scene, config, trajectory, options.input_space, options.input.string(), causal);
   const Nanos ahead = static_cast<Nanos>(std::llround(config.audio.schedule_ahead_ms * 1e6));
   result.impacts = replay.impacts();

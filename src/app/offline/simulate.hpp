@@ -56,6 +56,11 @@ struct SimulateOptions {
   bool allow_long = false;      //!< a trajectory past kLongTrajectoryS is simulated, not refused
   bool causal = false;          //!< decide strikes as the live kiosk does
   double input_delay_ms = 0;    //!< --causal: a sample is known this long after its time
+  //! --causal --camera: as the kiosk's camera route (core/camera_prediction.hpp:
+  //! camera_route_timing): prediction tuned for [camera], and input_delay_ms its read-out
+  //! unless given.
+  bool camera = false;
+  bool input_delay_given = false;
   double display_hz = 60;       //!< --causal: the frames' pacing ...
   PresentPacing present_mode = PresentPacing::fifo;  //!< ... and present mode
 };

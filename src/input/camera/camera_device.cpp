@@ -13,7 +13,7 @@ std::string mode_text(const CameraMode& mode) {
 
 CameraDevice::CameraDevice(std::unique_ptr<FrameGrabber> grabber, Clock& clock, CameraDeviceConfig config)
     : grabber_(std::move(grabber)), clock_(clock), config_(config), tracker_(config.finder, config.lost_after_ms) {
-  status_.problem = "not started";
+  status_.problem = "not opened yet";
 }
 
 CameraDevice::~CameraDevice() { stop(); }

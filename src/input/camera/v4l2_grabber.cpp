@@ -25,6 +25,11 @@ namespace {
 
 bool is_gone(int err) { return err == ENODEV || err == ENXIO || err == EIO || err == ENOENT; }
 
+//! errno's words, and for EBUSY who may hold the camera (a V4L2 node streams to one program).
+std::string why(int err) {
+  return err == EBUSY ? std::string(kCameraInUse) : errno_text(err);
+}
+
 std::optional<v4l2_queryctrl> query(int fd, std::uint32_t id) {
   v4l2_queryctrl q{};
   q.id = id;
@@ -127,7 +132,7 @@ Result<CameraMode, std::string> V4l2Grabber::negotiate(const std::string& path) 
   fmt.fmt.pix.field = V4L2_FIELD_NONE;
   if (xioctl(fd_, VIDIOC_S_FMT, &fmt) != 0)
     return tl::unexpected(fmt::format("{}: the camera refused {} {}x{} ({})", path, name_in(kPixelFormatNames, *chosen),
-                                      config_.width, config_.height, errno_text(errno)));
+                                      config_.width, config_.height, why(errno)));
   const std::optional<PixelFormat> got = pixel_format_of(fmt.fmt.pix.pixelformat);
   if (!got)
     return tl::unexpected(fmt::format("{}: asked for {}, the driver gave {}", path, name_in(kPixelFormatNames, *chosen),
@@ -204,7 +209,7 @@ Result<void, std::string> V4l2Grabber::start_streaming(const std::string& path) 
   req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   req.memory = V4L2_MEMORY_MMAP;
   if (xioctl(fd_, VIDIOC_REQBUFS, &req) != 0 || req.count < 2)
-    return tl::unexpected(fmt::format("{}: no memory-mapped buffers ({})", path, errno_text(errno)));
+    return tl::unexpected(fmt::format("{}: no memory-mapped buffers ({})", path, why(errno)));
   for (mapped_ = 0; mapped_ < std::min<std::size_t>(req.count, kBuffers); ++mapped_) {
     v4l2_buffer b{};
     b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
@@ -220,7 +225,7 @@ Result<void, std::string> V4l2Grabber::start_streaming(const std::string& path) 
   }
   v4l2_buf_type type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   if (xioctl(fd_, VIDIOC_STREAMON, &type) != 0)
-    return tl::unexpected(fmt::format("{}: streaming would not start ({})", path, errno_text(errno)));
+    return tl::unexpected(fmt::format("{}: streaming would not start ({})", path, why(errno)));
   return {};
 }
 

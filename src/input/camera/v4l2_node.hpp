@@ -17,6 +17,11 @@ inline constexpr const char* kDefaultVideoDir = "/dev";
 //! The device name that means "the first camera list_cameras() finds".
 inline constexpr const char* kAutoCamera = "auto";
 
+//! What an open says when another program streams from the camera (EBUSY): the doctor
+//! and the monitor, run beside a running kiosk, meet it.
+inline constexpr const char* kCameraInUse =
+    "in use by another program: the kiosk, if it runs (stop it first: sudo systemctl stop mallet)";
+
 //! ioctl(), again while a signal interrupts it; -1 with errno set on failure.
 int xioctl(int fd, unsigned long request, void* arg);
 //! Thread-safe strerror.

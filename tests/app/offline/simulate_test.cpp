@@ -262,6 +262,42 @@ TEST(SimulateCausal, APredictedStrikeSoundsAtItsPredictedContactBeforeTheSampleS
   EXPECT_NEAR(r.events.number(0, 5), 1.1, 0.011);  // the predicted speed, within 1 %
 }
 
+TEST(SimulateCausal, TheCameraRouteHoldsAFrameAfterItsReadOutAndPredictsAcrossIt) {
+  // The kiosk's camera route at 240 Hz, 500 µs: a frame is held 0.25 + 4.1667 ms after
+  // its mid-exposure time (core/camera_model.hpp), unless --input-delay-ms says otherwise.
+  const fs::path dir = test::scratch_dir();
+  const Scene scene = config::load_scene(test::percussion_scene());
+  auto run = [&](const std::string& name, const std::string& settings, bool camera) {
+    std::ofstream(dir / (name + ".toml")) << settings;
+    SimulateOptions o;
+    o.scene = test::percussion_scene();
+    o.input = write_one_strike(dir, scene, 240.0);
+    o.out_dir = dir / name;
+    o.input_space = InputSpace::world;
+    o.config = dir / (name + ".toml");
+    o.causal = true;
+    o.camera = camera;
+    run_simulate(o);
+    return csv::read(o.out_dir / "events.csv");
+  };
+  const std::string camera = "[camera]\nrate_hz = 240\nexposure_us = 500\n";
+  const csv::Table solver = run("solver", "[timing]\npredict_horizon_ms = 0\n" + camera, true);
+  ASSERT_EQ(solver.rows.size(), 1u);
+  EXPECT_EQ(solver.rows[0][9], "0");
+  const double contact = solver.number(0, 6);
+  const double first_after = 0.05 + std::ceil((contact - 0.05) * 240.0) / 240.0;
+  EXPECT_NEAR(solver.number(0, 7), first_after + 0.00025 + 1.0 / 240.0, 1e-6);
+  // With the presets' prediction the straight downswing is called before its contact's
+  // frame is held, and scheduled at the predicted contact.
+  const csv::Table tuned = run("tuned", "[timing]\npredict_horizon_ms = 10\n" + camera, true);
+  ASSERT_EQ(tuned.rows.size(), 1u);
+  EXPECT_EQ(tuned.rows[0][9], "1");
+  EXPECT_NEAR(tuned.number(0, 7), 0.05 + 0.1 / 1.1, 2e-4);
+  // Without --camera the same settings are the Wii's route: no read-out, the preset as it is.
+  const csv::Table plain = run("plain", "[timing]\npredict_horizon_ms = 0\n" + camera, false);
+  EXPECT_NEAR(plain.number(0, 7), first_after, 1e-6);
+}
+
 TEST(SimulateCausal, WithoutCausalTheTimingSettingsChangeNothing) {
   const fs::path dir = test::scratch_dir();
   const Scene scene = config::load_scene(test::percussion_scene());

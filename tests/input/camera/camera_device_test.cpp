@@ -106,7 +106,7 @@ TEST(CameraDevice, ACameraNotThereYetIsWaitedForAndSaidWhy) {
   CameraDevice device(std::move(owned), clock);
   std::atomic<int> samples{0};
   device.set_sample_sink([&](std::span<const wiimote::LedSample> s, Nanos) { samples += static_cast<int>(s.size()); });
-  EXPECT_EQ(device.describe(), "camera: not started");
+  EXPECT_EQ(device.describe(), "camera: not opened yet");
   device.start();
   ASSERT_TRUE(eventually([&] { return grabber->opens() >= 1; }));
   ASSERT_TRUE(eventually([&] { return samples.load() >= 5; }));
