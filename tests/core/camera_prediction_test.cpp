@@ -16,6 +16,7 @@
 #include "core/camera_prediction.hpp"
 #include "core/strike_detector.hpp"
 #include "core/stroke_corpus.hpp"
+#include "core/stop_above_check.hpp"
 #include "test_paths.hpp"
 
 namespace mallet {
@@ -33,10 +34,6 @@ std::vector<PredictionConfig> tuned_presets(const CameraModel& camera) {
   for (const PredictionConfig& p : {prediction_balanced(), prediction_exact(), prediction_eager()})
     out.push_back(prediction_for_camera(p, camera.rate_hz, noise_m, camera.read_delay_ms));
   return out;
-}
-
-double plane_of(int target) {
-  return percussion().targets[static_cast<std::size_t>(target)].top_y + percussion().mallet_radius_m;
 }
 
 TEST(CameraPrediction, ChangesOnlyWhatItSays) {
@@ -71,53 +68,15 @@ TEST(CameraPrediction, ReadDelayIsHalfTheExposureAndOneFrame) {
   EXPECT_EQ(wii_camera(100).read_delay_ms, 0.0);
 }
 
-//! A minimum-jerk descent from `from_y` to `to_y` over `duration_s`, held there, sampled
-//! from `phase` of a period on.
-std::vector<PointerSample> min_jerk_descent(double x, double from_y, double to_y, double duration_s, double rate_hz,
-                                            double phase) {
-  std::vector<PointerSample> out;
-  for (int k = 0;; ++k) {
-    const double t = (k + phase) / rate_hz - 0.05;
-    if (t > duration_s + 0.3) break;
-    const double u = std::clamp(t / duration_s, 0.0, 1.0);
-    const double s = ((6 * u - 15) * u + 10) * u * u * u;
-    out.push_back({kT0 + static_cast<Nanos>(std::llround(t * 1e9)), x, from_y + (to_y - from_y) * s});
-  }
-  return out;
-}
-
 // The could_stop guarantee holds for the tuned presets, reaching to the next frame's
 // arrival: a hand braking at no more than half of braking_m_per_s2 that stops clearance_m
 // or more above a bar is never predicted, on exact samples, at any peak speed, stop height
 // and phase.
 TEST(CameraPrediction, NeverPredictsAHandThatStopsAboveTheClearance) {
-  const std::vector<ContactZone> zones = contact_zones(percussion());
-  const int target = 3;
-  const Target& bar = percussion().targets[target];
-  const double x = 0.5 * (bar.x_min + bar.x_max);
-  constexpr double kMinJerkPeakAccel = 5.7735, kMinJerkPeakSpeed = 1.875;
   int strokes = 0;
-  for (double rate : kRates) {
-    for (const PredictionConfig& config : tuned_presets(v4l2_camera(rate))) {
-      for (double peak : {0.2, 0.5, 1.0, 2.0, 4.0}) {
-        const double travel = std::max(0.02, kMinJerkPeakAccel * peak * peak /
-                                                 (kMinJerkPeakSpeed * kMinJerkPeakSpeed * 0.5 * config.braking_m_per_s2));
-        const double duration = kMinJerkPeakSpeed * travel / peak;
-        for (double above : {0.0, 0.0005, 0.002, 0.005, 0.010}) {
-          const double stop_y = plane_of(target) + config.clearance_m + above;
-          for (double phase : {0.0, 0.25, 0.5, 0.75}) {
-            ContactPredictor p(config);
-            for (const PointerSample& s : min_jerk_descent(x, stop_y + travel, stop_y, duration, rate, phase)) {
-              p.add(s.t_ns, {s.x, s.y});
-              ASSERT_FALSE(p.predict(zones)) << "peak " << peak << " m/s, stops " << (config.clearance_m + above) * 1e3
-                                             << " mm above, rate " << rate << ", phase " << phase;
-            }
-            ++strokes;
-          }
-        }
-      }
-    }
-  }
+  for (double rate : kRates)
+    for (const PredictionConfig& config : tuned_presets(v4l2_camera(rate)))
+      strokes += test::expect_stops_never_predicted(config, percussion(), 3, rate, kT0);
   EXPECT_EQ(strokes, 2 * 3 * 5 * 5 * 4);
 }
 

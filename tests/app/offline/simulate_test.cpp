@@ -198,8 +198,9 @@ struct CausalRun {
   std::vector<float> actuator, acoustic;
 };
 
+//! With `camera`, as the kiosk's camera route (--camera: the read-out as the input delay).
 CausalRun run_causal(const fs::path& dir, const std::string& name, const std::string& settings, double delay_ms,
-                     double rate_hz = 60.0) {
+                     double rate_hz = 60.0, bool camera = false) {
   const Scene scene = config::load_scene(test::percussion_scene());
   std::ofstream(dir / (name + ".toml")) << settings;
   SimulateOptions o;
@@ -210,6 +211,7 @@ CausalRun run_causal(const fs::path& dir, const std::string& name, const std::st
   o.config = dir / (name + ".toml");
   o.causal = true;
   o.input_delay_ms = delay_ms;
+  o.camera = camera;
   run_simulate(o);
   const audio::WavData wav = audio::read_wav(o.out_dir / "audio.wav");
   const auto a = wav.channel(1), n = wav.channel(0);
@@ -266,19 +268,8 @@ TEST(SimulateCausal, TheCameraRouteHoldsAFrameAfterItsReadOutAndPredictsAcrossIt
   // The kiosk's camera route at 240 Hz, 500 µs: a frame is held 0.25 + 4.1667 ms after
   // its mid-exposure time (core/camera_model.hpp), unless --input-delay-ms says otherwise.
   const fs::path dir = test::scratch_dir();
-  const Scene scene = config::load_scene(test::percussion_scene());
   auto run = [&](const std::string& name, const std::string& settings, bool camera) {
-    std::ofstream(dir / (name + ".toml")) << settings;
-    SimulateOptions o;
-    o.scene = test::percussion_scene();
-    o.input = write_one_strike(dir, scene, 240.0);
-    o.out_dir = dir / name;
-    o.input_space = InputSpace::world;
-    o.config = dir / (name + ".toml");
-    o.causal = true;
-    o.camera = camera;
-    run_simulate(o);
-    return csv::read(o.out_dir / "events.csv");
+    return run_causal(dir, name, settings, 0.0, 240.0, camera).events;
   };
   const std::string camera = "[camera]\nrate_hz = 240\nexposure_us = 500\n";
   const csv::Table solver = run("solver", "[timing]\npredict_horizon_ms = 0\n" + camera, true);
