@@ -42,8 +42,8 @@ void choose_mouse(KioskStage& stage, const InputDevices& devices) {
   stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
 }
 
-}  // namespace
-
+//! A V4L2 camera as the IR tracker: the remote's pointer and calibration, its own reading
+//! thread, and the route's prediction tuned for it.
 void choose_camera(KioskStage& stage, const InputDevices& devices) {
   stage.source = InputSource::camera;
   stage.input_why = "the settings say camera";
@@ -72,6 +72,8 @@ void choose_camera(KioskStage& stage, const InputDevices& devices) {
   stage.camera->set_sample_sink(
       [s](std::span<const input::wiimote::LedSample> samples, Nanos now) { s->remote->on_samples(samples, now); });
 }
+
+}  // namespace
 
 void choose_input(KioskStage& stage, const InputDevices& devices) {
   const std::string& want = stage.config.input.source;
