@@ -1,4 +1,5 @@
 #include "app/bench/bench_input_camera.hpp"
+#include "app/bench/bench_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,12 +74,7 @@ struct Stats {
   double median_us = 0, p99_us = 0;
 };
 
-Stats stats(std::vector<double>& us) {
-  if (us.empty()) return {};
-  std::sort(us.begin(), us.end());
-  const auto at = [&](double q) { return us[std::min(us.size() - 1, static_cast<std::size_t>(q * static_cast<double>(us.size())))]; };
-  return {at(0.5), at(0.99)};
-}
+Stats stats(const std::vector<double>& us) { return {nearest_rank(us, 0.5), nearest_rank(us, 0.99)}; }
 
 enum class Mode { tracking, acquiring, lost };
 

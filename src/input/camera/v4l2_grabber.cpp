@@ -83,7 +83,7 @@ Result<CameraMode, std::string> V4l2Grabber::open() {
   const Result<std::string, std::string> path = find_camera(config_.device, video_dir_);
   if (!path) return tl::unexpected(path.error());
   fd_ = ::open(path->c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
-  if (fd_ < 0) return tl::unexpected(open_error(*path, errno));
+  if (fd_ < 0) return tl::unexpected(open_error(*path, errno, "video"));
   Result<CameraMode, std::string> mode = negotiate(*path);
   if (!mode) {
     close();

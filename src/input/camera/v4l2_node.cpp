@@ -24,14 +24,6 @@ int xioctl(int fd, unsigned long request, void* arg) {
   return r;
 }
 
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
-
-std::string open_error(const std::string& path, int err) {
-  std::string out = path + ": " + errno_text(err);
-  if (err == EACCES || err == EPERM) out += " (is the user in the 'video' group?)";
-  return out;
-}
-
 std::optional<PixelFormat> pixel_format_of(std::uint32_t fourcc) {
   switch (fourcc) {
     case V4L2_PIX_FMT_GREY: return PixelFormat::grey;
@@ -168,7 +160,7 @@ CameraScan scan_cameras(const std::string& dir, bool with_formats) {
     const std::string path = (std::filesystem::path(dir) / name).string();
     const int fd = ::open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-      if (scan.unreadable++ == 0) scan.first_error = open_error(path, errno);
+      if (scan.unreadable++ == 0) scan.first_error = open_error(path, errno, "video");
       continue;
     }
     v4l2_capability cap{};

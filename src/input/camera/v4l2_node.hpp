@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/result.hpp"
+#include "input/device_errors.hpp"
 #include "input/camera/camera_frame.hpp"
 
 namespace mallet::input::camera {
@@ -24,10 +25,6 @@ inline constexpr const char* kCameraInUse =
 
 //! ioctl(), again while a signal interrupts it; -1 with errno set on failure.
 int xioctl(int fd, unsigned long request, void* arg);
-//! Thread-safe strerror.
-std::string errno_text(int err);
-//! "/dev/video0: Permission denied (is the user in the 'video' group?)"
-std::string open_error(const std::string& path, int err);
 
 //! GREY, YUYV or MJPG (MJPEG and JPEG both read as mjpeg); nothing for any other code.
 std::optional<PixelFormat> pixel_format_of(std::uint32_t fourcc);

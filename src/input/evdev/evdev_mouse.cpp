@@ -15,6 +15,8 @@
 
 #include <libevdev/libevdev.h>
 
+#include "input/device_errors.hpp"
+
 namespace mallet::input::evdev {
 
 //! An open event node: its fd and libevdev handle, and what open() learnt about it.
@@ -44,15 +46,6 @@ class EvdevNode {
 
 namespace {
 
-// Thread-safe (std::strerror is not): the reading thread and open() may run at once.
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
-
-std::string open_error(const std::string& path, int err) {
-  std::string out = path + ": " + errno_text(err);
-  if (err == EACCES || err == EPERM) out += " (is the user in the 'input' group?)";
-  return out;
-}
-
 std::string file_kind(mode_t mode) {
   if (S_ISREG(mode)) return "a regular file";
   if (S_ISDIR(mode)) return "a directory";
@@ -77,7 +70,7 @@ tl::unexpected<NodeError> node_error(std::string message, bool unreadable = fals
 //! and the thread waits in poll(), where stop() can wake it). Checks it is an evdev node.
 NodeResult open_evdev(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) return node_error(open_error(path, errno), true);
+  if (fd < 0) return node_error(open_error(path, errno, "input"), true);
   struct stat st {};
   const bool stat_ok = ::fstat(fd, &st) == 0;
   if (!stat_ok || !S_ISCHR(st.st_mode)) {
