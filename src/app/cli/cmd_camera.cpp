@@ -54,9 +54,7 @@ void run_monitor(const MonitorCli& cli) {
   CameraConfig camera = config.camera;
   if (!cli.device.empty()) camera.device = cli.device;
   input::SteadyClock clock;
-  cam::CameraDeviceConfig dc;
-  dc.lost_after_ms = config.tracking.lost_after_ms;
-  cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(camera, cli.dir), clock, dc);
+  cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(camera, cli.dir), clock, cam::camera_device_config(config));
   finish_with(run_until_interrupted([&](const std::atomic<bool>& interrupted) {
     return run_camera_monitor(device, clock, cli.options, interrupted, stdout);
   }));

@@ -233,9 +233,7 @@ DoctorCheck check_camera(const DoctorOptions& o, const AppConfig& config, std::o
     return {"camera", CheckLevel::ok, found, ""};
   }
   input::SteadyClock clock;
-  cam::CameraDeviceConfig dc;
-  dc.lost_after_ms = config.tracking.lost_after_ms;
-  cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(config.camera), clock, dc);
+  cam::CameraDevice device(std::make_unique<cam::V4l2Grabber>(config.camera), clock, cam::camera_device_config(config));
   device.start();
   std::this_thread::sleep_for(std::chrono::duration<double>(o.camera_wait_s));
   cam::CameraStatus s = device.status();

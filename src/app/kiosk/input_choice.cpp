@@ -42,15 +42,28 @@ void choose_mouse(KioskStage& stage, const InputDevices& devices) {
   stage.mouse_line = stage.evdev->describe() + ", each report stamped by the kernel";
 }
 
+//! The saved calibration (camera → screen), its status line, and a warning when it was refused.
+void load_calibration(KioskStage& stage) {
+  SavedCalibration saved = load_saved_calibration(calibration_path());
+  stage.calibration = std::move(saved.calibration);
+  stage.calibration_status = std::move(saved.status);
+  if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
+}
+
+//! The IR tracker's pointer (the remote's or the camera's): the route on `route_config`,
+//! which must live as long as the stage, with the calibration in use.
+void make_remote_pointer(KioskStage& stage, const InputDevices& devices, const AppConfig& route_config) {
+  stage.remote = std::make_unique<RemotePointer>(stage.scene, route_config, *stage.rig.engine,
+                                                 &devices.window.window->present_clock(), &devices.window.aspect);
+  stage.remote->set_calibration(stage.calibration);
+}
+
 //! A V4L2 camera as the IR tracker: the remote's pointer and calibration, its own reading
 //! thread, and the route's prediction tuned for it.
 void choose_camera(KioskStage& stage, const InputDevices& devices) {
   stage.source = InputSource::camera;
   stage.input_why = "the settings say camera";
-  SavedCalibration saved = load_saved_calibration(calibration_path());
-  stage.calibration = std::move(saved.calibration);
-  stage.calibration_status = std::move(saved.status);
-  if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
+  load_calibration(stage);
   // Contact prediction tuned for the camera: its noise, its rate and its read-out, at the
   // rate asked for (the doctor and the log say when the camera gives less).
   const CameraRouteTiming timing = camera_route_timing(stage.config, stage.scene);
@@ -60,13 +73,10 @@ void choose_camera(KioskStage& stage, const InputDevices& devices) {
     journal::info("camera: contact prediction tuned for {:g} Hz: fit window {:.2f} ms, noise {:.3f} mm, read-out "
                   "{:.2f} ms{}", stage.config.camera.rate_hz, timing.predict.fit_window_ms, timing.noise_m * 1e3,
                   timing.read_delay_ms, timing.predict.sample_delay_ms > 0 ? " (predicted up to it)" : "");
-  stage.remote = std::make_unique<RemotePointer>(stage.scene, tuned, *stage.rig.engine,
-                                                 &devices.window.window->present_clock(), &devices.window.aspect);
-  stage.remote->set_calibration(stage.calibration);
-  input::camera::CameraDeviceConfig dc;
-  dc.lost_after_ms = stage.config.tracking.lost_after_ms;
+  make_remote_pointer(stage, devices, tuned);
   stage.camera = std::make_unique<input::camera::CameraDevice>(
-      std::make_unique<input::camera::V4l2Grabber>(stage.config.camera), devices.clock, dc);
+      std::make_unique<input::camera::V4l2Grabber>(stage.config.camera), devices.clock,
+      input::camera::camera_device_config(stage.config));
   KioskStage* s = &stage;
   stage.remote->on_strike = [s](const Impact& i) { s->tally->record(i); };
   stage.camera->set_sample_sink(
@@ -105,10 +115,7 @@ void choose_input(KioskStage& stage, const InputDevices& devices) {
     stage.input_why = "the settings say wiimote";
   }
   if (want != "replay") stage.source = InputSource::wiimote;
-  SavedCalibration saved = load_saved_calibration(calibration_path());
-  stage.calibration = std::move(saved.calibration);
-  stage.calibration_status = std::move(saved.status);
-  if (!saved.warning.empty()) journal::warning("{}", saved.warning.c_str());
+  load_calibration(stage);
   if (stage.source == InputSource::replay && !stage.calibration) {
     // A recording without a calibration: the camera's view mirrored onto the whole screen
     // (the camera faces the visitor), so a demo plays at once.
@@ -117,9 +124,7 @@ void choose_input(KioskStage& stage, const InputDevices& devices) {
     stage.calibration = c;
     stage.calibration_status = "calibration: none; the camera's view mirrored onto the screen";
   }
-  stage.remote = std::make_unique<RemotePointer>(stage.scene, stage.config, *stage.rig.engine,
-                                                 &devices.window.window->present_clock(), &devices.window.aspect);
-  stage.remote->set_calibration(stage.calibration);
+  make_remote_pointer(stage, devices, stage.config);
   input::wiimote::WiimoteDeviceConfig dc = kiosk_device_config(stage.config, stage.calibration);
   if (stage.calibration && !stage.calibration->ir_sensitivity.empty())
     stage.calibration_status_sensitivity = "IR sensitivity " + stage.calibration->ir_sensitivity + " (saved with it)";

@@ -11,6 +11,12 @@ std::string mode_text(const CameraMode& mode) {
                      mode.rate_hz > 0 ? fmt::format("{:.4g} Hz", mode.rate_hz) : std::string("? Hz"));
 }
 
+CameraDeviceConfig camera_device_config(const AppConfig& config) {
+  CameraDeviceConfig c;
+  c.lost_after_ms = config.tracking.lost_after_ms;
+  return c;
+}
+
 CameraDevice::CameraDevice(std::unique_ptr<FrameGrabber> grabber, Clock& clock, CameraDeviceConfig config)
     : grabber_(std::move(grabber)), clock_(clock), config_(config), tracker_(config.finder, config.lost_after_ms) {
   status_.problem = "not opened yet";

@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "core/app_config.hpp"
 #include "input/camera/camera_tracker.hpp"
 #include "input/camera/frame_grabber.hpp"
 #include "input/clock.hpp"
@@ -28,6 +29,10 @@ struct CameraDeviceConfig {
   Nanos reopen_interval_ns = kNanosPerSecond;  //!< after a failed open or the camera went away
   int wait_ms = 100;                           //!< one wait's bound (how soon stop() is seen)
 };
+
+//! The kiosk's camera device settings from its settings ([tracking] lost_after_ms; the
+//! finder's and the reopening's defaults), as wiimote::device_config is the remote's.
+CameraDeviceConfig camera_device_config(const AppConfig& config);
 
 //! The reading thread's latest state, for the operator page, the log and `camera monitor`.
 struct CameraStatus {
