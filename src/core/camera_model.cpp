@@ -38,4 +38,8 @@ double metres_per_camera_px(const Scene& scene, const CameraModel& camera) {
   return std::fabs(scene.screen_to_world.right_m - scene.screen_to_world.left_m) / camera.camera_width_px;
 }
 
+double noise_metres(const Scene& scene, const CameraModel& camera) {
+  return camera.noise_px * metres_per_camera_px(scene, camera);
+}
+
 }  // namespace mallet

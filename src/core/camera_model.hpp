@@ -65,5 +65,7 @@ std::vector<CameraModel> every_camera();
 
 //! Metres per camera pixel for a scene's screen mapping (the noise model's scale).
 double metres_per_camera_px(const Scene& scene, const CameraModel& camera);
+//! The camera's centroid noise on the scene, σ metres (noise_px × metres_per_camera_px).
+double noise_metres(const Scene& scene, const CameraModel& camera);
 
 }  // namespace mallet

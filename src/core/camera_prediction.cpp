@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/camera_model.hpp"
 
 namespace mallet {
 
@@ -22,13 +21,17 @@ PredictionConfig prediction_for_camera(const PredictionConfig& preset, double ra
   return c;
 }
 
+PredictionConfig prediction_for_camera(const PredictionConfig& preset, const CameraModel& camera, const Scene& scene) {
+  return prediction_for_camera(preset, camera.rate_hz, noise_metres(scene, camera), camera.read_delay_ms);
+}
+
 CameraRouteTiming camera_route_timing(const AppConfig& config, const Scene& scene) {
   CameraModel model = v4l2_camera(config.camera.rate_hz, config.camera.exposure_us);
   model.camera_width_px = config.camera.width;
   CameraRouteTiming t;
-  t.noise_m = model.noise_px * metres_per_camera_px(scene, model);
+  t.noise_m = noise_metres(scene, model);
   t.read_delay_ms = model.read_delay_ms;
-  t.predict = prediction_for_camera(config.timing.predict, config.camera.rate_hz, t.noise_m, t.read_delay_ms);
+  t.predict = prediction_for_camera(config.timing.predict, model, scene);
   return t;
 }
 

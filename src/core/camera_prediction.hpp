@@ -21,6 +21,7 @@
 // solver's 21 % and the untuned preset's 35 %). Only the camera's strike route uses it:
 // the Wii's stays the preset, bit for bit.
 #include "core/app_config.hpp"
+#include "core/camera_model.hpp"
 #include "core/contact_predictor.hpp"
 #include "core/scene.hpp"
 
@@ -35,6 +36,10 @@ inline constexpr double kCameraFitWindowFrames = 4.5;
 //! (horizon_ms 0) stays off; a rate that is not positive leaves the preset as it is.
 PredictionConfig prediction_for_camera(const PredictionConfig& preset, double rate_hz, double noise_m,
                                        double read_delay_ms);
+
+//! The same for a modelled camera on `scene` (its rate, its noise in metres, its read delay):
+//! what the bench's starred rows and the kiosk's camera route run.
+PredictionConfig prediction_for_camera(const PredictionConfig& preset, const CameraModel& camera, const Scene& scene);
 
 //! How the kiosk's camera route times its strikes, from the settings: the camera modelled at
 //! [camera] rate_hz, exposure_us and width (core/camera_model.hpp; its noise in metres on

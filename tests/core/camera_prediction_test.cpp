@@ -29,10 +29,9 @@ constexpr double kRates[] = {120.0, 240.0};
 
 //! The shipped presets tuned for the corpus's V4L2 camera at `camera`'s rate and noise.
 std::vector<PredictionConfig> tuned_presets(const CameraModel& camera) {
-  const double noise_m = camera.noise_px * metres_per_camera_px(percussion(), camera);
   std::vector<PredictionConfig> out;
   for (const PredictionConfig& p : {prediction_balanced(), prediction_exact(), prediction_eager()})
-    out.push_back(prediction_for_camera(p, camera.rate_hz, noise_m, camera.read_delay_ms));
+    out.push_back(prediction_for_camera(p, camera, percussion()));
   return out;
 }
 

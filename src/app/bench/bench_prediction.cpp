@@ -195,8 +195,7 @@ std::vector<PredictionBenchRow> measure_prediction_trade(const Scene& scene, con
         PredictionConfig c = level.config;
         c.horizon_ms = horizon;
         if (level.for_camera)
-          c = prediction_for_camera(c, camera.rate_hz, camera.noise_px * metres_per_camera_px(scene, camera),
-                                    camera.read_delay_ms);
+          c = prediction_for_camera(c, camera, scene);
         rows.push_back(run_row(scene, contact, corpus, camera, c, level.name));
       }
     }
@@ -230,7 +229,7 @@ int run_bench_prediction(const Scene& scene, const ContactConfig& contact, const
   for (const CameraModel& c : corpus.cameras) {
     out << fmt::format("  {:<4} {:3.0f} Hz: σ {:.2f} px ({:.2f} mm), {:.0f} px over the screen, {}, {:.1f} % dropped, "
                        "read delay {:.1f} ms\n",
-                       c.name, c.rate_hz, c.noise_px, c.noise_px * metres_per_camera_px(scene, c) * 1e3,
+                       c.name, c.rate_hz, c.noise_px, noise_metres(scene, c) * 1e3,
                        c.camera_width_px, c.quantise_px ? "whole pixels" : "subpixel centroid",
                        c.drop_probability * 100, c.read_delay_ms);
   }
