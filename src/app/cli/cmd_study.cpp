@@ -29,8 +29,26 @@ struct SummaryFlags {
   std::string participant;
   int resamples = study::kDefaultResamples;
   std::uint64_t seed = 1;
-  std::filesystem::path plots, report;
+  std::filesystem::path plots, report, table, json;
+  std::string shape = "logistic";
+  std::string lapse = "0";
+  double criterion = 0.75;
 };
+
+//! `--lapse fit|0|VALUE` into the fit's options; "" when it reads, else what is wrong.
+std::string read_lapse(const std::string& v, study::FitOptions& fit) {
+  if (v == "fit") {
+    fit.fit_lapse = true;
+    return {};
+  }
+  char* end = nullptr;
+  const double lapse = std::strtod(v.c_str(), &end);
+  if (end == v.c_str() || *end != '\0' || !(lapse >= 0 && lapse < 0.5))
+    return "\"fit\", or a fixed lapse rate from 0 to below 0.5, not \"" + v + "\"";
+  fit.fit_lapse = false;
+  fit.lapse = lapse;
+  return {};
+}
 
 void add_summary(CLI::App& study) {
   auto o = std::make_shared<SummaryFlags>();
@@ -51,6 +69,21 @@ condition, so the same data gives the same intervals.
 --plots DIR: psychometric.png (pooled curves, points sized by trials), thresholds.png (each
 participant's threshold and interval), response_times.png; each with its .dat and .gp
 (gnuplot-nox draws them; without it the data is still written).
+--shape logistic|weibull|normal|gumbel: the psychometric function's shape (default logistic);
+--criterion C: the threshold is the difference answered correctly C of the time without lapses
+(default 0.75, from above 0.5 to below 1); --lapse fit|0|VALUE: the lapse rate fitted within
+[0, 0.06] (Wichmann & Hill), or fixed (default 0). A maximum on the search's edge is not an
+estimate: "threshold below/above the tested range" and "no rise in accuracy" print "-" with
+the reason; "a step" prints the threshold and "slope at least X" (the likelihood-ratio 95 %
+limit). An interval that reaches the search's edge is one-sided ("<= 13.37"); a threshold's is
+never below 0. Below the fits, the goodness of fit: the deviance, its p-value from the
+bootstrap, and each level's deviance residual; with several participants, the group's mean ±
+SE and median of their own thresholds.
+--table FILE.csv: one row per fit, pooled and per participant (columns: condition,
+participant, shape, criterion, lapse_mode, levels, trials, threshold_pct, threshold_lo,
+threshold_hi, slope, slope_lo, slope_hi, slope_at_least, lapse, lapse_lo, lapse_hi,
+log_likelihood, deviance, deviance_p, resamples, flags, note; an empty cell: no such number).
+--json FILE.json: the same fits, and the group's, as JSON.
 --report FILE.md: a short markdown report of all of it, embedding the plots.
 A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: problem.)");
   cmd->add_option("--results", o->results, "Results CSVs written by `mallet study`, or folders of them")
@@ -66,6 +99,27 @@ A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: pro
           },
           "0 or 20..100000"));
   cmd->add_option("--seed", o->seed, "Seed of the bootstrap's draws")->capture_default_str();
+  cmd->add_option("--shape", o->shape, "Psychometric function: logistic, weibull, normal or gumbel")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"logistic", "weibull", "normal", "gumbel"}));
+  cmd->add_option("--lapse", o->lapse, "Lapse rate: fit (within [0, 0.06]), or a fixed value from 0 to below 0.5")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            study::FitOptions ignored;
+            return read_lapse(v, ignored);
+          },
+          "fit|0|VALUE"));
+  cmd->add_option("--criterion", o->criterion, "The threshold's proportion correct (without lapses)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            const double c = std::strtod(v.c_str(), nullptr);
+            return c > 0.5 && c < 1 ? std::string() : "from above 0.5 to below 1";
+          },
+          "(0.5, 1)"));
+  cmd->add_option("--table", o->table, "Write every fit as one CSV row to this file");
+  cmd->add_option("--json", o->json, "Write every fit, and the group's, as JSON to this file");
   cmd->add_option("--plots", o->plots, "Write PNG plots (and their .dat, .gp) into this folder");
   cmd->add_option("--report", o->report, "Write a markdown report to this file");
   cmd->callback([o] {
@@ -90,7 +144,10 @@ A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: pro
       for (const std::string& w : file.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
       rows.insert(rows.end(), file.rows.begin(), file.rows.end());
     }
-    const study::SummaryOptions options{o->resamples, o->seed};
+    study::SummaryOptions options{o->resamples, o->seed, {}};
+    options.fit.model.shape = *value_named(study::kPsychometricShapeNames, o->shape);
+    options.fit.model.criterion = o->criterion;
+    read_lapse(o->lapse, options.fit);
     StudyReport report;
     report.files = files;
     report.resamples = o->resamples;
@@ -116,6 +173,16 @@ A file or folder that is missing, or a malformed row: exit 2 with FILE:LINE: pro
                                           : (std::to_string(files.size()) + " results files").c_str());
     std::fputs(report.pooled_text.c_str(), stdout);
     std::fputs(report.participants_text.c_str(), stdout);
+    report.group = study::group_thresholds(report.participants);
+    std::fputs(study::format_group(report.group).c_str(), stdout);
+    if (!o->table.empty()) {
+      write_fit_table(report, o->table);
+      std::printf("wrote %s\n", o->table.c_str());
+    }
+    if (!o->json.empty()) {
+      write_fit_json(report, o->json);
+      std::printf("wrote %s\n", o->json.c_str());
+    }
     if (!o->plots.empty())
       for (const std::string& line : write_study_plots(report, o->plots)) std::printf("%s\n", line.c_str());
     if (!o->report.empty()) {

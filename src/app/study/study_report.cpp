@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include "core/atomic_file.hpp"
 #include "core/gnuplot.hpp"
 #include "core/file_error.hpp"
 
@@ -22,6 +24,29 @@ void write_file(const std::filesystem::path& file, const std::string& text) {
   std::ofstream f(file);
   f << text;
   if (!f) throw FileError(file.string(), 0, 0, "cannot write");
+}
+
+//! The fitted curve as a gnuplot expression of x.
+std::string gnuplot_curve(const study::FitOptions& o, const study::PsychometricFit& f) {
+  const study::PsychometricModel& m = o.model;
+  const double c = (m.criterion - m.guess) / (1 - m.guess);
+  std::string core;
+  switch (m.shape) {
+    case study::PsychometricShape::logistic:
+      core = fmt::format("1/(1 + exp(-({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold, std::log(c / (1 - c)));
+      break;
+    case study::PsychometricShape::normal:
+      core = fmt::format("norm({:.9g}*(x - {:.9g}) + {:.9g})", f.slope, f.threshold, study::normal_quantile(c));
+      break;
+    case study::PsychometricShape::gumbel:
+      core = fmt::format("(1 - exp(-exp({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold,
+                         std::log(-std::log(1 - c)));
+      break;
+    case study::PsychometricShape::weibull:
+      core = fmt::format("(x > 0 ? 1 - exp(-{:.9g}*(x/{:.9g})**{:.9g}) : 0)", -std::log(1 - c), f.threshold, f.slope);
+      break;
+  }
+  return fmt::format("{:.9g} + {:.9g}*{}", m.guess, 1 - m.guess - f.lapse, core);
 }
 
 //! The conditions with a fit, as the pool has them.
@@ -61,7 +86,8 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
   gp << "set title 'Pooled psychometric functions (2AFC); points sized by trials, bars: 95 % intervals'\n"
      << "set xlabel 'difference in B (%)'\nset ylabel 'proportion correct'\nset yrange [0.3:1.05]\n"
      << "set xrange [" << 0 << ":" << x_max * 1.05 + 1 << "]\n"
-     << "set arrow from graph 0, first 0.75 to graph 1, first 0.75 nohead dt 2 lc rgb '#888888'\n";
+     << fmt::format("set arrow from graph 0, first {0:g} to graph 1, first {0:g} nohead dt 2 lc rgb '#888888'\n",
+                    r.pooled.fit.model.criterion);
   std::string plot = "plot ";
   int block = 0;
   for (const study::ConditionSummary* c : fitted(r.pooled)) {
@@ -74,13 +100,13 @@ void psychometric_plot(const StudyReport& r, const std::filesystem::path& dir) {
               "using 1:2:" + std::string(size) + " with points pt 7 ps variable lc " + std::to_string(colour) +
                   " title '" + c->condition + "'");
     const study::PsychometricFit& f = *c->fit;
-    if (f.ok) {
-      const std::string curve = fmt::format("0.5 + 0.5 / (1 + exp(-{:.9g} * (x - {:.9g})))", f.slope, f.threshold);
-      plot += ", \\\n     " + std::string(curve) + " with lines lc " + std::to_string(colour) + " notitle";
+    if (f.has_threshold()) {  // a maximum on the search's edge is no curve to show
+      plot += ", \\\n     " + gnuplot_curve(r.pooled.fit, f) + " with lines lc " + std::to_string(colour) + " notitle";
       if (c->intervals && c->intervals->ok) {
+        const double at = study::psychometric_p(r.pooled.fit.model, {f.threshold, f.slope, f.lapse}, f.threshold);
         const std::string bar =
-            fmt::format("'+' using ({:.9g}):(0.75):({:.9g}):({:.9g}) every ::0::0 with xerrorbars lc {} pt 1 notitle",
-                        f.threshold, c->intervals->threshold.lo, c->intervals->threshold.hi, colour);
+            fmt::format("'+' using ({:.9g}):({:.9g}):({:.9g}):({:.9g}) every ::0::0 with xerrorbars lc {} pt 1 notitle",
+                        f.threshold, at, c->intervals->threshold.lo, c->intervals->threshold.hi, colour);
         plot += ", \\\n     " + std::string(bar);
       }
     }
@@ -207,8 +233,9 @@ void write_study_report(const StudyReport& r, const std::filesystem::path& file,
   if (r.pooled.simulated_rows)
     md << " " << r.pooled.simulated_rows << " of the trials were answered by the simulated observer.";
   md << "\n\nMade by `mallet study summary`. The fits are maximum likelihood of\n"
-        "P(correct) = 0.5 + 0.5 / (1 + exp(−slope·(x − threshold))), x the pair's difference in Eq. 1's B (%);\n"
-        "the threshold is the difference answered correctly 75 % of the time.";
+     << study::fit_description(r.pooled.fit) << ";\nthe threshold is the difference answered correctly "
+     << r.pooled.fit.model.criterion * 100 << " % of the time (without lapses). A maximum on the search's edge is "
+     << "not an estimate: it prints \"-\" and says why.";
   if (r.resamples > 0)
     md << " The 95 % intervals are from the parametric bootstrap (" << r.resamples
        << " resamples, bias-corrected percentiles, seed " << r.seed << ").";
@@ -229,9 +256,100 @@ void write_study_report(const StudyReport& r, const std::filesystem::path& file,
     if (plots_dir.empty()) md << "## Each participant\n\n";
     md << "```\n" << r.participants_text << "```\n";
   }
+  if (const std::string group = study::format_group(r.group); !group.empty())
+    md << "\n## The group\n\nFrom each participant's own fit, beside the pooled fit above:\n\n```\n" << group
+       << "```\n";
   md << "\nFiles read:\n\n";
   for (const std::filesystem::path& f : r.files) md << "- `" << f.string() << "`\n";
   write_file(file, md.str());
+}
+
+void write_fit_table(const StudyReport& r, const std::filesystem::path& file) {
+  try {
+    write_file_atomically(file, study::fit_table_csv(r.pooled, r.participants));
+  } catch (const std::runtime_error& e) {
+    throw FileError(file.string(), 0, 0, e.what());
+  }
+}
+
+namespace {
+
+nlohmann::ordered_json number_or_null(bool has, double v) { return has ? nlohmann::ordered_json(v) : nullptr; }
+
+void json_fits(nlohmann::ordered_json& fits, const study::StudySummary& s, const std::string& who) {
+  for (const study::ConditionSummary& c : s.conditions) {
+    if (!c.fit) continue;
+    const study::PsychometricFit& f = *c.fit;
+    const bool ci = c.intervals && c.intervals->ok && f.has_threshold();
+    nlohmann::ordered_json j;
+    j["condition"] = c.condition;
+    j["participant"] = who;
+    j["levels"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < c.levels.size(); ++i)
+      j["levels"].push_back({{"x", c.levels[i].x},
+                             {"trials", c.levels[i].trials},
+                             {"correct", c.levels[i].correct},
+                             {"residual", number_or_null(i < f.residuals.size(), i < f.residuals.size() ? f.residuals[i] : 0)}});
+    j["threshold_pct"] = number_or_null(f.has_threshold(), f.threshold);
+    j["threshold_lo"] = number_or_null(ci && !c.intervals->threshold.lo_open, ci ? c.intervals->threshold.lo : 0);
+    j["threshold_hi"] = number_or_null(ci && !c.intervals->threshold.hi_open, ci ? c.intervals->threshold.hi : 0);
+    j["slope"] = number_or_null(f.has_slope(), f.slope);
+    const bool slope_ci = ci && f.has_slope();
+    j["slope_lo"] = number_or_null(slope_ci && !c.intervals->slope.lo_open, slope_ci ? c.intervals->slope.lo : 0);
+    j["slope_hi"] = number_or_null(slope_ci && !c.intervals->slope.hi_open, slope_ci ? c.intervals->slope.hi : 0);
+    j["slope_at_least"] = number_or_null(f.step && f.has_threshold(), f.slope_at_least);
+    j["lapse"] = number_or_null(f.ok, f.lapse);
+    const bool lapse_ci = ci && s.fit.fit_lapse;
+    j["lapse_lo"] = number_or_null(lapse_ci, lapse_ci ? c.intervals->lapse.lo : 0);
+    j["lapse_hi"] = number_or_null(lapse_ci, lapse_ci ? c.intervals->lapse.hi : 0);
+    j["log_likelihood"] = number_or_null(f.ok, f.log_likelihood);
+    j["deviance"] = number_or_null(f.ok, f.deviance);
+    j["deviance_p"] = number_or_null(ci, ci ? c.intervals->deviance_p : 0);
+    j["resamples"] = ci ? c.intervals->resamples : 0;
+    j["flags"] = nlohmann::ordered_json::array();
+    const std::pair<bool, const char*> flags[] = {{!f.ok, "no_fit"},
+                                                  {f.threshold_below, "threshold_below_range"},
+                                                  {f.threshold_above, "threshold_above_range"},
+                                                  {f.extrapolated, "extrapolated"},
+                                                  {f.step, "step"},
+                                                  {f.flat, "flat"},
+                                                  {f.lapse_at_limit, "lapse_at_limit"}};
+    for (const auto& [on, name] : flags)
+      if (on) j["flags"].push_back(name);
+    j["note"] = f.reason;
+    fits.push_back(std::move(j));
+  }
+}
+
+}  // namespace
+
+void write_fit_json(const StudyReport& r, const std::filesystem::path& file) {
+  const study::FitOptions& o = r.pooled.fit;
+  nlohmann::ordered_json j;
+  j["fit"] = {{"shape", name_in(study::kPsychometricShapeNames, o.model.shape)},
+              {"criterion", o.model.criterion},
+              {"guess", o.model.guess},
+              {"lapse", o.fit_lapse ? nlohmann::ordered_json("fit") : nlohmann::ordered_json(o.lapse)},
+              {"lapse_limit", o.lapse_limit},
+              {"formula", study::fit_description(o)}};
+  j["resamples"] = r.resamples;
+  j["seed"] = r.seed;
+  j["fits"] = nlohmann::ordered_json::array();
+  json_fits(j["fits"], r.pooled, "pooled");
+  for (const auto& [who, s] : r.participants) json_fits(j["fits"], s, who);
+  j["group"] = nlohmann::ordered_json::array();
+  for (const study::GroupThresholds& g : r.group)
+    j["group"].push_back({{"condition", g.condition},
+                          {"participants", g.participants},
+                          {"estimated", g.estimated},
+                          {"mean_pct", number_or_null(g.estimated > 0, g.mean)},
+                          {"se_pct", number_or_null(g.estimated > 1, g.se)},
+                          {"median_pct", number_or_null(g.estimated > 0, g.median)}});
+  try {
+    write_file_atomically(file, j.dump(2) + "\n");
+  } catch (const std::runtime_error& e) {
+    throw FileError(file.string(), 0, 0, e.what());
+  }
 }
 
 }  // namespace mallet::app

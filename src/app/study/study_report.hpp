@@ -23,6 +23,7 @@ struct StudyReport {
   std::string participants_text;             //!< format_participant_fits, "" for one participant
   study::StudySummary pooled;
   std::vector<std::pair<std::string, study::StudySummary>> participants;
+  std::vector<study::GroupThresholds> group;  //!< each condition over the participants' own fits
   int resamples = 0;
   std::uint64_t seed = 1;
 };
@@ -35,5 +36,18 @@ std::vector<std::string> write_study_plots(const StudyReport& report, const std:
 //! path relative to the report. FileError when it cannot be written.
 void write_study_report(const StudyReport& report, const std::filesystem::path& file,
                         const std::filesystem::path& plots_dir);
+
+//! `--table FILE.csv`: every fit, pooled and per participant, one row each
+//! (study::fit_table_csv), written atomically. FileError when it cannot be written.
+void write_fit_table(const StudyReport& report, const std::filesystem::path& file);
+
+//! `--json FILE.json`: the same fits, and the group's thresholds, written atomically:
+//!   {"fit": {shape, criterion, lapse}, "resamples", "seed",
+//!    "fits": [{condition, participant, levels: [{x, trials, correct, residual}], threshold_pct,
+//!              threshold_lo, threshold_hi, slope, slope_lo, slope_hi, slope_at_least, lapse,
+//!              lapse_lo, lapse_hi, log_likelihood, deviance, deviance_p, flags: [...], note}],
+//!    "group": [{condition, participants, estimated, mean_pct, se_pct, median_pct}]}
+//! A number that does not exist (no threshold, an open end) is null.
+void write_fit_json(const StudyReport& report, const std::filesystem::path& file);
 
 }  // namespace mallet::app

@@ -28,20 +28,104 @@ std::uint64_t interval_seed(std::uint64_t seed, const std::string& participant, 
   return participant_seed(seed, participant + '\x1f' + condition);
 }
 
-//! "[lo, hi]" with the given decimals, or "-" without an interval.
-std::string interval_text(const std::optional<PsychometricIntervals>& ci, bool threshold) {
-  if (!ci || !ci->ok) return "-";
-  const Interval& i = threshold ? ci->threshold : ci->slope;
-  return threshold ? fmt::format("[{:.2f}, {:.2f}]", i.lo, i.hi) : fmt::format("[{:.3f}, {:.3f}]", i.lo, i.hi);
+//! A limit with the given decimals.
+std::string limit(double v, bool threshold) { return threshold ? fmt::format("{:.2f}", v) : fmt::format("{:.3f}", v); }
+
+//! "[lo, hi]", one-sided ("<= hi", ">= lo") where an end is the search's edge, or "-".
+std::string interval_text(const Interval& i, bool threshold) {
+  if (i.lo_open && i.hi_open) return "any";
+  if (i.lo_open) return "<= " + limit(i.hi, threshold);
+  if (i.hi_open) return ">= " + limit(i.lo, threshold);
+  return "[" + limit(i.lo, threshold) + ", " + limit(i.hi, threshold) + "]";
 }
+std::string interval_text(const std::optional<PsychometricIntervals>& ci, bool threshold, bool has_estimate) {
+  if (!ci || !ci->ok || !has_estimate) return "-";
+  return interval_text(threshold ? ci->threshold : ci->slope, threshold);
+}
+
 //! One condition's fit as a row: condition, levels, threshold, slope, their intervals, note.
+//! A bound is never printed as an estimate: "-", and the note says what the data show.
 std::string fit_columns(const ConditionSummary& c) {
   const PsychometricFit& f = *c.fit;
-  if (f.ok)
-    return fmt::format("{:<14} {:7} {:14.3f} {:14.4f} {:>18} {:>18}  {}\n", c.condition, f.levels, f.threshold, f.slope,
-                       interval_text(c.intervals, true), interval_text(c.intervals, false), f.reason);
-  return fmt::format("{:<14} {:7} {:>14} {:>14} {:>18} {:>18}  {}\n", c.condition, f.levels, "-", "-", "-", "-",
-                     f.reason);
+  const std::string threshold = f.has_threshold() ? fmt::format("{:.3f}", f.threshold) : "-";
+  const std::string slope = f.has_slope() ? fmt::format("{:.4f}", f.slope) : "-";
+  return fmt::format("{:<14} {:7} {:>14} {:>14} {:>18} {:>18}  {}\n", c.condition, f.levels, threshold, slope,
+                     interval_text(c.intervals, true, f.has_threshold()),
+                     interval_text(c.intervals, false, f.has_slope()), f.reason);
+}
+
+//! One condition's goodness of fit: lapse, deviance, its bootstrap p, the levels' residuals.
+std::string fit_quality_columns(const ConditionSummary& c) {
+  const PsychometricFit& f = *c.fit;
+  if (!f.ok) return {};
+  std::string residuals;
+  for (std::size_t i = 0; i < c.levels.size() && i < f.residuals.size(); ++i)
+    residuals += fmt::format("{}{:g}:{:+.2f}", i ? " " : "", c.levels[i].x, f.residuals[i]);
+  const std::string p = c.intervals && c.intervals->ok ? fmt::format("{:.3f}", c.intervals->deviance_p) : "-";
+  return fmt::format("{:<14} {:6.3f} {:9.3f} {:>8}  {}\n", c.condition, f.lapse, f.deviance, p, residuals);
+}
+
+std::string flags_of(const PsychometricFit& f) {
+  std::string flags;
+  auto add = [&](bool on, const char* name) {
+    if (on) flags += (flags.empty() ? "" : ";") + std::string(name);
+  };
+  add(!f.ok, "no_fit");
+  add(f.threshold_below, "threshold_below_range");
+  add(f.threshold_above, "threshold_above_range");
+  add(f.extrapolated, "extrapolated");
+  add(f.step, "step");
+  add(f.flat, "flat");
+  add(f.lapse_at_limit, "lapse_at_limit");
+  return flags;
+}
+
+//! A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string q = "\"";
+  for (char ch : v) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+std::string number(double v) { return fmt::format("{}", v); }
+std::string lower(const Interval& i) { return i.lo_open ? "" : number(i.lo); }
+std::string upper(const Interval& i) { return i.hi_open ? "" : number(i.hi); }
+
+void table_rows(std::string& out, const StudySummary& s, const std::string& who) {
+  for (const ConditionSummary& c : s.conditions) {
+    if (!c.fit) continue;
+    const PsychometricFit& f = *c.fit;
+    const bool ci = c.intervals && c.intervals->ok && f.has_threshold();
+    int trials = 0;
+    for (const PsychometricLevel& l : c.levels) trials += l.trials;
+    const std::string lapse_mode = s.fit.fit_lapse ? "fit" : number(s.fit.lapse);
+    std::vector<std::string> cells{
+        c.condition,
+        who,
+        name_in(kPsychometricShapeNames, s.fit.model.shape),
+        number(s.fit.model.criterion),
+        lapse_mode,
+        std::to_string(f.levels),
+        std::to_string(trials),
+        f.has_threshold() ? number(f.threshold) : "",
+        ci ? lower(c.intervals->threshold) : "",
+        ci ? upper(c.intervals->threshold) : "",
+        f.has_slope() ? number(f.slope) : "",
+        ci && f.has_slope() ? lower(c.intervals->slope) : "",
+        ci && f.has_slope() ? upper(c.intervals->slope) : "",
+        f.step && f.has_threshold() ? number(f.slope_at_least) : "",
+        f.ok ? number(f.lapse) : "",
+        ci && s.fit.fit_lapse ? lower(c.intervals->lapse) : "",
+        ci && s.fit.fit_lapse ? upper(c.intervals->lapse) : "",
+        f.ok ? number(f.log_likelihood) : "",
+        f.ok ? number(f.deviance) : "",
+        ci ? number(c.intervals->deviance_p) : "",
+        ci ? std::to_string(c.intervals->resamples) : "0",
+        flags_of(f),
+        f.reason};
+    for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + csv_field(cells[i]);
+    out += '\n';
+  }
 }
 }  // namespace
 
@@ -49,6 +133,7 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
                        const SummaryOptions& options) {
   StudySummary s;
   s.resamples = options.resamples;
+  s.fit = options.fit;
   std::map<std::string, ConditionSummary> by_condition;
   std::map<std::string, std::map<double, PsychometricLevel>> levels;
   std::map<std::string, double> rt_sum;
@@ -110,10 +195,10 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
     c.mean_response_ms = rt_sum[name] / c.trials;
     if (auto it = levels.find(name); it != levels.end()) {
       for (const auto& [x, l] : it->second) c.levels.push_back(l);
-      c.fit = fit_psychometric_2afc(c.levels);
-      if (options.resamples > 0 && c.fit->ok)
-        c.intervals = bootstrap_2afc(c.levels, *c.fit, options.resamples,
-                                     interval_seed(options.seed, participant, name));
+      c.fit = fit_psychometric(c.levels, options.fit);
+      if (options.resamples > 0 && c.fit->has_threshold())
+        c.intervals = bootstrap_fit(c.levels, options.fit, *c.fit, options.resamples,
+                                    interval_seed(options.seed, participant, name));
     }
     s.conditions.push_back(c);
   }
@@ -141,21 +226,26 @@ std::string format_summary(const StudySummary& s) {
   for (const ConditionSummary& c : s.conditions) {
     if (!c.fit) continue;
     if (!header) {
-      out += "psychometric fit, 2AFC: P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold))), "
-             "x = difference in B (%), maximum likelihood\n";
+      out += "psychometric fit, 2AFC: " + fit_description(s.fit) + "\n";
       fmt::format_to(line, "{:<14} {:>7} {:>14} {:>14} {:>18} {:>18}  {}\n", "condition", "levels", "threshold_pct",
                      "slope_per_pct", "threshold_95ci", "slope_95ci", "note");
       header = true;
     }
     out += fit_columns(c);
   }
-  if (header)
+  if (header) {
     for (const ConditionSummary& c : s.conditions)
       if (c.intervals) {
         fmt::format_to(line, "95 % intervals: parametric bootstrap, {} resamples, bias-corrected percentiles\n",
                        s.resamples);
         break;
       }
+    out += "goodness of fit: deviance against each level's own proportion correct; p_value: the share of the "
+           "bootstrap's resamples that fit worse; residuals: each level's deviance residual (x:r)\n";
+    fmt::format_to(line, "{:<14} {:>6} {:>9} {:>8}  {}\n", "condition", "lapse", "deviance", "p_value", "residuals");
+    for (const ConditionSummary& c : s.conditions)
+      if (c.fit) out += fit_quality_columns(c);
+  }
   bool adaptive = false;
   for (const ConditionSummary& c : s.conditions) {
     if (c.procedure.empty()) continue;
@@ -182,6 +272,33 @@ std::string format_summary(const StudySummary& s) {
   return out;
 }
 
+std::string fit_description(const FitOptions& o) {
+  const PsychometricModel& m = o.model;
+  if (m.shape == PsychometricShape::logistic && m.criterion == 0.75 && !o.fit_lapse && o.lapse == 0)
+    return "P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold))), x = difference in B (%), maximum likelihood";
+  const double f = (m.criterion - m.guess) / (1 - m.guess);
+  std::string F;
+  switch (m.shape) {
+    case PsychometricShape::logistic:
+      F = fmt::format("1/(1 + exp(-(slope*(x - threshold) + {:.6g})))", std::log(f / (1 - f)));
+      break;
+    case PsychometricShape::normal:
+      F = fmt::format("Phi(slope*(x - threshold) + {:.6g})", normal_quantile(f));
+      break;
+    case PsychometricShape::gumbel:
+      F = fmt::format("1 - exp(-exp(slope*(x - threshold) + {:.6g}))", std::log(-std::log(1 - f)));
+      break;
+    case PsychometricShape::weibull:
+      F = fmt::format("1 - exp(-{:.6g}*(x/threshold)^slope)", -std::log(1 - f));
+      break;
+  }
+  const std::string lapse = o.fit_lapse ? fmt::format("lapse fitted within [0, {:g}]", o.lapse_limit)
+                                        : fmt::format("lapse fixed at {:g}", o.lapse);
+  return fmt::format("P(correct) = 0.5 + (0.5 - lapse)*F, F = {} ({}), threshold at {:g} correct without lapses, {}, "
+                     "x = difference in B (%), maximum likelihood",
+                     F, name_in(kPsychometricShapeNames, m.shape), m.criterion, lapse);
+}
+
 std::vector<std::pair<std::string, StudySummary>> summarize_participants(const std::vector<ResultRow>& rows,
                                                                           const SummaryOptions& options) {
   std::vector<std::string> order;
@@ -205,6 +322,68 @@ std::string format_participant_fits(const std::vector<std::pair<std::string, Stu
       out += fmt::format("{:<12} ", p) + fit_columns(c);
     }
   }
+  return out;
+}
+
+std::vector<GroupThresholds> group_thresholds(const std::vector<std::pair<std::string, StudySummary>>& participants) {
+  std::vector<GroupThresholds> group;
+  std::map<std::string, std::vector<double>> values;
+  for (const auto& [who, summary] : participants)
+    for (const ConditionSummary& c : summary.conditions) {
+      if (!c.fit) continue;
+      auto it = std::find_if(group.begin(), group.end(), [&](const GroupThresholds& g) { return g.condition == c.condition; });
+      if (it == group.end()) it = group.insert(group.end(), GroupThresholds{c.condition});
+      ++it->participants;
+      if (c.fit->has_threshold() && !c.fit->extrapolated) values[c.condition].push_back(c.fit->threshold);
+    }
+  std::stable_sort(group.begin(), group.end(), [](const GroupThresholds& a, const GroupThresholds& b) {
+    return condition_rank(a.condition) < condition_rank(b.condition);
+  });
+  for (GroupThresholds& g : group) {
+    std::vector<double>& v = values[g.condition];
+    g.estimated = static_cast<int>(v.size());
+    if (v.empty()) continue;
+    double sum = 0;
+    for (double t : v) sum += t;
+    g.mean = sum / static_cast<double>(v.size());
+    double ss = 0;
+    for (double t : v) ss += (t - g.mean) * (t - g.mean);
+    if (v.size() > 1) g.se = std::sqrt(ss / static_cast<double>(v.size() - 1) / static_cast<double>(v.size()));
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    g.median = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+  }
+  return group;
+}
+
+std::string format_group(const std::vector<GroupThresholds>& group) {
+  int most = 0;
+  for (const GroupThresholds& g : group) most = std::max(most, g.participants);
+  if (most < 2) return {};
+  std::string out =
+      "group: each participant's own threshold (not the pooled fit above), mean ± standard error and median over "
+      "the participants with one inside the tested range\n";
+  auto line = std::back_inserter(out);
+  fmt::format_to(line, "{:<14} {:>12} {:>13} {:>10} {:>13}\n", "condition", "participants", "mean_pct", "se_pct",
+                 "median_pct");
+  for (const GroupThresholds& g : group) {
+    const std::string who = g.estimated == g.participants ? std::to_string(g.participants)
+                                                          : fmt::format("{} of {}", g.estimated, g.participants);
+    if (g.estimated == 0) {
+      fmt::format_to(line, "{:<14} {:>12} {:>13} {:>10} {:>13}\n", g.condition, who, "-", "-", "-");
+      continue;
+    }
+    const std::string se = g.estimated > 1 ? fmt::format("{:.3f}", g.se) : "-";
+    fmt::format_to(line, "{:<14} {:>12} {:13.3f} {:>10} {:13.3f}\n", g.condition, who, g.mean, se, g.median);
+  }
+  return out;
+}
+
+std::string fit_table_csv(const StudySummary& pooled,
+                          const std::vector<std::pair<std::string, StudySummary>>& participants) {
+  std::string out = std::string(kFitTableColumns) + "\n";
+  table_rows(out, pooled, "pooled");
+  for (const auto& [who, summary] : participants) table_rows(out, summary, who);
   return out;
 }
 

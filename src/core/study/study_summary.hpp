@@ -39,6 +39,7 @@ struct ConditionSummary {
 struct SummaryOptions {
   int resamples = 0;
   std::uint64_t seed = 1;
+  FitOptions fit;  //!< the curve fitted: shape, criterion, lapse (default: 2AFC logistic, 75 %, no lapse)
 };
 
 struct StudySummary {
@@ -47,6 +48,7 @@ struct StudySummary {
   int simulated_rows = 0;               //!< answered by the simulated observer
   std::vector<ConditionSummary> conditions;  //!< visual_only, tactile_only, both, none, then others
   int resamples = 0;                         //!< the bootstrap's, per fit (0: no intervals)
+  FitOptions fit;                            //!< what was fitted
   //! The kiosk's visitor micro-study: its sessions (participants "visitor-…") whose rows reach
   //! their planned_trials, and those that stopped before (the visitor walked away).
   int visitor_sessions_completed = 0, visitor_sessions_abandoned = 0;
@@ -60,11 +62,36 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
 //! when they were made).
 std::string format_summary(const StudySummary& summary);
 
+//! The fit's formula and its x, as the summary's header line says them.
+std::string fit_description(const FitOptions& options);
+
 //! Each participant's summary, in first-seen order.
 std::vector<std::pair<std::string, StudySummary>> summarize_participants(const std::vector<ResultRow>& rows,
                                                                           const SummaryOptions& options = {});
 //! Each participant's 2AFC fit per condition, one line each (conditions as in StudySummary);
 //! "" when no row carries a difference_pct.
 std::string format_participant_fits(const std::vector<std::pair<std::string, StudySummary>>& participants);
+
+//! One condition's thresholds over the participants, each from that participant's own fit
+//! (not the pooled fit): their mean ± standard error and median, over those with a threshold
+//! inside the tested range; the others (none, or extrapolated) are counted, not guessed at.
+struct GroupThresholds {
+  std::string condition;
+  int participants = 0;   //!< with a fit in this condition
+  int estimated = 0;      //!< of those, with a threshold inside the tested range
+  double mean = 0, se = 0, median = 0;  //!< over `estimated` (se: needs 2)
+};
+std::vector<GroupThresholds> group_thresholds(const std::vector<std::pair<std::string, StudySummary>>& participants);
+//! The group table as printed ("" with fewer than 2 participants).
+std::string format_group(const std::vector<GroupThresholds>& group);
+
+//! Every fit, pooled ("pooled") and each participant's, as one CSV row each (`--table`):
+//! see kFitTableColumns.
+inline constexpr const char* kFitTableColumns =
+    "condition,participant,shape,criterion,lapse_mode,levels,trials,threshold_pct,threshold_lo,threshold_hi,"
+    "slope,slope_lo,slope_hi,slope_at_least,lapse,lapse_lo,lapse_hi,log_likelihood,deviance,deviance_p,resamples,"
+    "flags,note";
+std::string fit_table_csv(const StudySummary& pooled,
+                          const std::vector<std::pair<std::string, StudySummary>>& participants);
 
 }  // namespace mallet::study

@@ -24,58 +24,88 @@ std::vector<PsychometricLevel> experiment(std::mt19937_64& rng, int trials_per_l
   return levels;
 }
 
-TEST(PsychometricBootstrap, NewtonsRefitFindsTheGridsMaximumOrLeavesItToTheGrid) {
-  // The refits start from the data's own fit: on a resample they must land where the full
-  // grid search does; on a step (every answer right above a level, chance below) the
-  // maximum is at the slope's bound, which Newton's method leaves to the grid.
+TEST(PsychometricBootstrap, TheRefitsClimbEndsWhereTheWholeSearchDoes) {
+  // The refits start from the data's own fit and climb with the fit's own method to its
+  // precision: on a resample they must land where the whole search does (or hand over to
+  // it), to 1e-6 of the range and never lower in likelihood.
   std::mt19937_64 rng(11);
-  int converged = 0;
-  for (int e = 0; e < 20; ++e) {
-    const std::vector<PsychometricLevel> data = experiment(rng, 20), resample = experiment(rng, 20);
-    const PsychometricFit near = fit_psychometric_2afc(data), grid = fit_psychometric_2afc(resample);
-    const PsychometricFit newton = refit_psychometric_2afc(resample, near);
-    if (!newton.ok) continue;
-    ++converged;
-    EXPECT_NEAR(newton.threshold, grid.threshold, 1e-4 * 28);
-    EXPECT_NEAR(newton.slope, grid.slope, 1e-4 * grid.slope);
-    EXPECT_GE(newton.log_likelihood, grid.log_likelihood - 1e-9);
+  for (const bool lapse : {false, true}) {
+    FitOptions o;
+    o.fit_lapse = lapse;
+    for (int e = 0; e < 20; ++e) {
+      const std::vector<PsychometricLevel> data = experiment(rng, 20), resample = experiment(rng, 20);
+      const PsychometricFit near = fit_psychometric(data, o), whole = fit_psychometric(resample, o);
+      const PsychometricFit refit = refit_psychometric(resample, o, near);
+      ASSERT_TRUE(refit.ok);
+      EXPECT_GE(refit.log_likelihood, whole.log_likelihood - 1e-9) << e;
+      if (!whole.has_slope()) continue;
+      EXPECT_NEAR(refit.threshold, whole.threshold, 1e-6 * 28) << e;
+      EXPECT_NEAR(refit.slope, whole.slope, 1e-6 * whole.slope) << e;
+    }
   }
-  EXPECT_GE(converged, 18) << "resamples of a smooth curve: Newton's method settles";
-  const std::vector<PsychometricLevel> step{{0, 20, 10}, {4, 20, 10}, {8, 20, 20}, {12, 20, 20}};
-  const PsychometricFit at_bound = fit_psychometric_2afc(step);
-  ASSERT_TRUE(at_bound.ok);
-  EXPECT_NE(at_bound.reason.find("upper bound"), std::string::npos) << at_bound.reason;
-  EXPECT_FALSE(refit_psychometric_2afc(step, at_bound).ok);
+  // The data's own counts give the data's own fit, to the last bit: a tie, not a near miss.
+  const std::vector<PsychometricLevel> data = experiment(rng, 20);
+  const PsychometricFit fit = fit_psychometric_2afc(data);
+  EXPECT_EQ(refit_psychometric(data, {}, fit).threshold, fit_psychometric_2afc(data).threshold);
 }
 
-TEST(PsychometricBootstrap, NinetyFivePercentIntervalsCoverTheTrueThresholdAtCloseToTheNominalRate) {
-  std::mt19937_64 rng(20261127);
-  constexpr int kExperiments = 200;
-  int threshold_covered = 0, slope_covered = 0, fitted = 0;
-  for (int e = 0; e < kExperiments; ++e) {
-    const std::vector<PsychometricLevel> levels = experiment(rng, 20);  // 160 trials
-    const PsychometricFit fit = fit_psychometric_2afc(levels);
-    ASSERT_TRUE(fit.ok) << fit.reason;
-    const PsychometricIntervals ci = bootstrap_2afc(levels, fit, 200, static_cast<std::uint64_t>(e) + 1);
-    ASSERT_TRUE(ci.ok);
-    EXPECT_LE(ci.threshold.lo, fit.threshold);
-    EXPECT_GE(ci.threshold.hi, fit.threshold);
-    ++fitted;
+//! The share of `experiments` simulated experiments (8 levels × 40 trials from the curve
+//! with `lapse`) whose 95 % intervals hold the true threshold and slope.
+std::pair<double, double> coverage(const FitOptions& o, double lapse, int experiments, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int threshold_covered = 0, slope_covered = 0;
+  for (int e = 0; e < experiments; ++e) {
+    std::vector<PsychometricLevel> levels;
+    for (double x = 0; x <= 28; x += 4) {
+      PsychometricLevel l{x, 40, 0};
+      for (int k = 0; k < l.trials; ++k) l.correct += u(rng) < psychometric_p(o.model, {kThreshold, kSlope, lapse}, x);
+      levels.push_back(l);
+    }
+    const PsychometricFit fit = fit_psychometric(levels, o);
+    const PsychometricIntervals ci = bootstrap_fit(levels, o, fit, 200, static_cast<std::uint64_t>(e) + 1);
+    if (!ci.ok) continue;  // no threshold: counted as not covered
+    EXPECT_TRUE(ci.threshold.contains(fit.threshold));
     threshold_covered += ci.threshold.contains(kThreshold);
     slope_covered += ci.slope.contains(kSlope);
   }
-  // Nominal 95 %: with 200 experiments its standard error is 1.5 points. Percentile
-  // intervals of the parametric bootstrap run a little narrow at 20 trials a level
-  // (Wichmann & Hill 2001); 90–99 % is "close", a broken interval is far outside.
-  const double threshold_rate = static_cast<double>(threshold_covered) / fitted;
-  const double slope_rate = static_cast<double>(slope_covered) / fitted;
-  EXPECT_GE(threshold_rate, 0.90);
-  EXPECT_LE(threshold_rate, 0.99);
-  EXPECT_GE(slope_rate, 0.88);
-  EXPECT_LE(slope_rate, 0.99);
-  RecordProperty("threshold_coverage", std::to_string(threshold_rate));
-  RecordProperty("slope_coverage", std::to_string(slope_rate));
-  std::printf("coverage over %d experiments: threshold %.3f, slope %.3f\n", fitted, threshold_rate, slope_rate);
+  return {static_cast<double>(threshold_covered) / experiments, static_cast<double>(slope_covered) / experiments};
+}
+
+// Nominal 95 %: with 400 experiments its standard error is 1.1 points, so 93–97 % is the
+// nominal rate within two standard errors. A fixed seed makes each a fixed computation.
+constexpr int kExperiments = 400;
+
+TEST(PsychometricBootstrap, NinetyFivePercentIntervalsCoverTheTruthWithTheLapseFixed) {
+  const auto [threshold, slope] = coverage({}, 0.0, kExperiments, 20261129);
+  std::printf("coverage over %d experiments, lapse fixed at 0: threshold %.4f, slope %.4f\n", kExperiments, threshold,
+              slope);
+  RecordProperty("threshold_coverage", std::to_string(threshold));
+  RecordProperty("slope_coverage", std::to_string(slope));
+  for (const double rate : {threshold, slope}) {
+    EXPECT_GE(rate, 0.93);
+    EXPECT_LE(rate, 0.97);
+  }
+}
+
+TEST(PsychometricBootstrap, WithTheLapseFittedTheIntervalsRunNarrowByAKnownAmount) {
+  // The truth's lapse 0.02, fitted within [0, 0.06]: the percentile intervals run narrow,
+  // 89 % and 91.5 % here (93 % and 91.5 % at 80 trials a level). The parametric bootstrap
+  // draws from the fitted lapse, which its bound at 0 and the few errors at the top make the
+  // least certain parameter (Wichmann & Hill 2001b find the same for small samples); every
+  // refit here is the whole search, so it is not a refit missing its maximum. This holds them
+  // to that, not to the nominal rate, and docs/researchers.md says so.
+  FitOptions fitted;
+  fitted.fit_lapse = true;
+  const auto [threshold, slope] = coverage(fitted, 0.02, kExperiments, 20261129);
+  std::printf("coverage over %d experiments, lapse fitted: threshold %.4f, slope %.4f\n", kExperiments, threshold,
+              slope);
+  RecordProperty("threshold_coverage", std::to_string(threshold));
+  RecordProperty("slope_coverage", std::to_string(slope));
+  for (const double rate : {threshold, slope}) {
+    EXPECT_GE(rate, 0.87);
+    EXPECT_LE(rate, 0.97);
+  }
 }
 
 TEST(PsychometricBootstrap, MoreTrialsNarrowTheIntervalAndTheSameSeedGivesTheSameOne) {
