@@ -69,7 +69,7 @@ void QuestPlus::refresh() {
     ln_posterior_[i] = log_posterior_[i] - top - ln_sum;
   }
 
-  // Watson's Eqs. 4–8 for every stimulus, with q = π·ψ:
+  // Watson's expected entropy for every stimulus, with q = π·ψ:
   //   E[H](x) = Σ_r P_r·H_r = Σ_r (P_r ln P_r − Σ_θ q ln q),  ln q = ln π + ln ψ.
   expected_entropy_.resize(stimuli_.size());
   const double* post = posterior_.data();

@@ -4,24 +4,25 @@
 // posterior is held on a grid of parameter vectors θ = (threshold, slope, lapse), each a list
 // of values (one value: that parameter is known), over the psychometric function of
 // psychometric_shape.hpp. Each trial tests, among a fixed list of stimuli x, the one whose
-// answer is expected to leave the posterior with the least entropy (Watson's Eqs. 3–8):
+// answer is expected to leave the posterior with the least entropy (Watson's selection rule):
 //   P(r | x)      = Σ_θ π(θ)·ψ(r | x, θ)                       (the answer's predicted chance)
 //   π'(θ | x, r)  = π(θ)·ψ(r | x, θ) / P(r | x)                 (the posterior it would leave)
 //   H(x, r)       = −Σ_θ π'·ln π'                                (its entropy)
 //   E[H](x)       = Σ_r P(r | x)·H(x, r)                         (expected over both answers)
-// ties going to the smallest x (as Watson's and mQUESTPlus's first-minimum rule does on an
-// ascending list). The answer then multiplies the posterior by its likelihood (Eq. 2).
+// ties going to the smallest x (what mQUESTPlus's MATLAB min and questplus's argmin do, the
+// first minimum, on their ascending lists). The answer then multiplies the posterior by its
+// likelihood ψ(r | x, θ) (Bayes' rule).
 //
 // ψ(r | x, θ) is computed once for every stimulus × parameter vector (the likelihood table),
 // so a trial costs O(stimuli × parameter vectors) multiply-adds and no logarithm: with
 // q = π·ψ, Σ q ln q = Σ q (ln π + ln ψ), and E[H] = Σ_r (P_r ln P_r − Σ_θ q ln q). The
 // posterior is held as a sum of logarithms (no underflow however many trials). A vector an
-// answer makes impossible (ψ = 0, a lapse-free curve at its asymptote) is ruled out as in
-// Watson's code: its ln ψ is tabled as −1000, whose exponential is 0 in double precision,
+// answer makes impossible (ψ = 0, a lapse-free curve at its asymptote) is ruled out, as the
+// reference implementations' zero posterior does: its ln ψ is tabled as −1000, whose exponential is 0 in double precision,
 // and if every vector were ruled out they would still compare among themselves.
 //
 // The estimates are the posterior's mean and SD of each parameter (its marginals) and its
-// mode (the joint maximum, the estimate Watson reports; ties to the first vector in threshold,
+// mode (the joint maximum, the estimate Watson's examples report; ties to the first vector in threshold,
 // slope, lapse order). Like Quest and Staircase, its state is a function of the answers alone,
 // so a resumed session replays its rows.
 #include <cstddef>
