@@ -76,6 +76,11 @@ void TableReader::fail(std::string_view key, const std::string& message) const {
 
 bool TableReader::has(std::string_view key) const { return table_->contains(key); }
 
+bool TableReader::has_table(std::string_view key) const {
+  const toml::node* node = table_->get(key);
+  return node && node->is_table();
+}
+
 const toml::node& TableReader::required(std::string_view key) {
   used_.emplace(key);
   const toml::node* node = table_->get(key);

@@ -43,6 +43,8 @@ class TableReader {
   std::vector<std::int64_t> integers(std::string_view key);
   std::vector<std::string> strings(std::string_view key);
   bool has(std::string_view key) const;
+  //! Whether `key` holds a table (a [key] or key = { … }), for a key that may be a table or a list.
+  bool has_table(std::string_view key) const;
 
   TableReader table(std::string_view key);
   std::optional<TableReader> optional_table(std::string_view key);

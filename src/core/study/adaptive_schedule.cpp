@@ -8,6 +8,15 @@ namespace mallet::study {
 AdaptiveSchedule::AdaptiveSchedule(const StudyProtocol& protocol, std::string_view participant)
     : protocol_(protocol), seed_(participant_seed(protocol.seed ^ 0xADA97ull, participant)),
       conditions_(protocol.conditions) {
+  if (protocol.procedure == StudyProcedure::quest_plus) {
+    // One QUEST+ over the pairs' differences, copied per condition: the copies share its
+    // likelihood table.
+    std::vector<double> stimuli;
+    for (const StimulusPair& pair : protocol.pairs) stimuli.push_back(pair.difference_pct);
+    const QuestPlus fresh(protocol.adaptive.quest_plus, std::move(stimuli));
+    tracks_.assign(conditions_.size(), fresh);
+    return;
+  }
   for (std::size_t i = 0; i < conditions_.size(); ++i) {
     if (protocol.procedure == StudyProcedure::staircase) tracks_.emplace_back(Staircase(protocol.adaptive.staircase));
     else tracks_.emplace_back(Quest(protocol.adaptive.quest_model, protocol.adaptive.quest_prior));
@@ -16,11 +25,13 @@ AdaptiveSchedule::AdaptiveSchedule(const StudyProtocol& protocol, std::string_vi
 
 bool AdaptiveSchedule::done(const Track& track) const {
   if (const auto* s = std::get_if<Staircase>(&track)) return s->done();
+  if (const auto* p = std::get_if<QuestPlus>(&track)) return p->trials() >= protocol_.adaptive.quest_plus_trials;
   return std::get<Quest>(track).trials() >= protocol_.adaptive.quest_trials;
 }
 
 double AdaptiveSchedule::level(const Track& track) const {
   if (const auto* s = std::get_if<Staircase>(&track)) return s->level();
+  if (const auto* p = std::get_if<QuestPlus>(&track)) return p->level();
   return std::get<Quest>(track).level();
 }
 
@@ -30,8 +41,9 @@ int AdaptiveSchedule::item_of(double level_pct) const {
 }
 
 int AdaptiveSchedule::max_trials() const {
-  const int per_track = protocol_.procedure == StudyProcedure::staircase ? protocol_.adaptive.staircase.max_trials
-                                                                         : protocol_.adaptive.quest_trials;
+  const int per_track = protocol_.procedure == StudyProcedure::staircase  ? protocol_.adaptive.staircase.max_trials
+                        : protocol_.procedure == StudyProcedure::quest_plus ? protocol_.adaptive.quest_plus_trials
+                                                                            : protocol_.adaptive.quest_trials;
   return per_track * static_cast<int>(tracks_.size());
 }
 
@@ -55,6 +67,7 @@ void AdaptiveSchedule::record(const ScheduledTrial& trial, bool correct) {
   for (std::size_t i = 0; i < conditions_.size(); ++i) {
     if (conditions_[i] != trial.condition) continue;
     if (auto* s = std::get_if<Staircase>(&tracks_[i])) s->answer(correct);
+    else if (auto* p = std::get_if<QuestPlus>(&tracks_[i])) p->answer_index(static_cast<std::size_t>(trial.item), correct);
     else std::get<Quest>(tracks_[i]).answer(protocol_.pairs.at(static_cast<std::size_t>(trial.item)).difference_pct, correct);
   }
 }
@@ -70,6 +83,10 @@ TrackState AdaptiveSchedule::state(StudyCondition condition) const {
       out.trials = s->trials();
       out.reversals = s->reversals();
       out.estimate_pct = s->threshold();
+    } else if (const auto* p = std::get_if<QuestPlus>(&track)) {
+      out.trials = p->trials();
+      out.estimate_pct = p->mean().threshold;
+      out.estimate_sd_pct = p->sd().threshold;
     } else {
       const Quest& q = std::get<Quest>(track);
       out.trials = q.trials();

@@ -1,6 +1,7 @@
 #pragma once
-// The trials of an adaptive protocol (procedure = "staircase" or "quest"), decided one at a
-// time from the answers so far. Each condition has its own track, a Staircase or a Quest,
+// The trials of an adaptive protocol (procedure = "staircase", "quest" or "quest_plus"),
+// decided one at a time from the answers so far. Each condition has its own track, a
+// Staircase, a Quest or a QuestPlus (whose stimuli are the protocol's pairs),
 // and the tracks are interleaved: trial N's condition is drawn among the tracks not yet done,
 // and the order of its two taps, from the participant's seed and N (SplitMix64, as the
 // balanced schedule draws). A track's level is the pair of the protocol's grid nearest to it.
@@ -14,6 +15,7 @@
 
 #include "core/study/balanced_schedule.hpp"
 #include "core/study/quest.hpp"
+#include "core/study/quest_plus.hpp"
 #include "core/study/staircase.hpp"
 #include "core/study/study_protocol.hpp"
 
@@ -23,9 +25,11 @@ namespace mallet::study {
 struct TrackState {
   double level_pct = 0;          //!< the difference its next trial tests
   int trials = 0;                //!< answered in this track
-  int reversals = -1;            //!< staircase; −1 for QUEST
-  std::optional<double> estimate_pct;     //!< staircase: mean of the last reversals; QUEST: posterior mean
-  std::optional<double> estimate_sd_pct;  //!< QUEST: posterior SD
+  int reversals = -1;            //!< staircase; −1 for QUEST and QUEST+
+  //! staircase: mean of the last reversals; QUEST: posterior mean; QUEST+: the posterior mean
+  //! of the threshold
+  std::optional<double> estimate_pct;
+  std::optional<double> estimate_sd_pct;  //!< QUEST: posterior SD; QUEST+: the threshold's marginal SD
   bool done = false;
 };
 
@@ -44,7 +48,7 @@ class AdaptiveSchedule {
   int max_trials() const;
 
  private:
-  using Track = std::variant<Staircase, Quest>;
+  using Track = std::variant<Staircase, Quest, QuestPlus>;
   const StudyProtocol& protocol_;
   std::uint64_t seed_;
   std::vector<StudyCondition> conditions_;

@@ -197,6 +197,82 @@ void read_quest(TableReader t, AdaptiveProtocol& a) {
   t.finish();
 }
 
+//! A QUEST+ parameter's values: a list, increasing, each in [lo, hi].
+std::vector<double> grid_values(TableReader& t, std::string_view key, double lo, double hi) {
+  const std::vector<double> v = t.numbers(key);
+  if (v.empty()) t.fail(key, "lists no value");
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!(v[i] >= lo && v[i] <= hi))
+      t.fail(key, "each must be in [" + config::number_text(lo) + ", " + config::number_text(hi) + "], got " +
+                      config::number_text(v[i]));
+    if (i > 0 && !(v[i] > v[i - 1]))
+      t.fail(key, "must increase (" + config::number_text(v[i - 1]) + " then " + config::number_text(v[i]) + ")");
+  }
+  return v;
+}
+
+enum class QuestPlusPriorKind { uniform, gaussian };
+constexpr EnumNames<QuestPlusPriorKind, 2> kQuestPlusPriorNames{
+    {{QuestPlusPriorKind::uniform, "uniform"}, {QuestPlusPriorKind::gaussian, "gaussian"}}};
+
+//! The most likelihoods (stimuli × parameter vectors) a QUEST+ table may hold: 24 MB, and a
+//! trial's choice a few milliseconds.
+constexpr double kQuestPlusMaxTable = 1e6;
+
+void read_quest_plus(TableReader t, AdaptiveProtocol& a) {
+  QuestPlusSetup& q = a.quest_plus;
+  q.model.shape = t.choice_or("shape", kPsychometricShapeNames, PsychometricShape::logistic);
+  q.model.guess = 0.5;  // 2AFC
+  q.model.criterion = t.number_or("criterion", 0.75);
+  if (!(q.model.criterion > q.model.guess && q.model.criterion < 1))
+    t.fail("criterion", "must lie between the 2AFC guess rate 0.5 and 1 (both excluded), got " +
+                            config::number_text(q.model.criterion));
+  a.min_pct = grid_pct(t, "min_pct", a.min_pct, kAdaptiveGridPct, 100);
+  a.max_pct = grid_pct(t, "max_pct", a.max_pct, a.min_pct, 100);
+  const double stimuli = std::round((a.max_pct - a.min_pct) / kAdaptiveGridPct) + 1;
+  // The thresholds: a list, or lo, hi and points evenly spaced; by default the stimuli's grid.
+  q.grid.thresholds.clear();
+  if (t.has_table("threshold_pct")) {
+    TableReader g = t.table("threshold_pct");
+    const double lo = g.number("lo");
+    g.require_range("lo", lo, 0.01, 100);
+    const double hi = g.number("hi");
+    if (!(hi > lo && hi <= 100))
+      g.fail("hi", "must be > lo (" + config::number_text(lo) + ") and <= 100, got " + config::number_text(hi));
+    const std::int64_t points = g.integer("points");
+    g.require_range("points", static_cast<double>(points), 2, 1000);
+    g.finish();
+    for (std::int64_t i = 0; i < points; ++i)
+      q.grid.thresholds.push_back(lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(points - 1));
+  } else if (t.has("threshold_pct")) {
+    q.grid.thresholds = grid_values(t, "threshold_pct", 0.01, 100);
+  } else {
+    for (double k = 0; k < stimuli; ++k) q.grid.thresholds.push_back(a.min_pct + k * kAdaptiveGridPct);
+  }
+  q.grid.slopes = grid_values(t, "slope", 0.001, 100);
+  q.grid.lapses = t.has("lapse") ? grid_values(t, "lapse", 0, 0.2) : std::vector<double>{0.02};
+  const double table = stimuli * static_cast<double>(q.grid.size());
+  if (table > kQuestPlusMaxTable)
+    t.fail("threshold_pct", fmt::format("{} thresholds × {} slopes × {} lapses × {} stimuli make {:g} likelihoods, "
+                                        "more than QUEST+ tables ({:g}): fewer points, or a narrower min_pct-max_pct",
+                                        q.grid.thresholds.size(), q.grid.slopes.size(), q.grid.lapses.size(),
+                                        stimuli, table, kQuestPlusMaxTable));
+  q.threshold_prior.reset();
+  if (t.choice_or("prior", kQuestPlusPriorNames, QuestPlusPriorKind::uniform) == QuestPlusPriorKind::gaussian) {
+    QuestPlusThresholdPrior prior;
+    prior.mean = t.number("prior_mean_pct");
+    t.require_range("prior_mean_pct", prior.mean, 0, 100);
+    prior.sd = t.number("prior_sd_pct");
+    t.require_range("prior_sd_pct", prior.sd, 0.1, 100);
+    q.threshold_prior = prior;
+  } else {
+    for (const char* key : {"prior_mean_pct", "prior_sd_pct"})
+      if (t.has(key)) t.fail(key, "only prior = \"gaussian\" uses it");
+  }
+  t.read("trials", a.quest_plus_trials, 1, 1000);
+  t.finish();
+}
+
 //! The adaptive tracks' stimuli and pairs: the reference, and for each difference on the
 //! grid from min_pct to max_pct the reference with both triples' B larger by it.
 void make_adaptive_pairs(StudyProtocol& p) {
@@ -308,11 +384,13 @@ StudyProtocol read(const toml::table& root, const std::string& file, const std::
     if (top.has("pair")) top.fail("pair", "an adaptive protocol makes its pairs from `reference`; remove [[pair]]");
     p.adaptive.reference = stimulus_index(top, "reference", p.stimuli);
     if (p.procedure == StudyProcedure::staircase) read_staircase(top.table("staircase"), p.adaptive);
+    else if (p.procedure == StudyProcedure::quest_plus) read_quest_plus(top.table("quest_plus"), p.adaptive);
     else read_quest(top.table("quest"), p.adaptive);
     make_adaptive_pairs(p);
   } else if (p.paired()) {
-    for (const char* key : {"reference", "staircase", "quest"})
-      if (top.has(key)) top.fail(key, "only an adaptive procedure (procedure = \"staircase\" or \"quest\") uses it");
+    for (const char* key : {"reference", "staircase", "quest", "quest_plus"})
+      if (top.has(key))
+        top.fail(key, "only an adaptive procedure (procedure = \"staircase\", \"quest\" or \"quest_plus\") uses it");
     for (TableReader& t : top.tables("pair")) p.pairs.push_back(read_pair(t, p.stimuli));
   } else {
     if (top.has("pair")) top.fail("pair", "only a 2afc_harder or steeper protocol has pairs");

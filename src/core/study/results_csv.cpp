@@ -97,8 +97,9 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
   r.actuator_onset_ms = number(field(c.actuator_onset_ms), file, line, "actuator_onset_ms", true);
   r.picture_onset_ms = number(field(c.picture_onset_ms), file, line, "picture_onset_ms", true);
   r.procedure = field(c.procedure);
-  if (!r.procedure.empty() && r.procedure != "constant" && r.procedure != "staircase" && r.procedure != "quest")
-    throw FileError(file, line, 0, "procedure: \"" + r.procedure + "\" is not constant, staircase or quest");
+  if (!r.procedure.empty() && r.procedure != "constant" && r.procedure != "staircase" && r.procedure != "quest" &&
+      r.procedure != "quest_plus")
+    throw FileError(file, line, 0, "procedure: \"" + r.procedure + "\" is not constant, staircase, quest or quest_plus");
   const double track_trial = number(field(c.track_trial), file, line, "track_trial", true);
   const double reversals = number(field(c.reversals), file, line, "reversals", true);
   const double planned = number(field(c.planned_trials), file, line, "planned_trials", true);

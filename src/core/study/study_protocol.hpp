@@ -14,6 +14,7 @@
 #include "core/material.hpp"
 #include "core/enum_names.hpp"
 #include "core/study/quest.hpp"
+#include "core/study/quest_plus.hpp"
 #include "core/study/staircase.hpp"
 #include "core/texture_relief.hpp"
 #include "core/time.hpp"
@@ -84,10 +85,11 @@ struct StudyTiming {
 
 //! How the pairs' differences are chosen: a fixed set shown `repetitions` times each (the
 //! method of constant stimuli), or per condition an adaptive track (adaptive_schedule.hpp).
-enum class StudyProcedure { constant, staircase, quest };
-inline constexpr EnumNames<StudyProcedure, 3> kStudyProcedureNames{{{StudyProcedure::constant, "constant"},
+enum class StudyProcedure { constant, staircase, quest, quest_plus };
+inline constexpr EnumNames<StudyProcedure, 4> kStudyProcedureNames{{{StudyProcedure::constant, "constant"},
                                                                    {StudyProcedure::staircase, "staircase"},
-                                                                   {StudyProcedure::quest, "quest"}}};
+                                                                   {StudyProcedure::quest, "quest"},
+                                                                   {StudyProcedure::quest_plus, "quest_plus"}}};
 std::string_view procedure_name(StudyProcedure procedure);
 
 //! How the participant answers: keys (1/2, a material's letter), or by striking one of the
@@ -127,6 +129,9 @@ struct AdaptiveProtocol {
   QuestModel quest_model;     //!< procedure = quest
   QuestPrior quest_prior;
   int quest_trials = 40;      //!< per condition
+  //! procedure = quest_plus: its curve and grid (the stimuli are the pairs' differences).
+  QuestPlusSetup quest_plus;
+  int quest_plus_trials = 64;  //!< per condition
 };
 
 struct StudyProtocol {

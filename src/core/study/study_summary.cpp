@@ -171,7 +171,7 @@ StudySummary summarize(const std::vector<ResultRow>& rows, const std::string& pa
   std::map<std::string, std::vector<std::string>> track_order;
   for (const ResultRow& r : rows) {
     if (!participant.empty() && r.participant != participant) continue;
-    if (r.procedure != "staircase" && r.procedure != "quest") continue;
+    if (r.procedure != "staircase" && r.procedure != "quest" && r.procedure != "quest_plus") continue;
     std::string& procedure = by_condition[r.condition].procedure;
     procedure = procedure.empty() || procedure == r.procedure ? r.procedure : "mixed";
     // A track: one participant's rows of one protocol in this condition.

@@ -93,5 +93,40 @@ TEST(AdaptiveSchedule, QuestTracksTestTheirPosteriorsMeanOnTheGridAndStopAtTheir
   }
 }
 
+
+TEST(AdaptiveSchedule, QuestPlusTracksConvergeOnTheObserversThresholdsAndReplayAlike) {
+  // The shipped QUEST+ protocol: a logistic at criterion 0.75, the simulated observer's own
+  // curve (thresholds 20, 12 and 8 %, slope 0.25 per %, no lapses), 64 trials a condition.
+  const StudyProtocol p = shipped("quest_plus.toml");
+  ASSERT_EQ(p.procedure, StudyProcedure::quest_plus);
+  const auto trials = run(p, "P03");
+  EXPECT_EQ(trials.size(), 64u * 3);
+  AdaptiveSchedule replay(p, "P03");
+  EXPECT_EQ(replay.max_trials(), 64 * 3);
+  for (const auto& [t, correct] : trials) {
+    const std::optional<ScheduledTrial> again = replay.next();
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->condition, t.condition);
+    EXPECT_EQ(again->item, t.item);
+    // What a trial tests is the track's level itself: QUEST+ chooses among the pairs.
+    EXPECT_EQ(p.pairs.at(static_cast<std::size_t>(t.item)).difference_pct, replay.state(t.condition).level_pct);
+    replay.record(*again, correct);
+  }
+  EXPECT_FALSE(replay.next()) << "every track is done";
+  std::map<StudyCondition, double> estimate;
+  for (StudyCondition c : p.conditions) {
+    const TrackState s = replay.state(c);
+    EXPECT_TRUE(s.done);
+    EXPECT_EQ(s.trials, 64);
+    EXPECT_EQ(s.reversals, -1);
+    ASSERT_TRUE(s.estimate_pct && s.estimate_sd_pct) << condition_name(c);
+    estimate[c] = *s.estimate_pct;
+    EXPECT_NEAR(*s.estimate_pct, SimulatedObserver::threshold_pct(c), 2 * *s.estimate_sd_pct + 1.0)
+        << condition_name(c) << " ± " << *s.estimate_sd_pct;
+    EXPECT_LT(*s.estimate_sd_pct, 5.0) << condition_name(c);
+  }
+  EXPECT_LT(estimate[StudyCondition::both], estimate[StudyCondition::visual_only]);
+}
+
 }  // namespace
 }  // namespace mallet::study

@@ -101,9 +101,95 @@ TEST(StudyProtocol, AnAdaptiveProtocolsMistakesAreOneLineEach) {
             "bad.toml:6:15: repetitions: an adaptive protocol's trials end by its own stop rule ([staircase]); "
             "remove it");
   EXPECT_EQ(error_of(replaced(ok, "\"staircase\"\nconditions", "\"bisection\"\nconditions")),
-            "bad.toml:3:13: procedure: expected \"constant\", \"staircase\" or \"quest\", got \"bisection\"");
+            "bad.toml:3:13: procedure: expected \"constant\", \"staircase\", \"quest\" or \"quest_plus\", got "
+            "\"bisection\"");
   EXPECT_EQ(error_of(replaced(ok, "reference = \"wood\"", "reference = \"oak\"")),
             "bad.toml:6:13: reference: no [[stimulus]] named \"oak\" (known: wood)");
+}
+
+TEST(StudyProtocol, ShippedQuestPlusLoadsItsGrid) {
+  const StudyProtocol q = load_shipped("quest_plus.toml");
+  EXPECT_EQ(q.procedure, StudyProcedure::quest_plus);
+  const QuestPlusSetup& s = q.adaptive.quest_plus;
+  EXPECT_EQ(s.model.shape, PsychometricShape::logistic);
+  EXPECT_EQ(s.model.guess, 0.5);
+  EXPECT_EQ(s.model.criterion, 0.75);
+  ASSERT_EQ(s.grid.thresholds.size(), 40u);  // { lo = 1, hi = 40, points = 40 }
+  EXPECT_EQ(s.grid.thresholds.front(), 1);
+  EXPECT_EQ(s.grid.thresholds[11], 12);
+  EXPECT_EQ(s.grid.thresholds.back(), 40);
+  EXPECT_EQ(s.grid.slopes, (std::vector<double>{0.05, 0.1, 0.2, 0.4}));
+  EXPECT_EQ(s.grid.lapses, (std::vector<double>{0, 0.02, 0.04}));
+  EXPECT_FALSE(s.threshold_prior);
+  EXPECT_EQ(q.adaptive.quest_plus_trials, 64);
+  ASSERT_EQ(q.pairs.size(), 120u);  // the stimuli: 0.5 … 60 %
+  EXPECT_EQ(q.pairs.back().difference_pct, 60.0);
+}
+
+TEST(StudyProtocol, QuestPlusDefaultsAndAListOfThresholds) {
+  const std::string base =
+      "name = \"q\"\ntask = \"2afc_harder\"\nprocedure = \"quest_plus\"\nconditions = [\"both\"]\nseed = 1\n"
+      "reference = \"wood\"\n[quest_plus]\nslope = [0.25]\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n";
+  const StudyProtocol d = test::parse_protocol(base, "a.toml");
+  const QuestPlusSetup& s = d.adaptive.quest_plus;
+  // Without threshold_pct the thresholds are the tested differences; lapses known at 2 %.
+  ASSERT_EQ(s.grid.thresholds.size(), 120u);
+  EXPECT_EQ(s.grid.thresholds[0], 0.5);
+  EXPECT_EQ(s.grid.thresholds[119], 60);
+  EXPECT_EQ(s.grid.lapses, (std::vector<double>{0.02}));
+  EXPECT_EQ(d.adaptive.quest_plus_trials, 64);
+  const StudyProtocol listed = test::parse_protocol(
+      replaced(base, "slope = [0.25]",
+               "slope = [3.5]\nshape = \"weibull\"\ncriterion = 0.8\nthreshold_pct = [5, 10, 20]\nprior = "
+               "\"gaussian\"\nprior_mean_pct = 10\nprior_sd_pct = 5\ntrials = 30"),
+      "a.toml");
+  const QuestPlusSetup& l = listed.adaptive.quest_plus;
+  EXPECT_EQ(l.model.shape, PsychometricShape::weibull);
+  EXPECT_EQ(l.model.criterion, 0.8);
+  EXPECT_EQ(l.grid.thresholds, (std::vector<double>{5, 10, 20}));
+  ASSERT_TRUE(l.threshold_prior);
+  EXPECT_EQ(l.threshold_prior->mean, 10);
+  EXPECT_EQ(l.threshold_prior->sd, 5);
+  EXPECT_EQ(listed.adaptive.quest_plus_trials, 30);
+}
+
+TEST(StudyProtocol, AQuestPlusProtocolsMistakesAreOneLineEach) {
+  const std::string ok =
+      "name = \"q\"\ntask = \"2afc_harder\"\nprocedure = \"quest_plus\"\nconditions = [\"both\"]\nseed = 1\n"
+      "reference = \"wood\"\n[quest_plus]\nslope = [0.1, 0.2]\nlapse = [0, 0.02]\n"
+      "threshold_pct = { lo = 1, hi = 40, points = 40 }\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n";
+  EXPECT_NO_THROW(test::parse_protocol(ok, "a.toml"));
+  EXPECT_EQ(error_of(replaced(ok, "slope = [0.1, 0.2]", "slope = [0.2, 0.1]")),
+            "bad.toml:8:9: quest_plus.slope: must increase (0.2 then 0.1)");
+  EXPECT_EQ(error_of(replaced(ok, "slope = [0.1, 0.2]", "slope = []")), "bad.toml:8:9: quest_plus.slope: lists no value");
+  EXPECT_EQ(error_of(replaced(ok, "slope = [0.1, 0.2]\n", "")), "bad.toml:7:1: quest_plus.slope: missing (required)");
+  EXPECT_EQ(error_of(replaced(ok, "lapse = [0, 0.02]", "lapse = [0, 0.5]")),
+            "bad.toml:9:9: quest_plus.lapse: each must be in [0, 0.2], got 0.5");
+  EXPECT_EQ(error_of(replaced(ok, "points = 40", "points = 1")),
+            "bad.toml:10:45: quest_plus.threshold_pct.points: must be in [2, 1000], got 1");
+  EXPECT_EQ(error_of(replaced(ok, "hi = 40", "hi = 0.5")),
+            "bad.toml:10:32: quest_plus.threshold_pct.hi: must be > lo (1) and <= 100, got 0.5");
+  EXPECT_EQ(error_of(replaced(ok, "lo = 1,", "lo = 1, step = 2,")),
+            "bad.toml:10:34: quest_plus.threshold_pct.step: unknown key (misspelt? see the comments in the shipped "
+            "file)");
+  EXPECT_EQ(error_of(replaced(ok, "{ lo = 1, hi = 40, points = 40 }", "[1, 40, 0]")),
+            "bad.toml:10:17: quest_plus.threshold_pct: each must be in [0.01, 100], got 0");
+  EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest_plus]\ncriterion = 0.5")),
+            "bad.toml:8:13: quest_plus.criterion: must lie between the 2AFC guess rate 0.5 and 1 (both excluded), "
+            "got 0.5");
+  EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest_plus]\nshape = \"probit\"")),
+            "bad.toml:8:9: quest_plus.shape: expected \"logistic\", \"weibull\", \"normal\" or \"gumbel\", got "
+            "\"probit\"");
+  EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest_plus]\nprior_sd_pct = 5")),
+            "bad.toml:8:16: quest_plus.prior_sd_pct: only prior = \"gaussian\" uses it");
+  EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest_plus]\nprior = \"gaussian\"\nprior_mean_pct = 10")),
+            "bad.toml:7:1: quest_plus.prior_sd_pct: missing (required)");
+  EXPECT_EQ(error_of(replaced(replaced(ok, "points = 40", "points = 1000"), "lapse = [0, 0.02]",
+                              "lapse = [0, 0.01, 0.02, 0.03, 0.04]")),
+            "bad.toml:10:17: quest_plus.threshold_pct: 1000 thresholds × 2 slopes × 5 lapses × 120 stimuli make "
+            "1.2e+06 likelihoods, more than QUEST+ tables (1e+06): fewer points, or a narrower min_pct-max_pct");
+  EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest]")),
+            "bad.toml:1:1: quest_plus: missing (required)");
 }
 
 TEST(StudyProtocol, StrikeAnswersAreStatedInTheProtocol) {

@@ -213,7 +213,7 @@ TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
   text.replace(text.find(",staircase,"), 11, ",bisection,");
   { std::ofstream(dir / "bad.csv") << text; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(dir / "bad.csv"); }).what()),
-            (dir / "bad.csv").string() + ":2: procedure: \"bisection\" is not constant, staircase or quest");
+            (dir / "bad.csv").string() + ":2: procedure: \"bisection\" is not constant, staircase, quest or quest_plus");
 }
 
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
