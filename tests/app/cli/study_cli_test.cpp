@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/study/results_csv.hpp"
+#include "core/study/study_summary.hpp"
 #include "run_cli.hpp"
 #include "test_paths.hpp"
 
@@ -253,6 +254,51 @@ TEST(StudyCli, TheSummaryGivesIntervalsPlotsAndAReport) {
   const test::CliResult few = test::run_mallet(base + " --bootstrap 5");
   EXPECT_EQ(few.status, 2) << few.output;
   EXPECT_NE(few.output.find("--bootstrap"), std::string::npos) << few.output;
+}
+
+TEST(StudyCli, TheSummaryNeverPrintsABoundAsAnEstimateAndWritesItsFitsAsATableAndJson) {
+  // The shipped example protocol's P01 (2 trials a level): `both` is answered right every
+  // time, which has no finite threshold; it used to print the search's edge, −20.000.
+  const fs::path dir = test::scratch_dir();
+  ASSERT_EQ(test::run_mallet(study_args(dir / "p01.csv")).status, 0);
+  const std::string base = "study summary --bootstrap 100 --results " + (dir / "p01.csv").string();
+  const test::CliResult s = test::run_mallet(base + " --table " + (dir / "fits.csv").string() + " --json " +
+                                             (dir / "fits.json").string());
+  ASSERT_EQ(s.status, 0) << s.output;
+  EXPECT_EQ(s.output.find("-20.000"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("threshold below the tested range: no estimate"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("goodness of fit: deviance"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("wrote " + (dir / "fits.csv").string()), std::string::npos) << s.output;
+  std::ifstream table(dir / "fits.csv");
+  std::string header, line;
+  std::getline(table, header);
+  EXPECT_EQ(header, study::kFitTableColumns);
+  int rows = 0;
+  bool both_empty = false;
+  while (std::getline(table, line)) {
+    ++rows;
+    if (line.rfind("both,pooled,logistic,0.75,0,4,8,,", 0) == 0) both_empty = true;
+  }
+  EXPECT_EQ(rows, 4) << "one per condition, pooled (one participant: no separate rows)";
+  EXPECT_TRUE(both_empty) << "no threshold: an empty cell, not a number";
+  std::ifstream json_in(dir / "fits.json");
+  const std::string json((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"threshold_pct\": null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"threshold_below_range\""), std::string::npos) << json;
+
+  // Another shape, the lapse fitted, another criterion: said in the header line.
+  const test::CliResult w = test::run_mallet(base + " --shape weibull --lapse fit --criterion 0.8");
+  ASSERT_EQ(w.status, 0) << w.output;
+  EXPECT_NE(w.output.find("(weibull), threshold at 0.8 correct without lapses, lapse fitted within [0, 0.06]"),
+            std::string::npos)
+      << w.output;
+  // Values out of range: exit 2 with one line naming the flag.
+  for (const char* bad : {" --lapse 0.7", " --lapse maybe", " --shape cubic", " --criterion 0.4"}) {
+    const test::CliResult r = test::run_mallet(base + bad);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(bad).substr(1, std::string(bad).find(' ', 1) - 1)), std::string::npos)
+        << bad << ": " << r.output;
+  }
 }
 
 TEST(StudyCli, AStaircaseRunsHeadlessResumesAfterACrashAndIsSummarised) {
