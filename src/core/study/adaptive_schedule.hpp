@@ -26,6 +26,7 @@ struct TrackState {
   int reversals = -1;            //!< staircase; −1 for QUEST
   std::optional<double> estimate_pct;     //!< staircase: mean of the last reversals; QUEST: posterior mean
   std::optional<double> estimate_sd_pct;  //!< QUEST: posterior SD
+  std::optional<double> estimate_mode_pct;  //!< QUEST: posterior mode
   bool done = false;
 };
 
