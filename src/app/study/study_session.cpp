@@ -315,6 +315,7 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
       row->reversals = s.reversals;
       if (s.estimate_pct) row->estimate_pct = *s.estimate_pct;
       if (s.estimate_sd_pct) row->estimate_sd_pct = *s.estimate_sd_pct;
+      if (s.estimate_mode_pct) row->estimate_mode_pct = *s.estimate_mode_pct;
     }
     writer.append(*row);
     ++result.answered;

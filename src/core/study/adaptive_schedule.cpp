@@ -66,7 +66,8 @@ void AdaptiveSchedule::record(const ScheduledTrial& trial, bool correct) {
   ++trials_;
   for (std::size_t i = 0; i < conditions_.size(); ++i) {
     if (conditions_[i] != trial.condition) continue;
-    if (auto* s = std::get_if<Staircase>(&tracks_[i])) s->answer(correct);
+    if (auto* s = std::get_if<Staircase>(&tracks_[i]))
+      s->answer(correct, protocol_.pairs.at(static_cast<std::size_t>(trial.item)).difference_pct);
     else if (auto* p = std::get_if<QuestPlus>(&tracks_[i])) p->answer_index(static_cast<std::size_t>(trial.item), correct);
     else std::get<Quest>(tracks_[i]).answer(protocol_.pairs.at(static_cast<std::size_t>(trial.item)).difference_pct, correct);
   }
@@ -87,11 +88,13 @@ TrackState AdaptiveSchedule::state(StudyCondition condition) const {
       out.trials = p->trials();
       out.estimate_pct = p->mean().threshold;
       out.estimate_sd_pct = p->sd().threshold;
+      out.estimate_mode_pct = p->mode().threshold;
     } else {
       const Quest& q = std::get<Quest>(track);
       out.trials = q.trials();
       out.estimate_pct = q.mean();
       out.estimate_sd_pct = q.sd();
+      out.estimate_mode_pct = q.mode();
     }
   }
   return out;

@@ -30,6 +30,7 @@ struct TrackState {
   //! of the threshold
   std::optional<double> estimate_pct;
   std::optional<double> estimate_sd_pct;  //!< QUEST: posterior SD; QUEST+: the threshold's marginal SD
+  std::optional<double> estimate_mode_pct;  //!< QUEST: posterior mode; QUEST+: the joint mode's threshold
   bool done = false;
 };
 

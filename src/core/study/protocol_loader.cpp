@@ -1,6 +1,7 @@
 #include "core/study/protocol_loader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -156,13 +157,43 @@ double grid_pct(TableReader& t, std::string_view key, double fallback, double lo
   return v;
 }
 
+//! A staircase's steps that multiply the level (step_type "db" or "log"): `key` lists them,
+//! each in (0, most].
+std::vector<double> multiplying_steps(TableReader& t, std::string_view key, std::string_view type, double most,
+                                      std::string_view example) {
+  if (!t.has(key))
+    t.fail(key, fmt::format("step_type = \"{}\" needs its steps as {} (e.g. {} = {})", type, key, key, example));
+  std::vector<double> steps = t.numbers(key);
+  if (steps.empty()) t.fail(key, "lists no step");
+  for (double step : steps)
+    if (!(step > 0) || step > most)
+      t.fail(key, fmt::format("each step must be > 0 and <= {} (got {})", most, config::number_text(step)));
+  return steps;
+}
+
 void read_staircase(TableReader t, AdaptiveProtocol& a) {
   StaircaseRule& r = a.staircase;
   t.read("down", r.down, 1, 4);
   a.min_pct = grid_pct(t, "min_pct", a.min_pct, kAdaptiveGridPct, 100);
   a.max_pct = grid_pct(t, "max_pct", a.max_pct, a.min_pct, 100);
   r.start = grid_pct(t, "start_pct", std::clamp(r.start, a.min_pct, a.max_pct), a.min_pct, a.max_pct);
-  if (t.has("steps_pct")) {
+  r.step_type = t.choice_or("step_type", kStaircaseStepTypeNames, StaircaseStepType::linear);
+  // Each step type has its steps in its own unit, in a key that names it.
+  const std::pair<StaircaseStepType, const char*> step_keys[] = {{StaircaseStepType::linear, "steps_pct"},
+                                                                 {StaircaseStepType::db, "steps_db"},
+                                                                 {StaircaseStepType::log, "steps_log10"}};
+  const char* steps_key = "steps_pct";
+  for (const auto& [type, key] : step_keys)
+    if (type == r.step_type) steps_key = key;
+  for (const auto& [type, key] : step_keys)
+    if (type != r.step_type && t.has(key))
+      t.fail(key, fmt::format("step_type = \"{}\" takes its steps as {}", name_in(kStaircaseStepTypeNames, r.step_type),
+                              steps_key));
+  if (r.step_type == StaircaseStepType::db) {
+    r.steps = multiplying_steps(t, "steps_db", "db", 40, "[4, 2, 1]");
+  } else if (r.step_type == StaircaseStepType::log) {
+    r.steps = multiplying_steps(t, "steps_log10", "log", 2, "[0.2, 0.1, 0.05]");
+  } else if (t.has("steps_pct")) {
     r.steps = t.numbers("steps_pct");
     if (r.steps.empty()) t.fail("steps_pct", "lists no step");
     for (double step : r.steps) {
@@ -171,8 +202,17 @@ void read_staircase(TableReader t, AdaptiveProtocol& a) {
         t.fail("steps_pct", "each step must be a positive multiple of 0.5 % (the grid of stimuli)");
     }
   }
+  r.initial_one_up_one_down = t.boolean_or("initial_one_up_one_down", r.initial_one_up_one_down);
   t.read("stop_reversals", r.stop_reversals, 1, 100);
   t.read("threshold_reversals", r.threshold_reversals, 1, r.stop_reversals);
+  t.read("discard_reversals", r.discard_reversals, 0, 99);
+  if (r.discard_reversals + r.threshold_reversals > r.stop_reversals)
+    t.fail("discard_reversals",
+           fmt::format("the first {} reversals discarded and the last {} averaged (threshold_reversals) need {} "
+                       "reversals, and a track stops at {} (stop_reversals): it would never have an estimate; "
+                       "lower one of them or raise stop_reversals",
+                       r.discard_reversals, r.threshold_reversals, r.discard_reversals + r.threshold_reversals,
+                       r.stop_reversals));
   t.read("max_trials", r.max_trials, 1, 1000);
   r.min = a.min_pct;
   r.max = a.max_pct;
@@ -188,9 +228,33 @@ void read_quest(TableReader t, AdaptiveProtocol& a) {
   t.read("delta", a.quest_model.delta, 0, 0.2);
   a.min_pct = grid_pct(t, "min_pct", a.min_pct, kAdaptiveGridPct, 100);
   a.max_pct = grid_pct(t, "max_pct", a.max_pct, a.min_pct, 100);
-  a.quest_prior.mean = 20;
-  t.read("prior_mean_pct", a.quest_prior.mean, a.min_pct, a.max_pct);
-  t.read("prior_sd_pct", a.quest_prior.sd, 0.1, 100);
+  // The prior is on the scale's own axis: % (linear), or log10 of % (log10, as PsychoPy's
+  // QuestHandler's startVal and startValSd on a log10 intensity), each in keys that say so.
+  a.quest_model.scale = t.choice_or("scale", kQuestScaleNames, QuestScale::linear);
+  const bool log = a.quest_model.scale == QuestScale::log10;
+  const std::array<const char*, 2> other_scale =
+      log ? std::array{"prior_mean_pct", "prior_sd_pct"} : std::array{"prior_mean_log10", "prior_sd_log10"};
+  for (const char* key : other_scale)
+    if (t.has(key))
+      t.fail(key, log ? "scale = \"log10\" takes its prior in log10 units of the difference: prior_mean_log10, "
+                        "prior_sd_log10"
+                      : "only scale = \"log10\" uses it (this prior is in %: prior_mean_pct, prior_sd_pct)");
+  if (log) {
+    a.quest_prior.mean = std::log10(20.0);
+    a.quest_prior.sd = 0.5;
+    t.read("prior_mean_log10", a.quest_prior.mean, std::log10(a.min_pct), std::log10(a.max_pct));
+    t.read("prior_sd_log10", a.quest_prior.sd, 0.01, 5);
+  } else {
+    a.quest_prior.mean = 20;
+    t.read("prior_mean_pct", a.quest_prior.mean, a.min_pct, a.max_pct);
+    t.read("prior_sd_pct", a.quest_prior.sd, 0.1, 100);
+  }
+  a.quest_model.placement = t.choice_or("placement", kQuestPlacementNames, QuestPlacement::mean);
+  if (a.quest_model.placement == QuestPlacement::quantile) {
+    t.read("quantile", a.quest_model.quantile, 0.01, 0.99);
+  } else if (t.has("quantile")) {
+    t.fail("quantile", "only placement = \"quantile\" uses it");
+  }
   a.quest_prior.lo = a.min_pct;
   a.quest_prior.hi = a.max_pct;
   t.read("trials", a.quest_trials, 1, 1000);

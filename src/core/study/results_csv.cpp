@@ -29,6 +29,10 @@ std::string g(double v, int digits, bool general = false) {
   return general ? fmt::format("{:.{}g}", v, digits) : fmt::format("{:.{}f}", v, digits);
 }
 
+//! `v` in full: the shortest decimal that reads back as the same double (an estimate is
+//! analysed, not read; 4 digits would hide a track's last changes), or empty for NaN.
+std::string exact(double v) { return std::isnan(v) ? "" : fmt::format("{}", v); }
+
 struct Columns {
   static constexpr int kMissing = -1;
   int participant = kMissing, trial = kMissing, condition = kMissing, stimuli = kMissing, answer = kMissing,
@@ -36,7 +40,7 @@ struct Columns {
       difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
       actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing, procedure = kMissing,
       track_trial = kMissing, reversals = kMissing, estimate_pct = kMissing, estimate_sd_pct = kMissing,
-      planned_trials = kMissing;
+      planned_trials = kMissing, estimate_mode_pct = kMissing;
 };
 
 Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
@@ -50,7 +54,7 @@ Columns find_columns(const std::vector<std::string>& header, const std::string& 
       {"actuator_onset_ms", &c.actuator_onset_ms}, {"picture_onset_ms", &c.picture_onset_ms},
       {"procedure", &c.procedure}, {"track_trial", &c.track_trial}, {"reversals", &c.reversals},
       {"estimate_pct", &c.estimate_pct}, {"estimate_sd_pct", &c.estimate_sd_pct},
-      {"planned_trials", &c.planned_trials}};
+      {"planned_trials", &c.planned_trials}, {"estimate_mode_pct", &c.estimate_mode_pct}};
   for (const auto& [name, index] : names)
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) *index = static_cast<int>(i);
@@ -112,6 +116,7 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
   r.planned_trials = std::isnan(planned) ? 0 : static_cast<int>(planned);
   r.estimate_pct = number(field(c.estimate_pct), file, line, "estimate_pct", true);
   r.estimate_sd_pct = number(field(c.estimate_sd_pct), file, line, "estimate_sd_pct", true);
+  r.estimate_mode_pct = number(field(c.estimate_mode_pct), file, line, "estimate_mode_pct", true);
   return r;
 }
 
@@ -136,8 +141,8 @@ std::string format_row(const ResultRow& r, std::size_t columns) {
       g(r.response_time_ms, 3), r.protocol, r.task, g(r.difference_pct, 6, true), r.source, r.session,
       g(r.visual_peak_m, 6, true), g(r.actuator_peak, 6, true), g(r.actuator_onset_ms, 3),
       g(r.picture_onset_ms, 3), r.procedure, r.track_trial > 0 ? std::to_string(r.track_trial) : "",
-      r.reversals >= 0 ? std::to_string(r.reversals) : "", g(r.estimate_pct, 4, true), g(r.estimate_sd_pct, 4, true),
-      r.planned_trials > 0 ? std::to_string(r.planned_trials) : ""};
+      r.reversals >= 0 ? std::to_string(r.reversals) : "", exact(r.estimate_pct), exact(r.estimate_sd_pct),
+      r.planned_trials > 0 ? std::to_string(r.planned_trials) : "", exact(r.estimate_mode_pct)};
   std::string out;
   for (std::size_t i = 0; i < std::min(columns, kResultsColumns); ++i) out += (i ? "," : "") + fields[i];
   out += '\n';

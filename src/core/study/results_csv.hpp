@@ -7,6 +7,7 @@
 //   ,actuator_onset_ms,picture_onset_ms                                      (timing)
 //   ,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct            (adaptive)
 //   ,planned_trials                                                          (sessions)
+//   ,estimate_mode_pct                                                       (QUEST's mode; QUEST+: its joint mode's threshold)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
@@ -17,10 +18,13 @@
 // for an adaptive one, after the trial's answer: the trial's number in its condition's
 // track, the staircase's reversals, the estimate (the staircase's mean level at its last
 // reversals once it has them; QUEST's posterior mean) and QUEST's posterior SD (empty where
-// they do not apply). `planned_trials` is how many trials the run that wrote the row meant
-// to give (the schedule's, an adaptive protocol's bound, a visitor's few): a participant
-// with fewer rows stopped early (a visitor who walked away). A file begun before some of
-// these columns keeps its header: its rows are appended with the columns it has.
+// they do not apply), written in full (the shortest decimal that reads back as the same
+// double). `planned_trials` is how many trials the run that wrote the row meant to give
+// (the schedule's, an adaptive protocol's bound, a visitor's few): a participant with fewer
+// rows stopped early (a visitor who walked away). `estimate_mode_pct` is QUEST's posterior
+// mode after the answer (the grid's most probable threshold; QUEST+: the threshold of its
+// joint mode; in full; empty for the other procedures): columns are only ever added at the end. A file begun before some of these
+// columns keeps its header: its rows are appended with the columns it has.
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -37,9 +41,9 @@ inline constexpr const char* kResultsHeader =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
     "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct,"
-    "planned_trials";
+    "planned_trials,estimate_mode_pct";
 //! The columns this version writes.
-inline constexpr std::size_t kResultsColumns = 22;
+inline constexpr std::size_t kResultsColumns = 23;
 //! How many of kResultsHeader's columns a file's header has: kResultsHeaderWithoutTiming
 //! or longer, up to all of them, in this order; 0 for any other header (not resumable).
 std::size_t results_columns(std::string_view header);
@@ -67,6 +71,7 @@ struct ResultRow {
   double estimate_pct = std::numeric_limits<double>::quiet_NaN();
   double estimate_sd_pct = std::numeric_limits<double>::quiet_NaN();
   int planned_trials = 0;  //!< 0: not recorded
+  double estimate_mode_pct = std::numeric_limits<double>::quiet_NaN();  //!< QUEST: posterior mode; NaN: none
 };
 
 //! The row as written, ending in '\n': its first `columns` columns (kResultsHeader's order).

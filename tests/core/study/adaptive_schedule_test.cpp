@@ -1,6 +1,7 @@
 // An adaptive protocol's trials (core/study/adaptive_schedule.hpp): interleaved tracks, one
 // per condition, each testing its own level on the protocol's grid, ending by their own
 // rules, and the same again when the answers are replayed (a resumed session).
+#include <algorithm>
 #include <map>
 #include <random>
 
@@ -126,6 +127,98 @@ TEST(AdaptiveSchedule, QuestPlusTracksConvergeOnTheObserversThresholdsAndReplayA
     EXPECT_LT(*s.estimate_sd_pct, 5.0) << condition_name(c);
   }
   EXPECT_LT(estimate[StudyCondition::both], estimate[StudyCondition::visual_only]);
+}
+
+//! The trials of a shipped protocol's run as one text: each trial's condition (its index in the
+//! protocol), item and answer.
+struct RunText {
+  std::string conditions, answers;
+  std::vector<int> items;
+};
+RunText as_text(const StudyProtocol& p, const std::vector<std::pair<ScheduledTrial, bool>>& trials) {
+  RunText out;
+  for (const auto& [t, correct] : trials) {
+    const auto c = std::find(p.conditions.begin(), p.conditions.end(), t.condition) - p.conditions.begin();
+    out.conditions += static_cast<char>('0' + c);
+    out.answers += correct ? '1' : '0';
+    out.items.push_back(t.item);
+  }
+  return out;
+}
+
+// The expected values below were printed by the code as it was before step_type,
+// initial_one_up_one_down, discard_reversals, QUEST's scale and placement existed (commit
+// 55894ce), running the shipped protocols with the simulated observer as run() does; they
+// are not derived from the code under test. The shipped protocols, which use none of the new
+// keys, must decide exactly as they did: the same trials, the same answers, the same estimates
+// bit for bit.
+TEST(AdaptiveSchedule, TheShippedProtocolsDecideExactlyAsBeforeTheNewOptions) {
+  {
+    const StudyProtocol p = shipped("staircase.toml");
+    const auto trials = run(p, "P01");
+    const RunText text = as_text(p, trials);
+    EXPECT_EQ(text.conditions,
+              std::string("22021001100201020101211000212212210012111020111100220212002112011110200112022110"
+                          "221112001222112022102210002202220"));
+    EXPECT_EQ(text.answers,
+              std::string("11111111111111110111101100011101110110010010110111111111010110111011101110111110"
+                          "111001100001101111110111101110111"));
+    const std::vector<int> items{
+        59, 59, 59, 43, 59, 59, 43, 59, 43, 43, 27, 43, 27, 43, 11, 27, 11, 27, 19, 27, 27, 11, 19, 19, 15,
+        19, 11, 19, 19, 19, 15, 15, 15, 19, 23, 27, 19, 11, 15, 19, 19, 27, 15, 31, 23, 23, 19, 23, 35, 35,
+        15, 11, 31, 11, 23, 7, 31, 35, 7, 19, 19, 11, 35, 15, 15, 11, 15, 31, 15, 31, 35, 15, 11, 15, 35, 19,
+        19, 11, 7, 31, 15, 15, 7, 3, 7, 11, 35, 35, 11, 11, 15, 19, 15, 15, 19, 39, 15, 15, 19, 39, 11, 15,
+        19, 35, 35, 31, 15, 11, 35, 11, 15, 15, 35};
+    EXPECT_EQ(text.items, items);
+    AdaptiveSchedule s(p, "P01");
+    for (const auto& [t, correct] : trials) s.record(t, correct);
+    const std::pair<StudyCondition, std::pair<double, int>> expected[] = {
+        {StudyCondition::visual_only, {0x1p+4, 36}},
+        {StudyCondition::tactile_only, {0x1p+3, 38}},
+        {StudyCondition::both, {0x1.8p+2, 39}}};
+    for (const auto& [c, level_estimate] : expected) {
+      const TrackState st = s.state(c);
+      EXPECT_EQ(st.level_pct, level_estimate.first) << condition_name(c);
+      EXPECT_EQ(st.reversals, 12) << condition_name(c);
+      EXPECT_EQ(st.trials, level_estimate.second) << condition_name(c);
+      EXPECT_FALSE(st.estimate_mode_pct) << "a staircase has no mode";
+    }
+    EXPECT_EQ(*s.state(StudyCondition::visual_only).estimate_pct, 0x1.14p+4);
+    EXPECT_EQ(*s.state(StudyCondition::tactile_only).estimate_pct, 0x1.1p+3);
+    EXPECT_EQ(*s.state(StudyCondition::both).estimate_pct, 0x1.dp+2);
+  }
+  {
+    const StudyProtocol p = shipped("quest.toml");
+    const auto trials = run(p, "P01");
+    const RunText text = as_text(p, trials);
+    EXPECT_EQ(text.conditions,
+              std::string("22021001100201020101211000212212210012111020111100220212002112011110200112022110"
+                          "2211120012221120221022120002212200020010"));
+    EXPECT_EQ(text.answers,
+              std::string("11111111111111110111111101111101110110110110110111111111010110111011101110111111"
+                          "1110011000011111111101111011101111111011"));
+    const std::vector<int> items{
+        44, 39, 44, 35, 44, 39, 35, 39, 35, 30, 26, 30, 23, 30, 20, 26, 17, 26, 28, 23, 23, 20, 17, 26, 24,
+        31, 20, 15, 17, 15, 13, 13, 11, 21, 29, 37, 20, 10, 18, 17, 16, 35, 16, 33, 20, 19, 18, 21, 40, 38,
+        15, 14, 36, 13, 20, 12, 35, 40, 12, 20, 19, 14, 39, 19, 18, 18, 19, 38, 17, 37, 41, 19, 19, 17, 40,
+        20, 19, 18, 18, 39, 18, 18, 18, 17, 18, 17, 38, 37, 19, 17, 19, 22, 21, 20, 21, 40, 20, 20, 20, 39,
+        19, 21, 20, 20, 39, 38, 41, 20, 20, 19, 19, 19, 40, 39, 39, 19, 38, 38, 20, 40};
+    EXPECT_EQ(text.items, items);
+    AdaptiveSchedule s(p, "P01");
+    for (const auto& [t, correct] : trials) s.record(t, correct);
+    const std::pair<StudyCondition, std::pair<double, double>> expected[] = {
+        {StudyCondition::visual_only, {0x1.4067b8522a8b4p+4, 0x1.639abb853bc22p+1}},
+        {StudyCondition::tactile_only, {0x1.52b10b8e4d067p+3, 0x1.83a1f8d7fe23cp+0}},
+        {StudyCondition::both, {0x1.351d87177d927p+3, 0x1.5a6ed9792d1f1p+0}}};
+    for (const auto& [c, mean_sd] : expected) {
+      const TrackState st = s.state(c);
+      EXPECT_EQ(st.trials, 40) << condition_name(c);
+      EXPECT_EQ(*st.estimate_pct, mean_sd.first) << condition_name(c);
+      EXPECT_EQ(*st.estimate_sd_pct, mean_sd.second) << condition_name(c);
+      ASSERT_TRUE(st.estimate_mode_pct) << "QUEST's mode, now recorded";
+      EXPECT_NEAR(*st.estimate_mode_pct, *st.estimate_pct, 2 * *st.estimate_sd_pct) << condition_name(c);
+    }
+  }
 }
 
 }  // namespace

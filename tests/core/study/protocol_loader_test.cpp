@@ -1,4 +1,6 @@
 // Study protocols: the shipped examples load; every mistake is one FILE:LINE:COL line.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/study/protocol_loader.hpp"
@@ -190,6 +192,90 @@ TEST(StudyProtocol, AQuestPlusProtocolsMistakesAreOneLineEach) {
             "1.2e+06 likelihoods, more than QUEST+ tables (1e+06): fewer points, or a narrower min_pct-max_pct");
   EXPECT_EQ(error_of(replaced(ok, "[quest_plus]", "[quest]")),
             "bad.toml:1:1: quest_plus: missing (required)");
+}
+
+TEST(StudyProtocol, TheShippedAdaptiveProtocolsKeepTodaysDefaults) {
+  const StudyProtocol s = load_shipped("staircase.toml");
+  EXPECT_EQ(s.adaptive.staircase.step_type, StaircaseStepType::linear);
+  EXPECT_FALSE(s.adaptive.staircase.initial_one_up_one_down);
+  EXPECT_EQ(s.adaptive.staircase.discard_reversals, 0);
+  const StudyProtocol q = load_shipped("quest.toml");
+  EXPECT_EQ(q.adaptive.quest_model.scale, QuestScale::linear);
+  EXPECT_EQ(q.adaptive.quest_model.placement, QuestPlacement::mean);
+  EXPECT_EQ(q.adaptive.quest_prior.sd, 15);
+}
+
+const std::string kStaircase =
+    "name = \"s\"\ntask = \"2afc_harder\"\nprocedure = \"staircase\"\nconditions = [\"both\"]\nseed = 1\n"
+    "reference = \"wood\"\n[staircase]\nsteps_pct = [8, 4]\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n";
+
+TEST(StudyProtocol, StaircaseStepTypesTheInitialPhaseAndDiscardedReversals) {
+  const StudyProtocol db = test::parse_protocol(
+      replaced(kStaircase, "steps_pct = [8, 4]",
+               "step_type = \"db\"\nsteps_db = [4, 2, 1]\ninitial_one_up_one_down = true\ndiscard_reversals = 2"),
+      "a.toml");
+  EXPECT_EQ(db.adaptive.staircase.step_type, StaircaseStepType::db);
+  EXPECT_EQ(db.adaptive.staircase.steps, (std::vector<double>{4, 2, 1}));
+  EXPECT_TRUE(db.adaptive.staircase.initial_one_up_one_down);
+  EXPECT_EQ(db.adaptive.staircase.discard_reversals, 2);
+  const StudyProtocol log =
+      test::parse_protocol(replaced(kStaircase, "steps_pct = [8, 4]", "step_type = \"log\"\nsteps_log10 = [0.1]"),
+                           "a.toml");
+  EXPECT_EQ(log.adaptive.staircase.step_type, StaircaseStepType::log);
+  EXPECT_EQ(log.adaptive.staircase.steps, (std::vector<double>{0.1}));
+  // Each step type has its steps in its own unit and key; K + N must fit in stop_reversals.
+  EXPECT_EQ(error_of(replaced(kStaircase, "steps_pct = [8, 4]", "step_type = \"db\"\nsteps_pct = [8, 4]")),
+            "bad.toml:9:13: staircase.steps_pct: step_type = \"db\" takes its steps as steps_db");
+  EXPECT_EQ(error_of(replaced(kStaircase, "steps_pct = [8, 4]", "step_type = \"db\"")),
+            "bad.toml:7:1: staircase.steps_db: step_type = \"db\" needs its steps as steps_db (e.g. steps_db = "
+            "[4, 2, 1])");
+  EXPECT_EQ(error_of(replaced(kStaircase, "steps_pct = [8, 4]", "step_type = \"log\"\nsteps_log10 = [0.1, 3]")),
+            "bad.toml:9:15: staircase.steps_log10: each step must be > 0 and <= 2 (got 3)");
+  EXPECT_EQ(error_of(replaced(kStaircase, "steps_pct = [8, 4]", "step_type = \"dB\"")),
+            "bad.toml:8:13: staircase.step_type: expected \"linear\", \"db\" or \"log\", got \"dB\"");
+  EXPECT_EQ(error_of(replaced(kStaircase, "steps_pct = [8, 4]", "discard_reversals = 5")),
+            "bad.toml:8:21: staircase.discard_reversals: the first 5 reversals discarded and the last 8 averaged "
+            "(threshold_reversals) need 13 reversals, and a track stops at 12 (stop_reversals): it would never have an "
+            "estimate; lower one of them or raise stop_reversals");
+  EXPECT_NO_THROW(test::parse_protocol(replaced(kStaircase, "steps_pct = [8, 4]", "discard_reversals = 4"), "a.toml"))
+      << "4 discarded + 8 averaged = the 12 a track stops at";
+}
+
+const std::string kQuest =
+    "name = \"q\"\ntask = \"2afc_harder\"\nprocedure = \"quest\"\nconditions = [\"both\"]\nseed = 1\n"
+    "reference = \"wood\"\n[quest]\ntrials = 30\n[[stimulus]]\nname = \"wood\"\nmaterial = \"wood\"\n";
+
+TEST(StudyProtocol, QuestsScaleAndPlacement) {
+  const StudyProtocol log = test::parse_protocol(
+      replaced(kQuest, "trials = 30",
+               "trials = 30\nscale = \"log10\"\nprior_mean_log10 = 1.2\nprior_sd_log10 = 0.3\n"
+               "placement = \"quantile\"\nquantile = 0.59"),
+      "a.toml");
+  EXPECT_EQ(log.adaptive.quest_model.scale, QuestScale::log10);
+  EXPECT_EQ(log.adaptive.quest_prior.mean, 1.2);
+  EXPECT_EQ(log.adaptive.quest_prior.sd, 0.3);
+  EXPECT_EQ(log.adaptive.quest_model.placement, QuestPlacement::quantile);
+  EXPECT_EQ(log.adaptive.quest_model.quantile, 0.59);
+  const StudyProtocol log_defaults =
+      test::parse_protocol(replaced(kQuest, "trials = 30", "scale = \"log10\""), "a.toml");
+  EXPECT_NEAR(log_defaults.adaptive.quest_prior.mean, std::log10(20.0), 1e-12);
+  EXPECT_EQ(log_defaults.adaptive.quest_prior.sd, 0.5);
+  const StudyProtocol mode = test::parse_protocol(replaced(kQuest, "trials = 30", "placement = \"mode\""), "a.toml");
+  EXPECT_EQ(mode.adaptive.quest_model.placement, QuestPlacement::mode);
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "scale = \"log10\"\nprior_mean_pct = 20")),
+            "bad.toml:9:18: quest.prior_mean_pct: scale = \"log10\" takes its prior in log10 units of the difference: "
+            "prior_mean_log10, prior_sd_log10");
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "prior_sd_log10 = 0.3")),
+            "bad.toml:8:18: quest.prior_sd_log10: only scale = \"log10\" uses it (this prior is in %: prior_mean_pct, "
+            "prior_sd_pct)");
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "quantile = 0.5")),
+            "bad.toml:8:12: quest.quantile: only placement = \"quantile\" uses it");
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "placement = \"quantile\"\nquantile = 1")),
+            "bad.toml:9:12: quest.quantile: must be in [0.01, 0.99], got 1");
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "scale = \"log\"")),
+            "bad.toml:8:9: quest.scale: expected \"linear\" or \"log10\", got \"log\"");
+  EXPECT_EQ(error_of(replaced(kQuest, "trials = 30", "scale = \"log10\"\nprior_mean_log10 = 2.5")),
+            "bad.toml:9:20: quest.prior_mean_log10: must be in [-0.30103, 1.77815], got 2.5");
 }
 
 TEST(StudyProtocol, StrikeAnswersAreStatedInTheProtocol) {

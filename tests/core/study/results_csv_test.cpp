@@ -46,7 +46,7 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
-            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,\n");
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,,\n");
   EXPECT_EQ(format_row(row(3, true), 14),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
@@ -167,7 +167,8 @@ TEST(ResultsCsv, TheCuesOnsetsRoundTripAndAFileFromBeforeThemResumesWithoutThem)
 TEST(ResultsCsv, EachVersionsHeaderResumesInItsOwnColumnsAndPlannedTrialsRoundTrip) {
   EXPECT_EQ(results_columns(kResultsHeader), kResultsColumns);
   EXPECT_EQ(results_columns(kResultsHeaderWithoutTiming), 14u);
-  const std::string before_planned = std::string(kResultsHeader).substr(0, std::string(kResultsHeader).rfind(','));
+  const std::string header = kResultsHeader;
+  const std::string before_planned = header.substr(0, header.find(",planned_trials"));
   EXPECT_EQ(results_columns(before_planned), 21u);
   EXPECT_EQ(results_columns("participant,trial,condition,stimuli,answer,correct,response_time_ms"), 0u);
   EXPECT_EQ(results_columns(before_planned + ",planned"), 0u) << "a column cut short is not ours";
@@ -216,9 +217,65 @@ TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
             (dir / "bad.csv").string() + ":2: procedure: \"bisection\" is not constant, staircase, quest or quest_plus");
 }
 
+TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
+  // The estimates are written as the shortest decimal that reads back as the same double (4
+  // significant digits before), and QUEST's posterior mode is a column of its own, the last.
+  EXPECT_EQ(std::string(kResultsHeader).substr(std::string(kResultsHeader).rfind(',') + 1), "estimate_mode_pct");
+  const fs::path dir = test::scratch_dir();
+  ResultRow r = row(4, true);
+  r.procedure = "quest";
+  r.track_trial = 2;
+  r.estimate_pct = 0.1 + 0.2;  // 0.30000000000000004: 17 digits
+  r.estimate_sd_pct = std::nextafter(14.0, 15.0);  // 14.000000000000002: one ulp above 14
+  r.estimate_mode_pct = 1.0 / 3.0;
+  const std::string line = format_row(r);
+  EXPECT_NE(line.find(",quest,2,,0.30000000000000004,14.000000000000002,,0.3333333333333333\n"), std::string::npos)
+      << line;
+  ResultRow whole = r;
+  whole.estimate_pct = 20;
+  EXPECT_NE(format_row(whole).find(",quest,2,,20,"), std::string::npos) << "no trailing zeros";
+  {
+    ResultsWriter w(dir / "r.csv", read_results(dir / "r.csv"));
+    w.append(r);
+    w.append(row(5, false));  // a constant trial: no estimate, no mode
+  }
+  const ResultsFile back = read_results(dir / "r.csv");
+  ASSERT_EQ(back.rows.size(), 2u);
+  EXPECT_EQ(back.rows[0].estimate_pct, 0.1 + 0.2);
+  EXPECT_EQ(back.rows[0].estimate_sd_pct, std::nextafter(14.0, 15.0));
+  EXPECT_EQ(back.rows[0].estimate_mode_pct, 1.0 / 3.0);
+  EXPECT_TRUE(std::isnan(back.rows[1].estimate_mode_pct));
+  // A file from before the mode (22 columns) reads, its rows without a mode, and a session
+  // resumed in it appends rows of its own 22 columns.
+  const std::string before_mode = std::string(kResultsHeader).substr(0, std::string(kResultsHeader).rfind(','));
+  EXPECT_EQ(results_columns(before_mode), 22u);
+  { std::ofstream(dir / "v22.csv") << before_mode << "\n" << format_row(r, 22); }
+  {
+    ResultsWriter w(dir / "v22.csv", read_results(dir / "v22.csv"));
+    w.append(r);
+  }
+  const ResultsFile old = read_results(dir / "v22.csv");
+  EXPECT_EQ(old.header, before_mode);
+  ASSERT_EQ(old.rows.size(), 2u);
+  for (const ResultRow& o : old.rows) {
+    EXPECT_EQ(o.estimate_pct, 0.1 + 0.2);
+    EXPECT_TRUE(std::isnan(o.estimate_mode_pct)) << "not in that file's columns";
+  }
+  EXPECT_EQ(slurp(dir / "v22.csv"), before_mode + "\n" + format_row(r, 22) + format_row(r, 22));
+  // And a row of the 4-digit era still reads.
+  {
+    std::ofstream(dir / "v4.csv") << before_mode << "\n"
+                                  << "P01,1,both,a|b,2,1,5,t,2afc_harder,1,file,s,0,0,1,20,quest,1,,12.35,3.142,40\n";
+  }
+  const ResultsFile four = read_results(dir / "v4.csv");
+  ASSERT_EQ(four.rows.size(), 1u);
+  EXPECT_EQ(four.rows[0].estimate_pct, 12.35);
+  EXPECT_EQ(four.rows[0].estimate_sd_pct, 3.142);
+}
+
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,,\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
