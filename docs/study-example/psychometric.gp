@@ -9,14 +9,12 @@ set yrange [0.3:1.05]
 set xrange [0:43]
 set arrow from graph 0, first 0.75 to graph 1, first 0.75 nohead dt 2 lc rgb '#888888'
 plot 'psychometric.dat' index 0 using 1:2:(0.6 + 2.4 * sqrt($3 / 96.0)) with points pt 7 ps variable lc 1 title 'visual_only', \
-     0.5 + 0.5 / (1 + exp(-0.243036194 * (x - 20.5604663))) with lines lc 1 notitle, \
-     '+' using (20.5604663):(0.75):(18.4445206):(22.1846583) every ::0::0 with xerrorbars lc 1 pt 1 notitle, \
+     0.5 + 0.5*1/(1 + exp(-(0.243036169*(x - 20.5604714) + 0))) with lines lc 1 notitle, \
+     '+' using (20.5604714):(0.75):(18.4445205):(22.1846581) every ::0::0 with xerrorbars lc 1 pt 1 notitle, \
      'psychometric.dat' index 1 using 1:2:(0.6 + 2.4 * sqrt($3 / 96.0)) with points pt 7 ps variable lc 2 title 'tactile_only', \
-     0.5 + 0.5 / (1 + exp(-0.393806115 * (x - 14.6375213))) with lines lc 2 notitle, \
-     '+' using (14.6375213):(0.75):(13.2330468):(16.0176639) every ::0::0 with xerrorbars lc 2 pt 1 notitle, \
+     0.5 + 0.5*1/(1 + exp(-(0.393806047*(x - 14.6375223) + 0))) with lines lc 2 notitle, \
+     '+' using (14.6375223):(0.75):(13.2330466):(16.0176635) every ::0::0 with xerrorbars lc 2 pt 1 notitle, \
      'psychometric.dat' index 2 using 1:2:(0.6 + 2.4 * sqrt($3 / 96.0)) with points pt 7 ps variable lc 3 title 'both', \
-     0.5 + 0.5 / (1 + exp(-0.195359914 * (x - 7.91989688))) with lines lc 3 notitle, \
-     '+' using (7.91989688):(0.75):(5.14456372):(10.0918249) every ::0::0 with xerrorbars lc 3 pt 1 notitle, \
-     'psychometric.dat' index 3 using 1:2:(0.6 + 2.4 * sqrt($3 / 96.0)) with points pt 7 ps variable lc 4 title 'none', \
-     0.5 + 0.5 / (1 + exp(-0.0628897626 * (x - 75))) with lines lc 4 notitle, \
-     '+' using (75):(0.75):(55.9906123):(75) every ::0::0 with xerrorbars lc 4 pt 1 notitle
+     0.5 + 0.5*1/(1 + exp(-(0.195359853*(x - 7.91989334) + 0))) with lines lc 3 notitle, \
+     '+' using (7.91989334):(0.75):(5.14456379):(10.0918248) every ::0::0 with xerrorbars lc 3 pt 1 notitle, \
+     'psychometric.dat' index 3 using 1:2:(0.6 + 2.4 * sqrt($3 / 96.0)) with points pt 7 ps variable lc 4 title 'none'

@@ -123,7 +123,8 @@ bool thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
   std::vector<std::string> conditions;
   for (const study::ConditionSummary* c : fitted(r.pooled)) conditions.push_back(c->condition);
   gp << "set title \"Each participant's threshold with its 95 % interval\"\n"
-     << "set ylabel 'threshold: difference in B (%) at 75 % correct'\nset xrange [0.5:"
+     << fmt::format("set ylabel 'threshold: difference in B (%) at {:g} % correct'\nset xrange [0.5:",
+                    r.pooled.fit.model.criterion * 100)
      << static_cast<double>(r.participants.size()) + 0.5 << "]\nset xtics (";
   for (std::size_t i = 0; i < r.participants.size(); ++i)
     gp << (i ? ", " : "") << "'" << r.participants[i].first << "' " << i + 1;
@@ -134,7 +135,8 @@ bool thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
   for (std::size_t k = 0; k < conditions.size(); ++k) {
     for (std::size_t i = 0; i < r.participants.size(); ++i)
       for (const study::ConditionSummary& c : r.participants[i].second.conditions) {
-        if (c.condition != conditions[k] || !c.fit || !c.fit->ok) continue;
+        // A maximum on the search's edge is no threshold to plot (the summary says why).
+        if (c.condition != conditions[k] || !c.fit || !c.fit->has_threshold()) continue;
         const bool ci = c.intervals && c.intervals->ok;
         const double x = static_cast<double>(i + 1) - 0.3 + spread * (static_cast<double>(k) + 0.5);
         dat << x << ' ' << c.fit->threshold << ' ' << (ci ? c.intervals->threshold.lo : c.fit->threshold) << ' '
