@@ -133,6 +133,7 @@ bool thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
   int block = 0;
   const double spread = 0.6 / static_cast<double>(std::max<std::size_t>(1, conditions.size()));
   for (std::size_t k = 0; k < conditions.size(); ++k) {
+    int points = 0;
     for (std::size_t i = 0; i < r.participants.size(); ++i)
       for (const study::ConditionSummary& c : r.participants[i].second.conditions) {
         // A maximum on the search's edge is no threshold to plot (the summary says why).
@@ -141,10 +142,12 @@ bool thresholds_plot(const StudyReport& r, const std::filesystem::path& dir) {
         const double x = static_cast<double>(i + 1) - 0.3 + spread * (static_cast<double>(k) + 0.5);
         dat << x << ' ' << c.fit->threshold << ' ' << (ci ? c.intervals->threshold.lo : c.fit->threshold) << ' '
             << (ci ? c.intervals->threshold.hi : c.fit->threshold) << ' ' << r.participants[i].first << '\n';
+        ++points;
       }
+    if (points == 0) continue;  // no participant has a threshold here: no empty block for gnuplot to warn of
     dat << "\n\n";
     add_curve(plot, block, "thresholds.dat",
-              "using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(block + 1) + " title '" + conditions[k] + "'");
+              "using 1:2:3:4 with yerrorbars pt 7 lc " + std::to_string(k + 1) + " title '" + conditions[k] + "'");
     ++block;
   }
   write_plot(dir, "thresholds", dat, gp, plot, block);

@@ -83,6 +83,14 @@ PsychometricIntervals bootstrap_fit(const std::vector<PsychometricLevel>& input,
   if (out.resamples < 20) return out;
   const FitBox& box = fit.box;
   out.threshold = bias_corrected(thresholds, fit.threshold, box.threshold_lo, box.threshold_hi);
+  if (fit.step) {
+    // Every refit of a step is much the same step: the likelihood says where it may stand.
+    out.threshold.lo = std::min(out.threshold.lo, fit.step_threshold_lo);
+    out.threshold.hi = std::max(out.threshold.hi, fit.step_threshold_hi);
+    const double touch = 1e-6 * (box.threshold_hi - box.threshold_lo);
+    out.threshold.lo_open = out.threshold.lo <= box.threshold_lo + touch;
+    out.threshold.hi_open = out.threshold.hi >= box.threshold_hi - touch;
+  }
   if (box.threshold_lo_is_zero) out.threshold.lo_open = false;  // 0 is a limit: the least a difference can be
   out.slope = bias_corrected(slopes, fit.slope, box.slope_lo, box.slope_hi);
   if (options.fit_lapse) {

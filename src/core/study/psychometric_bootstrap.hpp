@@ -13,7 +13,9 @@
 // The refits live in the fit's box, so an interval never leaves what the quantity can be: a
 // threshold's never goes below 0. Where it reaches a side of the box that is only the end of
 // the search (one span beyond the tested differences, or the slope's bounds), that end is
-// not a limit and the interval is one-sided ("≤ 13.4"): `lo_open`/`hi_open`.
+// not a limit and the interval is one-sided ("≤ 13.4"): `lo_open`/`hi_open`. A step's refits
+// are all much the same step, so its threshold's interval also holds the likelihood-ratio
+// 95 % limits of where the step may stand (psychometric_fit.hpp).
 //
 // Goodness of fit (Wichmann & Hill 2001, part I): the share of resamples whose deviance
 // against their own refit is at least the data's deviance, its p-value.

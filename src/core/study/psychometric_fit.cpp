@@ -257,29 +257,32 @@ PsychometricFit describe(const std::vector<PsychometricLevel>& levels, const Fit
   return fit;
 }
 
-//! A step's slope: the least slope whose profile likelihood (the threshold and the lapse
-//! climbed to their best at that slope) is within χ²₁(0.95)/2 = 1.92 of the maximum, found by
-//! bisection in log slope: the likelihood-ratio 95 % lower limit.
-double step_slope_limit(const std::vector<PsychometricLevel>& levels, const FitOptions& options,
-                        const PsychometricFit& fit) {
-  constexpr double kHalfChiSquare95 = 1.920729410347062;
+constexpr double kHalfChiSquare95 = 1.920729410347062;  //!< χ²₁(0.95)/2
+
+//! How far one coordinate may go from the fit towards `to` with the profile likelihood (the
+//! other coordinates climbed to their best there) within χ²₁(0.95)/2 of the maximum, found
+//! by bisection: the likelihood-ratio 95 % limit on that side (`to` itself when it is within).
+double profile_limit(const std::vector<PsychometricLevel>& levels, const FitOptions& options,
+                     const PsychometricFit& fit, int coordinate, double to) {
   const Climb whole = climb_for(levels, options, fit.box);
-  double inside = whole.lo[kLogSlope], outside = std::log(fit.slope);
-  auto profile = [&](double ls) {
+  const Point at_fit{fit.threshold, std::log(fit.slope), fit.lapse};
+  auto within = [&](double value) {
     Climb c = whole;
-    c.lo[kLogSlope] = c.hi[kLogSlope] = ls;
-    double f = 0;
-    c.climb({fit.threshold, ls, fit.lapse}, f);
-    double from_grid = 0;
+    c.lo[coordinate] = c.hi[coordinate] = value;
+    Point start = at_fit;
+    start[coordinate] = value;
+    double f = 0, from_grid = 0;
+    c.climb(start, f);
     search(c, from_grid);
-    return std::max(f, from_grid);
+    return std::max(f, from_grid) >= fit.log_likelihood - kHalfChiSquare95;
   };
-  if (profile(inside) >= fit.log_likelihood - kHalfChiSquare95) return std::exp(inside);
+  if (within(to)) return to;
+  double kept = at_fit[coordinate], refused = to;
   for (int i = 0; i < 40; ++i) {
-    const double mid = (inside + outside) / 2;
-    (profile(mid) >= fit.log_likelihood - kHalfChiSquare95 ? outside : inside) = mid;
+    const double mid = (kept + refused) / 2;
+    (within(mid) ? kept : refused) = mid;
   }
-  return std::exp(outside);
+  return kept;
 }
 
 }  // namespace
@@ -340,7 +343,12 @@ PsychometricFit fit_psychometric(const std::vector<PsychometricLevel>& input, co
     }
   }
   if (fit.step && fit.has_threshold()) {
-    fit.slope_at_least = step_slope_limit(levels, options, fit);
+    // A step's slope is only bounded below, and its threshold is anywhere the step may stand
+    // between the levels around it: both from the likelihood, which a bootstrap of a step
+    // (every refit the same step) cannot show.
+    fit.slope_at_least = std::exp(profile_limit(levels, options, fit, kLogSlope, std::log(box.slope_lo)));
+    fit.step_threshold_lo = profile_limit(levels, options, fit, kThreshold, box.threshold_lo);
+    fit.step_threshold_hi = profile_limit(levels, options, fit, kThreshold, box.threshold_hi);
     join(fit.reason, fmt::format("a step: slope at least {:.3g}", fit.slope_at_least));
   }
   return fit;

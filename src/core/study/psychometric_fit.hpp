@@ -74,6 +74,8 @@ struct PsychometricFit {
   bool flat = false;           //!< slope at its lower bound: no rise, no threshold
   bool lapse_at_limit = false; //!< fitted λ at lapse_limit
   double slope_at_least = 0;   //!< a step: the slope's likelihood-ratio 95 % lower limit
+  //! A step: the thresholds within the likelihood-ratio 95 % limits (where the step may stand).
+  double step_threshold_lo = 0, step_threshold_hi = 0;
   //! The threshold is an estimate: a maximum inside the box's threshold range, on a rise.
   bool has_threshold() const { return ok && !threshold_below && !threshold_above && !flat; }
   //! The slope is an estimate: neither a step nor flat.

@@ -114,6 +114,23 @@ TEST(HonestFit, TheReportedFitIsTheMaximum) {
   EXPECT_NE(f.reason.find("a step: slope at least"), std::string::npos) << f.reason;
 }
 
+TEST(HonestFit, AStepsIntervalSpansWhereTheStepMayStand) {
+  // Chance at 5 and 10 %, every answer right at 20 and 30 %: the step is somewhere between
+  // 10 and 20 %. Every bootstrap refit is the same step at the same place, so the interval
+  // comes from the likelihood; it used to be [x, x], zero wide.
+  const std::vector<PsychometricLevel> step{{5, 20, 10}, {10, 20, 10}, {20, 20, 20}, {30, 20, 20}};
+  const PsychometricFit f = fit_psychometric(step);
+  ASSERT_TRUE(f.step && f.has_threshold()) << f.reason;
+  EXPECT_GT(f.threshold, 10);
+  EXPECT_LT(f.threshold, 20);
+  EXPECT_LT(f.step_threshold_lo, 11);
+  EXPECT_GT(f.step_threshold_hi, 19);
+  const PsychometricIntervals ci = bootstrap_fit(step, {}, f, 200, 1);
+  ASSERT_TRUE(ci.ok);
+  EXPECT_LE(ci.threshold.lo, f.step_threshold_lo);
+  EXPECT_GE(ci.threshold.hi, f.step_threshold_hi);
+}
+
 TEST(HonestFit, EveryShapeAndLapseModeFindsTheMaximumOfADenseGrid) {
   std::mt19937_64 rng(29);
   std::uniform_real_distribution<double> u(0, 1);
