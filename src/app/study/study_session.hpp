@@ -45,7 +45,7 @@ struct StudyOptions {
 struct StudyRunResult {
   std::filesystem::path csv;
   int total = 0;             //!< trials in the participant's schedule (adaptive: at most)
-  std::string procedure = "constant";  //!< the protocol's: constant, staircase or quest
+  std::string procedure = "constant";  //!< the protocol's: constant, staircase, quest or quest_plus
   int already_recorded = 0;  //!< found in the CSV at start
   int answered = 0;          //!< in this run
   int correct = 0;           //!< in this run

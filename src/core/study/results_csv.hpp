@@ -14,12 +14,12 @@
 // output): the largest visual displacement in metres and the largest actuator sample; the
 // two onsets when the strike route had the cues reach the participant, in ms after the
 // tap's contact (the latest of the trial's taps): the actuator and the note (heard), the
-// first frame that shows the bounce (shown). `procedure` is constant, staircase or quest;
-// for an adaptive one, after the trial's answer: the trial's number in its condition's
-// track, the staircase's reversals, the estimate (the staircase's mean level at its last
-// reversals once it has them; QUEST's posterior mean) and QUEST's posterior SD (empty where
-// they do not apply), written in full (the shortest decimal that reads back as the same
-// double). `planned_trials` is how many trials the run that wrote the row meant to give
+// first frame that shows the bounce (shown). `procedure` is constant, staircase, quest or
+// quest_plus; for an adaptive one, after the trial's answer: the trial's number in its
+// condition's track, the staircase's reversals, the estimate (the staircase's mean level at
+// its last reversals once it has them; QUEST's posterior mean; QUEST+'s of the threshold)
+// and its posterior SD (empty where they do not apply), written in full (the shortest
+// decimal that reads back as the same double). `planned_trials` is how many trials the run that wrote the row meant to give
 // (the schedule's, an adaptive protocol's bound, a visitor's few): a participant with fewer
 // rows stopped early (a visitor who walked away). `estimate_mode_pct` is QUEST's posterior
 // mode after the answer (the grid's most probable threshold; QUEST+: the threshold of its

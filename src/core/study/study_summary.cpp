@@ -251,7 +251,8 @@ std::string format_summary(const StudySummary& s) {
     if (c.procedure.empty()) continue;
     if (!adaptive) {
       out += "adaptive tracks: the estimate at each track's last trial (staircase: the mean level at its last "
-             "reversals; quest: the posterior mean)\n";
+             "reversals; quest: the posterior mean, on a log10 scale 10^(mean log10); quest_plus: the threshold's "
+             "posterior mean)\n";
       fmt::format_to(line, "{:<14} {:<10} {:>6} {:>13} {:>13}\n", "condition", "procedure", "tracks", "estimate_pct",
                      "spread_pct");
       adaptive = true;

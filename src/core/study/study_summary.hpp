@@ -22,10 +22,11 @@ struct ConditionSummary {
   std::optional<PsychometricIntervals> intervals;  //!< the fit's, when asked for and the fit is ok
   std::vector<PsychometricLevel> levels;           //!< the fit's data, ascending difference
   std::vector<double> response_ms;                 //!< every trial's, in row order
-  //! Adaptive rows (procedure staircase or quest): the procedure ("mixed" when both), and
-  //! each track's estimate at its last trial (a track: one participant's rows of one protocol
-  //! in this condition; staircase: the mean level at its last reversals, once it has them;
-  //! QUEST: the posterior mean), in first-seen order.
+  //! Adaptive rows (procedure staircase, quest or quest_plus): the procedure ("mixed" when
+  //! more than one), and each track's estimate at its last trial (a track: one participant's
+  //! rows of one protocol in this condition; staircase: the mean level at its last reversals,
+  //! once it has them; QUEST: the posterior mean; QUEST+: the threshold's posterior mean), in
+  //! first-seen order.
   std::string procedure;
   std::vector<double> final_estimates;
   std::optional<double> final_sd;  //!< QUEST, one participant: the posterior SD at the last trial
