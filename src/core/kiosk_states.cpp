@@ -21,6 +21,9 @@ Check validate(const KioskStatesConfig& c) {
   if (!std::isfinite(c.lost_hint_after_s) || c.lost_hint_after_s < 0 || !from_seconds(c.lost_hint_after_s))
     return refused("lost_hint_after_s must be a finite number of seconds >= 0");
   if (!positive_seconds(c.close_notice_s)) return refused("close_notice_s must be a finite number of seconds > 0");
+  if (!positive_seconds(c.operator_page_timeout_s))
+    return refused("operator_page_timeout_s must be a finite number of seconds > 0");
+  if (!positive_seconds(c.quit_confirm_s)) return refused("quit_confirm_s must be a finite number of seconds > 0");
   return {};
 }
 
@@ -45,6 +48,8 @@ KioskStates::KioskStates(KioskStatesConfig config, Nanos now_ns) : config_(confi
   idle_after_ns_ = *from_seconds(config_.idle_after_s);
   lost_hint_ns_ = *from_seconds(config_.lost_hint_after_s);
   close_notice_ns_ = *from_seconds(config_.close_notice_s);
+  page_timeout_ns_ = *from_seconds(config_.operator_page_timeout_s);
+  quit_confirm_ns_ = *from_seconds(config_.quit_confirm_s);
   since_ = now_ = last_movement_ = lost_since_ = now_ns;
 }
 
@@ -52,6 +57,16 @@ Nanos KioskStates::advance(Nanos t_ns) {
   now_ = std::max(now_, t_ns);
   if (state_ == KioskState::play && now_ - last_movement_ >= idle_after_ns_) enter(KioskState::attract, now_);
   if (close_refused_ && now_ - close_refused_at_ >= close_notice_ns_) close_refused_ = false;
+  if (quit_asked_ && now_ - quit_asked_at_ >= quit_confirm_ns_) quit_asked_ = false;
+  if (state_ == KioskState::operator_page && now_ - page_key_at_ >= page_timeout_ns_) {
+    // Nobody at the page: back to the visitors (or to the calibration it remembered).
+    ++page_timeouts_;
+    quit_asked_ = false;
+    const bool calibrate = calibration_pending_ && source_ != InputSource::mouse;
+    calibration_pending_ = false;
+    calibration_from_operator_ = false;
+    enter(calibrate ? KioskState::calibration : KioskState::attract, now_);
+  }
   return now_;
 }
 
@@ -135,6 +150,8 @@ bool KioskStates::remote_connected(Nanos t_ns, bool connected) {
 bool KioskStates::operator_chord(Nanos t_ns) {
   const Nanos t = advance(t_ns);
   if (state_ == KioskState::operator_page) return false;
+  page_key_at_ = t;
+  quit_asked_ = false;
   return enter(KioskState::operator_page, t);
 }
 
@@ -191,6 +208,23 @@ bool KioskStates::operator_page_closed(Nanos t_ns) {
 bool KioskStates::quit_requested(Nanos t_ns) {
   const Nanos t = advance(t_ns);
   if (state_ == KioskState::operator_page) {
+    page_key_at_ = t;
+    if (quit_asked_) {
+      quit_ = true;
+      return true;
+    }
+    quit_asked_ = true;  // a single Q may be a slip: ask first
+    quit_asked_at_ = t;
+    return false;
+  }
+  close_refused_ = true;
+  close_refused_at_ = t;
+  return false;
+}
+
+bool KioskStates::window_close_requested(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ == KioskState::operator_page) {
     quit_ = true;
     return true;
   }
@@ -199,7 +233,13 @@ bool KioskStates::quit_requested(Nanos t_ns) {
   return false;
 }
 
-bool KioskStates::window_close_requested(Nanos t_ns) { return quit_requested(t_ns); }
+bool KioskStates::operator_key(Nanos t_ns) {
+  const Nanos t = advance(t_ns);
+  if (state_ != KioskState::operator_page) return false;
+  page_key_at_ = t;
+  quit_asked_ = false;
+  return false;
+}
 
 KioskOverlay KioskStates::overlay() const {
   KioskOverlay o;

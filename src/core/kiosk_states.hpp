@@ -17,7 +17,11 @@
 // | Operator    | recalibrate                             | Calibration | with the mouse too: it stands in for the dot  |
 // | Operator    | calibration needed                      | Operator    | remembered: closing the page calibrates       |
 // | Operator    | page closed                             | Play        | Calibration instead if one was remembered     |
-// | Operator    | quit requested / window close           | Operator    | accepted: should_quit() becomes true          |
+// | Operator    | quit requested (Q), not asked           | Operator    | asked: "Q again quits" for quit_confirm_s     |
+// | Operator    | quit requested while asked              | Operator    | accepted: should_quit() becomes true          |
+// | Operator    | any other page key                      | Operator    | the question withdrawn; the page timer restarts|
+// | Operator    | window close                            | Operator    | accepted at once (a deliberate act)           |
+// | Operator    | no key for operator_page_timeout_s      | Attract     | Calibration instead if one was remembered     |
 // | Operator    | operator chord                          | Operator    | no-op: only the page's close action leaves it |
 // | Calibration | calibration accepted                    | Play        |                                               |
 // | Calibration | calibration cancelled                   | Operator    | if it was entered from Operator, else Play    |
@@ -55,6 +59,10 @@ struct KioskStatesConfig {
   double dead_band_screen_units = 0.005;
   double lost_hint_after_s = 0.5;  //!< tracking lost this long → "Point the mallet at the screen"
   double close_notice_s = 4.0;     //!< how long a refused window close shows its notice
+  //! The operator page closes by itself after this long without a key (an operator walked
+  //! away: strikes do nothing and the attract mode never returns while it is open).
+  double operator_page_timeout_s = 180.0;
+  double quit_confirm_s = 5.0;  //!< Q asks first: a second Q within this long quits
 };
 
 //! Passes when `config` is usable; otherwise fails with one line naming the bad key and why.
@@ -109,14 +117,21 @@ class KioskStates {
   bool operator_page_closed(Nanos t_ns);
   //! The operator page's "quit", or the window's close request: granted only in Operator.
   //! Returns whether it was granted (then should_quit() is true).
+  //! Q on the page asks first: the first arms the question (quit_asked()), a second within
+  //! quit_confirm_s quits.
   bool quit_requested(Nanos t_ns);
   bool window_close_requested(Nanos t_ns);
+  //! Any other key on the operator page: withdraws the quit question, restarts the page's timer.
+  bool operator_key(Nanos t_ns);
 
   // What the kiosk loop reads.
   KioskState state() const { return state_; }
   Nanos since() const { return since_; }             //!< when the current state was entered
   bool may_quit() const { return state_ == KioskState::operator_page; }
   bool should_quit() const { return quit_; }
+  bool quit_asked() const { return quit_asked_; }  //!< "Q again quits the kiosk" is showing
+  //! How many times the operator page closed by itself (its timeout): the loop logs each.
+  int page_timeouts() const { return page_timeouts_; }
   bool ghost_plays() const { return state_ == KioskState::attract; }
   bool attract_volume() const { return state_ == KioskState::attract; }  //!< audio at the attract volume
   bool visitor_plays() const { return state_ == KioskState::play; }      //!< the pointer drives the mallet
@@ -139,6 +154,8 @@ class KioskStates {
   Nanos idle_after_ns_;
   Nanos lost_hint_ns_;
   Nanos close_notice_ns_;
+  Nanos page_timeout_ns_;
+  Nanos quit_confirm_ns_;
   KioskState state_ = KioskState::attract;
   Nanos since_ = 0;
   Nanos now_ = 0;
@@ -152,6 +169,10 @@ class KioskStates {
   bool calibration_pending_ = false;
   bool remote_connected_ = true;
   bool quit_ = false;
+  bool quit_asked_ = false;
+  Nanos quit_asked_at_ = 0;
+  Nanos page_key_at_ = 0;  //!< the page's last key (or its opening)
+  int page_timeouts_ = 0;
   bool close_refused_ = false;
   Nanos close_refused_at_ = 0;
 };

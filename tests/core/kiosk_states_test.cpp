@@ -87,6 +87,7 @@ TEST(KioskStates, EveryTransitionOfTheTable) {
   auto closed = [](KioskStates& k, Nanos at) { return k.operator_page_closed(at); };
   auto close = [](KioskStates& k, Nanos at) { return k.window_close_requested(at); };
   auto quit = [](KioskStates& k, Nanos at) { return k.quit_requested(at); };
+  auto quit_twice = [](KioskStates& k, Nanos at) { return !k.quit_requested(at) && k.quit_requested(at); };
   auto source = [](KioskStates& k, Nanos at) { return k.input_source(at, InputSource::replay); };
   const std::vector<Row> rows{
       {S::attract, "real movement", move, S::play},
@@ -98,7 +99,8 @@ TEST(KioskStates, EveryTransitionOfTheTable) {
       {S::operator_page, "recalibrate", recal, S::calibration},
       {S::operator_page, "calibration needed", needed, S::operator_page},
       {S::operator_page, "page closed", closed, S::play},
-      {S::operator_page, "quit", quit, S::operator_page, true},
+      {S::operator_page, "quit (asked first)", quit, S::operator_page},
+      {S::operator_page, "quit, and again", quit_twice, S::operator_page, true},
       {S::operator_page, "window close", close, S::operator_page, true},
       {S::operator_page, "chord", chord, S::operator_page},
       {S::calibration, "accepted", accepted, S::play},
@@ -353,12 +355,71 @@ TEST(KioskStates, TheCloseRequestIsRefusedOutsideOperatorAndSaysWhy) {
   EXPECT_TRUE(k.window_close_requested(kStart + 3 * kNanosPerSecond));
   EXPECT_TRUE(k.should_quit());
   KioskStates q = in(S::operator_page);
-  EXPECT_TRUE(q.quit_requested(kStart + 3 * kNanosPerSecond));
+  EXPECT_FALSE(q.quit_requested(kStart + 3 * kNanosPerSecond));
+  EXPECT_TRUE(q.quit_asked());
+  EXPECT_TRUE(q.quit_requested(kStart + 4 * kNanosPerSecond));
   EXPECT_TRUE(q.should_quit());
 }
 
-TEST(KioskStates, TheOperatorPageRestartsTheIdleTimerWhenClosed) {
+TEST(KioskStates, QAsksFirstAndAnyOtherKeyOrTheTimeWithdrawsTheQuestion) {
+  const Nanos t = kStart + 3 * kNanosPerSecond;
+  {  // Q, Q within quit_confirm_s (5 s): quit.
+    KioskStates k = in(S::operator_page);
+    EXPECT_FALSE(k.quit_requested(t));
+    EXPECT_TRUE(k.quit_asked());
+    EXPECT_FALSE(k.should_quit());
+    EXPECT_TRUE(k.quit_requested(t + 5 * kNanosPerSecond - 1));
+    EXPECT_TRUE(k.should_quit());
+  }
+  {  // Q, then 5 s: the question is gone, and the next Q asks again.
+    KioskStates k = in(S::operator_page);
+    EXPECT_FALSE(k.quit_requested(t));
+    k.tick(t + 5 * kNanosPerSecond);
+    EXPECT_FALSE(k.quit_asked());
+    EXPECT_FALSE(k.quit_requested(t + 6 * kNanosPerSecond));
+    EXPECT_FALSE(k.should_quit());
+    EXPECT_TRUE(k.quit_asked());
+  }
+  {  // Q, another key, Q: asked again, not quit.
+    KioskStates k = in(S::operator_page);
+    EXPECT_FALSE(k.quit_requested(t));
+    k.operator_key(t + kNanosPerSecond);
+    EXPECT_FALSE(k.quit_asked());
+    EXPECT_FALSE(k.quit_requested(t + 2 * kNanosPerSecond));
+    EXPECT_FALSE(k.should_quit());
+  }
+  {  // Reopening the page starts without the question.
+    KioskStates k = in(S::operator_page);
+    EXPECT_FALSE(k.quit_requested(t));
+    k.operator_page_closed(t + kNanosPerSecond);
+    k.operator_chord(t + 2 * kNanosPerSecond);
+    EXPECT_FALSE(k.quit_asked());
+  }
+}
+
+TEST(KioskStates, TheOperatorPageClosesByItselfAfterItsTimeoutWithoutAKey) {
   KioskStates k = in(S::operator_page);
+  const Nanos opened = k.since();
+  const Nanos timeout = 180 * kNanosPerSecond;  // the default operator_page_timeout_s
+  k.operator_key(opened + 100 * kNanosPerSecond);  // a key restarts its timer
+  EXPECT_FALSE(k.tick(opened + 100 * kNanosPerSecond + timeout - 1));
+  EXPECT_EQ(k.state(), S::operator_page);
+  EXPECT_EQ(k.page_timeouts(), 0);
+  EXPECT_TRUE(k.tick(opened + 100 * kNanosPerSecond + timeout));
+  EXPECT_EQ(k.state(), S::attract) << "nobody is at the page: back to the visitors";
+  EXPECT_EQ(k.page_timeouts(), 1);
+  EXPECT_FALSE(k.should_quit());
+  // A calibration remembered while the page was open runs when it times out, as on Esc.
+  KioskStates c = in(S::operator_page);
+  c.calibration_needed(c.since() + kNanosPerSecond);
+  EXPECT_TRUE(c.tick(c.since() + timeout));
+  EXPECT_EQ(c.state(), S::calibration);
+}
+
+TEST(KioskStates, TheOperatorPageRestartsTheIdleTimerWhenClosed) {
+  KioskStatesConfig long_visit;
+  long_visit.operator_page_timeout_s = 3600;  // the page's own timeout is another test's
+  KioskStates k = in(S::operator_page, long_visit);
   const Nanos closed = kStart + 600 * kNanosPerSecond;  // a long visit: no Attract behind the page
   k.tick(closed - 1);
   EXPECT_EQ(k.state(), S::operator_page);

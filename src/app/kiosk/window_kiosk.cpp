@@ -437,6 +437,8 @@ void WindowKiosk::handle_keys(Nanos now) {
   for (const auto& [key, mods, repeat] : keys_) {
     const OperatorAction action = operator_action(key, mods, states_->state() == KioskState::operator_page);
     if (repeat && !operator_action_repeats(action)) continue;
+    // Any key of the page but Q withdraws Q's question and restarts the page's timer.
+    if (action != OperatorAction::none && action != OperatorAction::quit) states_->operator_key(now);
     switch (action) {
       case OperatorAction::none: break;  // visitors' keys do nothing
       case OperatorAction::open:
@@ -448,8 +450,10 @@ void WindowKiosk::handle_keys(Nanos now) {
         journal::notice("operator: page closed");
         break;
       case OperatorAction::quit:
-        journal::notice("operator: quit");
-        states_->quit_requested(now);
+        if (states_->quit_requested(now))
+          journal::notice("operator: quit");
+        else if (states_->quit_asked())
+          journal::notice("operator: Q asks first: Q again within {:g} s quits", states_->config().quit_confirm_s);
         break;
       case OperatorAction::recalibrate:  // the screen itself starts in the frame
         journal::notice("operator: recalibrate");
@@ -594,6 +598,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                                to_string(stage_->config.quality), visitor_language()));
   // What needs the operator first, before the status: settings refused (at start, on a
   // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
+  if (states_->quit_asked()) lines.emplace_back("! " + std::string(tr("Q again quits the kiosk (any other key: stay)")));
   for (const std::string& p : stage_->problems) lines.push_back("! " + p);
   if (health_.state().failing()) lines.push_back("! " + health_.state().problem());
   lines.push_back(input_line(*stage_));
@@ -646,10 +651,11 @@ int WindowKiosk::run() {
     handle_keys(now);
     if (win_.window->close_requested()) {
       glfwSetWindowShouldClose(win_.window->window(), GLFW_FALSE);
-      journal::notice("window close requested ({})",
-                      options_.windowed ? "the operator page opens" : "refused outside the operator page");
-      if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes from the page
-      states_->window_close_requested(now);
+      if (options_.windowed) states_->operator_chord(now);  // a windowed kiosk closes as a window does
+      const bool granted = states_->window_close_requested(now);
+      journal::notice("window close requested: {}", granted ? (options_.windowed ? "the windowed kiosk quits"
+                                                                                  : "the kiosk quits (operator page)")
+                                                             : "refused outside the operator page");
     }
     if (g_stop.load()) {  // systemd's stop (SIGTERM), or Ctrl+C: a clean end, as the operator's Q
       journal::notice("mallet run: {} received, stopping", g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM");
@@ -666,7 +672,11 @@ int WindowKiosk::run() {
     if (mouse)
       for (const PointerSample& p : cursor) states_->pointer(p.t_ns, {p.x, p.y});
     if (stage_->device || stage_->camera) poll_remote(now);
+    const int page_timeouts = states_->page_timeouts();
     states_->tick(now);
+    if (states_->page_timeouts() != page_timeouts)
+      journal::notice("operator: page closed by itself after {:g} s without a key",
+                      states_->config().operator_page_timeout_s);
     const std::optional<Vec2> screen = last_cursor_;
     const bool inside = screen && screen->x >= 0 && screen->x <= 1 && screen->y >= 0 && screen->y <= 1;
     calibration_frame(now, mouse && inside ? screen : std::nullopt);
