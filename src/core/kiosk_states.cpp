@@ -104,6 +104,12 @@ bool KioskStates::pointer(Nanos t_ns, Vec2 screen) {
   return state_ != before;
 }
 
+void KioskStates::pointer_rests(Vec2 screen) {
+  if (!std::isfinite(screen.x) || !std::isfinite(screen.y)) return;
+  have_anchor_ = true;
+  anchor_ = screen;
+}
+
 bool KioskStates::tracking_lost(Nanos t_ns) {
   const KioskState before = state_;
   const Nanos t = advance(t_ns);

@@ -103,6 +103,10 @@ class KioskStates {
   // Events. Each returns whether the state changed.
   bool tick(Nanos now_ns);
   bool pointer(Nanos t_ns, Vec2 screen);  //!< a pointer sample, normalised screen coordinates
+  //! Where the pointer is known to rest without a sample (the window system's cursor when the
+  //! kiosk starts): the first sample away from it is movement. Without it the first sample
+  //! only says where the stick rests.
+  void pointer_rests(Vec2 screen);
   bool tracking_lost(Nanos t_ns);
   bool tracking_regained(Nanos t_ns);  //!< also implied by any pointer sample
   bool input_source(Nanos t_ns, InputSource source);  //!< the mouse never loses tracking

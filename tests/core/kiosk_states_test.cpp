@@ -397,6 +397,23 @@ TEST(KioskStates, QAsksFirstAndAnyOtherKeyOrTheTimeWithdrawsTheQuestion) {
   }
 }
 
+TEST(KioskStates, WithTheRestingPointerKnownTheFirstMoveEndsTheAttractMode) {
+  // The window system's cursor at start-up: the first sample away from it is a visitor's.
+  KioskStates k({}, kStart);
+  k.pointer_rests({0.5, 0.5});
+  EXPECT_TRUE(k.pointer(kStart + kNanosPerSecond, {0.52, 0.5}));
+  EXPECT_EQ(k.state(), S::play);
+  // Without it, the first sample only says where the stick rests (an IR dot first seen).
+  KioskStates ir({}, kStart);
+  EXPECT_FALSE(ir.pointer(kStart + kNanosPerSecond, {0.52, 0.5}));
+  EXPECT_EQ(ir.state(), S::attract);
+  // A jitter inside the dead-band around the resting place is still no movement.
+  KioskStates still({}, kStart);
+  still.pointer_rests({0.5, 0.5});
+  EXPECT_FALSE(still.pointer(kStart + kNanosPerSecond, {0.502, 0.5}));
+  EXPECT_EQ(still.state(), S::attract);
+}
+
 TEST(KioskStates, TheOperatorPageClosesByItselfAfterItsTimeoutWithoutAKey) {
   KioskStates k = in(S::operator_page);
   const Nanos opened = k.since();

@@ -94,6 +94,7 @@ class WindowKiosk {
   void next_wall_material();  //!< operator page M: the wall's next material
   void next_scene();          //!< operator page S: the next of [scenes] choices
   void on_cursor(double x, double y);  //!< the window system's cursor event, stamped as it is read
+  void seed_window_cursor();           //!< the cursor's position at start-up, before any event
   void draw_overlay(Nanos now, double frame_ms);
   void apply_volume();
   void poll_remote(Nanos now);
@@ -307,6 +308,7 @@ void WindowKiosk::build(KioskSetup setup) {
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
   if (on_page) states_->operator_chord(now);
   states_->input_source(now, stage_->source);
+  if (stage_->source == InputSource::mouse && !stage_->mouse) seed_window_cursor();
   if (stage_->device || stage_->camera) {
     states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
     start_ir_tracker(*stage_);
@@ -508,6 +510,21 @@ void WindowKiosk::next_scene() {
   journal::notice("switching to the scene {}", options_.scene.c_str());
   reload();
   if (std::filesystem::path(stage_->scene.file) != options_.scene) options_.scene = previous;  // refused: stays
+}
+
+void WindowKiosk::seed_window_cursor() {
+  // Where the window system's cursor already is: the mallet starts there, and the first move
+  // from it is a visitor's. A move to where the cursor already is sends no event (the X
+  // server starts it at the screen's centre), so without this the mallet and the mouse
+  // calibration's centre target would wait for one.
+  double x = 0, y = 0;
+  int w = 1, h = 1;
+  glfwGetCursorPos(win_.window->window(), &x, &y);
+  glfwGetWindowSize(win_.window->window(), &w, &h);
+  const Vec2 at{x / std::max(w, 1), y / std::max(h, 1)};
+  if (!(at.x >= 0 && at.x <= 1 && at.y >= 0 && at.y <= 1)) return;  // outside a window: no position
+  last_cursor_ = at;
+  states_->pointer_rests(at);
 }
 
 void WindowKiosk::on_cursor(double x, double y) {
