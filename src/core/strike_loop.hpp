@@ -63,8 +63,14 @@ class StrikeLoop {
   void set_wall_material(int material) {
     if (scene_.kind == SceneKind::wall) mallet_.set_material(0, material);
   }
-  //! Attract mode: the wall's material moves on after every strike.
-  void set_cycle_materials(bool on) { cycle_materials_ = on; }
+  //! Attract mode: the wall's material moves on after every strike. Ending it puts back the
+  //! material chosen before it began (the operator's M, or the scene's own): a visitor finds
+  //! the wall the operator left, not wherever the attract mode stopped.
+  void set_cycle_materials(bool on) {
+    if (on && !cycle_materials_) chosen_material_ = wall_material();
+    if (!on && cycle_materials_ && chosen_material_ >= 0) set_wall_material(chosen_material_);
+    cycle_materials_ = on;
+  }
 
  private:
   const Scene& scene_;
@@ -74,6 +80,7 @@ class StrikeLoop {
   std::optional<TextureCursor> texture_;
   std::optional<StripeMotion> motion_;
   bool cycle_materials_ = false;
+  int chosen_material_ = -1;  //!< the wall's material before the attract mode cycled it
 };
 
 //! The attract mode's ghost player, looping its phrase from `start` for as long as asked.

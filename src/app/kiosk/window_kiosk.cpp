@@ -281,6 +281,12 @@ void WindowKiosk::build(KioskSetup setup) {
   if (stage_ && stage_->evdev) stage_->evdev->stop();
   // Null: the scene plays silently.
   stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);
+  if (stage->visitor)
+    if (const std::string why = study::undeliverable_cues(*stage->visitor, stage->output != nullptr); !why.empty()) {
+      stage->problems.push_back("visitor study off: " + why);
+      journal::warning("visitor study off: {}", why);
+      stage->visitor.reset();
+    }
   const Nanos now = monotonic_now();
   ghost_.reset();
   calibration_.reset();
@@ -493,8 +499,8 @@ void WindowKiosk::next_wall_material() {
   const int m = stage_->route->loop().wall_material();
   if (stage_->remote) stage_->remote->set_wall_material(m);
   if (stage_->mouse) stage_->mouse->set_wall_material(m);
-  journal::notice("operator: wall material {}",
-                  stage_->scene.materials[static_cast<std::size_t>(m)].display_name.c_str());
+  const Material& material = stage_->scene.materials[static_cast<std::size_t>(m)];
+  journal::notice("operator: wall material {} ({})", material.display_name, material.name);
 }
 
 void WindowKiosk::next_scene() {
@@ -628,9 +634,10 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   const int wall = stage_->route->loop().wall_material();
   std::string scene_line =
       fmt::sprintf(tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().string());
-  if (wall >= 0)
-    scene_line += fmt::sprintf(tr("   wall: %s  (M next)"),
-                               stage_->scene.materials[static_cast<std::size_t>(wall)].display_name);
+  if (wall >= 0) {  // its name as on the screen, and as the log and the results write it
+    const Material& m = stage_->scene.materials[static_cast<std::size_t>(wall)];
+    scene_line += fmt::sprintf(tr("   wall: %s  (M next)"), m.display_name + " (" + m.name + ")");
+  }
   lines.push_back(scene_line);
   const std::string& tuned = stage_->calibration_status_sensitivity;
   lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
@@ -706,6 +713,7 @@ int WindowKiosk::run() {
     // own route; the main thread's route plays the window system's mouse and the ghost.
     const bool threaded = !mouse || stage_->mouse;
     if (threaded && states_->visitor_plays()) {
+      if (ghost_) route.loop().set_cycle_materials(false);  // the operator's wall material back
       ghost_.reset();
     } else if (states_->visitor_plays() && !cursor.empty()) {
       if (ghost_) {  // a visitor takes over from the ghost within this frame

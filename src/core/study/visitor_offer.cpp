@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "core/study/study_protocol.hpp"
+
 namespace mallet::study {
 
 bool VisitorOffer::offered(Nanos now) {
@@ -24,5 +26,16 @@ std::string utc_date(std::time_t t) {
 }
 
 std::string visitor_results_file(const std::string& date) { return "visitors-" + date + ".csv"; }
+
+std::string undeliverable_cues(const StudyProtocol& protocol, bool audio_output) {
+  if (audio_output) return {};
+  std::string tactile;
+  for (const StudyCondition c : protocol.conditions)
+    if (plays_actuator(c)) tactile += (tactile.empty() ? "" : ", ") + std::string(condition_name(c));
+  if (!tactile.empty())
+    return "no audio output, so the actuator cues of its conditions " + tactile + " cannot be delivered";
+  if (protocol.sound) return "no audio output, so its sound cannot be played";
+  return {};
+}
 
 }  // namespace mallet::study

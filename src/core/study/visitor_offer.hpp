@@ -40,6 +40,14 @@ std::string utc_date(std::time_t t);
 //! "visitors-YYYY-MM-DD.csv".
 std::string visitor_results_file(const std::string& date);
 
+struct StudyProtocol;
+
+//! Why the kiosk cannot deliver a visitor protocol's cues ("" when it can): without an audio
+//! output, a condition that plays the actuator (tactile_only, both) would give no cue at all
+//! and its answers would be written as data, and a protocol with sound would be silent. The
+//! kiosk then makes no offer and says why.
+std::string undeliverable_cues(const StudyProtocol& protocol, bool audio_output);
+
 //! How one visitor's session ended, as the kiosk counts it and the log says it.
 struct VisitorSessionResult {
   std::string id;

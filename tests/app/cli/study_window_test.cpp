@@ -165,7 +165,11 @@ bool strike_until(Screen& screen, const Scene& scene, int target, const fs::path
 
 TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking) {
   const fs::path dir = test::scratch_dir();
-  std::ofstream(dir / "v.toml") << strike_protocol()
+  // visual_only, not both: a kiosk without an audio output (a test machine) offers no study
+  // whose actuator cues it cannot deliver (study::undeliverable_cues).
+  std::string visual = strike_protocol();
+  visual.replace(visual.find("[\"both\", \"none\"]"), 16, "[\"visual_only\", \"none\"]");
+  std::ofstream(dir / "v.toml") << visual
                                 << "[visitor]\nconsent = \"Strike Yes to take part.\"\ntrials = 1\nanswer_timeout_s = 60\n";
   std::ofstream(dir / "mallet.toml") << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n"
                                      << "[study]\nvisitor_protocol = \"v.toml\"\noffer_every_s = 10\noffer_for_s = 60\n"

@@ -247,6 +247,29 @@ TEST(SecondPaperScenes, SwitchingTheWallsMaterialChangesWhatTheNextTapCarries) {
   EXPECT_EQ(seen, (std::vector<std::string>{"wall_wood", "aluminium", "rubber", "wall_wood"}));
 }
 
+TEST(SecondPaperScenes, TheAttractModesMaterialCycleEndsOnTheOperatorsChoice) {
+  // The operator's M picks rubber; the attract mode then shows each material in turn; when a
+  // visitor takes over (the cycle ends) the wall is rubber again, not where the cycle stopped.
+  const Scene& wall = test::wall();
+  StrikeLoop loop(wall, AppConfig{});
+  loop.next_wall_material();
+  loop.next_wall_material();
+  const int rubber = loop.wall_material();
+  ASSERT_EQ(wall.materials[static_cast<std::size_t>(rubber)].name, "rubber");
+  loop.set_cycle_materials(true);
+  Nanos t = 0;
+  std::vector<std::string> seen;
+  for (int tap = 0; tap < 2; ++tap)
+    for (double y : {0.05, -0.01, 0.05}) {
+      if (auto i = loop.feed(t, {0.0, y})) seen.push_back(wall.materials[static_cast<std::size_t>(i->material)].name);
+      t += 50'000'000;
+    }
+  EXPECT_EQ(seen, (std::vector<std::string>{"rubber", "wall_wood"}));
+  EXPECT_NE(loop.wall_material(), rubber) << "the cycle moved on after each tap";
+  loop.set_cycle_materials(false);
+  EXPECT_EQ(loop.wall_material(), rubber);
+}
+
 TEST(SecondPaperScenes, WallImpactsDriveTheActuatorWithTheMaterialsEq1) {
   // The engine takes the actuator triple from the strike's material, not the target's.
   const Scene& wall = test::wall();

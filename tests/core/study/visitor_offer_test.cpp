@@ -2,6 +2,7 @@
 // date, nothing finer.
 #include <gtest/gtest.h>
 
+#include "core/study/study_protocol.hpp"
 #include "core/study/visitor_offer.hpp"
 
 namespace mallet::study {
@@ -38,6 +39,18 @@ TEST(VisitorOffer, AVisitorIsARandomIdAndADate) {
   EXPECT_EQ(utc_date(1795737599), "2026-11-26");  // 23:59:59 UTC: the date only, in UTC
   EXPECT_EQ(utc_date(1795737600), "2026-11-27");
   EXPECT_EQ(visitor_results_file("2026-11-27"), "visitors-2026-11-27.csv");
+}
+
+TEST(VisitorOffer, NoOfferWhereItsCuesCannotBeDelivered) {
+  StudyProtocol p;
+  p.conditions = {StudyCondition::visual_only, StudyCondition::tactile_only, StudyCondition::both};
+  EXPECT_EQ(undeliverable_cues(p, true), "");
+  EXPECT_EQ(undeliverable_cues(p, false),
+            "no audio output, so the actuator cues of its conditions tactile_only, both cannot be delivered");
+  p.conditions = {StudyCondition::visual_only};
+  EXPECT_EQ(undeliverable_cues(p, false), "") << "the bounce alone needs no sound card";
+  p.sound = true;
+  EXPECT_EQ(undeliverable_cues(p, false), "no audio output, so its sound cannot be played");
 }
 
 }  // namespace
