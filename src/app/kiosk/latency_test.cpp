@@ -2,6 +2,9 @@
 
 #include <cstdio>
 
+#include <fmt/printf.h>
+
+#include "core/visitor_language.hpp"
 #include "core/journal.hpp"
 #include "core/strike_line.hpp"
 
@@ -11,6 +14,7 @@ void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engin
   instants_.clear();
   // The first instant far enough ahead that its sound can still be scheduled on time.
   for (int i = 0; i < kPulses; ++i) instants_.push_back(now + (i + 1) * kNanosPerSecond);
+  all_ = instants_;
   for (Nanos t : instants_) {
     Impact pulse;  // a firm strike on the first bar: a sharp onset on both channels
     pulse.t_ns = t;
@@ -25,11 +29,19 @@ void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engin
 }
 
 bool LatencyTest::square_shown(Nanos present) {
-  constexpr Nanos kShown = 100'000'000;
   std::erase_if(instants_, [present](Nanos t) { return present >= t + kShown; });
   for (Nanos t : instants_)
     if (present >= t) return true;
   return false;
+}
+
+std::string LatencyTest::status(Nanos now) const {
+  if (all_.empty() || now >= all_.back() + kDoneShownFor) return {};
+  if (now >= all_.back()) return tr("latency test: done");
+  int pulse = 0;
+  for (Nanos t : all_) pulse += now >= t;
+  if (pulse == 0) return fmt::sprintf(tr("latency test: the first pulse in %.0f s"), to_seconds(all_.front() - now));
+  return fmt::sprintf(tr("latency test: pulse %d of %d"), pulse, kPulses);
 }
 
 }  // namespace mallet::app

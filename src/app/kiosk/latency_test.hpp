@@ -4,6 +4,7 @@
 // scheduled for the same instant. A photodiode and a microphone (or a 240 fps video) show
 // the offsets the operator then enters as [timing] display_latency_ms and
 // audio_output_latency_ms.
+#include <string>
 #include <vector>
 
 #include "audio/engine.hpp"
@@ -22,9 +23,18 @@ class LatencyTest {
   //! Whether the frame presented at `present` shows the square: at or after an instant,
   //! for 100 ms.
   bool square_shown(Nanos present);
+  //! What the operator page says of it at `now`: "" before a test or once its "done" has
+  //! shown for kDoneShownFor; else "latency test: pulse 3 of 10", then "latency test: done".
+  std::string status(Nanos now) const;
+  //! From the start to the last square's end: the page keeps the square's corner clear.
+  bool pulsing(Nanos now) const { return !all_.empty() && now < all_.back() + kShown; }
+  static constexpr Nanos kShown = 100'000'000;  //!< how long each square shows
+
+  static constexpr Nanos kDoneShownFor = 10 * kNanosPerSecond;
 
  private:
   std::vector<Nanos> instants_;  //!< still to come or on screen
+  std::vector<Nanos> all_;       //!< every instant of the test, for its progress
 };
 
 }  // namespace mallet::app

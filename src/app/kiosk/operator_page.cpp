@@ -38,7 +38,8 @@ OperatorAction operator_action(int key, int mods, bool page_open) {
   }
 }
 
-void draw_operator_page(render::Overlay& o, const std::vector<std::string>& lines, bool doctor, float w, float h) {
+void draw_operator_page(render::Overlay& o, const std::vector<std::string>& lines, bool doctor, float w, float h,
+                        float clear_corner) {
   const float px = o.atlas().pixel_height();
   const float pw = std::min(w - 2 * px, px * 40);
   // Long lines (how the input is read and why, the timing figures, the key legend) wrap at
@@ -84,7 +85,11 @@ void draw_operator_page(render::Overlay& o, const std::vector<std::string>& line
     page.push_back(indent + text);
   }
   const float line = px * 1.4f, ph = line * static_cast<float>(page.size() + 1);
-  const float x0 = (w - pw) / 2, y0 = std::max(0.0f, (h - ph) / 2);
+  float x0 = (w - pw) / 2, y0 = std::max(0.0f, (h - ph) / 2);
+  if (clear_corner > 0 && x0 < clear_corner && y0 < clear_corner) {  // the photodiode's square stays seen
+    if (w - pw >= clear_corner + px / 2) x0 = w - pw;
+    else y0 = clear_corner + px / 2;
+  }
   o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
   for (std::size_t i = 0; i < page.size(); ++i)

@@ -41,9 +41,10 @@ bool operator_action_repeats(OperatorAction action);
 //! The page's lines on a centred translucent panel, the first bright. Long lines wrap at a
 //! semicolon, a comma, before a parenthesis or between two keys' entries onto indented
 //! continuation lines, else at a space; in the `doctor` view each line is cut to the panel
-//! (the whole line is in the journal).
+//! (the whole line is in the journal). `clear_corner`: the side of a square at the top-left
+//! corner the panel keeps clear of (the latency test's; 0: none): moved right, else down.
 void draw_operator_page(render::Overlay& overlay, const std::vector<std::string>& lines, bool doctor, float width,
-                        float height);
+                        float height, float clear_corner = 0);
 
 //! Operator page D: `mallet doctor`'s checks, with what the kiosk knows of the devices it
 //! holds (its renderer at `frame_ms` a frame, its audio output and its remote) instead of

@@ -95,6 +95,7 @@ class WindowKiosk {
   void next_scene();          //!< operator page S: the next of [scenes] choices
   void on_cursor(double x, double y);  //!< the window system's cursor event, stamped as it is read
   void seed_window_cursor();           //!< the cursor's position at start-up, before any event
+  float latency_square_side() const { return win_.font->pixel_height() * 4; }  //!< T's white square
   void draw_overlay(Nanos now, double frame_ms);
   void apply_volume();
   void poll_remote(Nanos now);
@@ -622,6 +623,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // What needs the operator first, before the status: settings refused (at start, on a
   // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
   if (states_->quit_asked()) lines.emplace_back("! " + std::string(tr("Q again quits the kiosk (any other key: stay)")));
+  if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back(test);
   for (const std::string& p : stage_->problems) lines.push_back("! " + p);
   if (health_.state().failing()) lines.push_back("! " + health_.state().problem());
   lines.push_back(input_line(*stage_));
@@ -650,7 +652,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.emplace_back(tr("Each check with its fix: journalctl -u mallet -g doctor"));
     lines.emplace_back(tr("D back to the page    Esc close"));
   }
-  draw_operator_page(o, lines, !doctor_.empty(), w, h);
+  draw_operator_page(o, lines, !doctor_.empty(), w, h,
+                     latency_test_.pulsing(now) ? latency_square_side() : 0.0f);
 }
 
 int WindowKiosk::run() {
@@ -744,10 +747,8 @@ int WindowKiosk::run() {
     draw_overlay(now, frame_ms);
     render::FrameState state;
     const Nanos present = win_.window->predicted_present(now);
-    if (latency_test_.square_shown(present)) {
-      const float side = win_.font->pixel_height() * 4;
-      win_.overlay->fill_rect(0, 0, side, side, {1.0f, 1.0f, 1.0f, 1.0f});
-    }
+    if (latency_test_.square_shown(present))
+      win_.overlay->fill_rect(0, 0, latency_square_side(), latency_square_side(), {1.0f, 1.0f, 1.0f, 1.0f});
     const StrikeLoop::View view = !states_->visitor_plays() ? route.view()
                                   : !mouse                 ? stage_->remote->view()
                                   : stage_->mouse          ? stage_->mouse->view()
