@@ -334,12 +334,11 @@ PsychometricFit fit_psychometric(const std::vector<PsychometricLevel>& input, co
     double edge = 0;
     search(at_edge, edge);
     if (edge >= fit.log_likelihood - 1e-6) {
-      PsychometricFit none = describe(levels, options, box, u, best);
-      (above ? none.threshold_above : none.threshold_below) = true;
-      none.extrapolated = false;
-      none.reason = above ? "threshold above the tested range: no estimate" : "threshold below the tested range: no estimate";
-      if (none.lapse_at_limit) join(none.reason, fmt::format("lapse at its limit {:g}", options.lapse_limit));
-      return none;
+      (above ? fit.threshold_above : fit.threshold_below) = true;
+      fit.extrapolated = false;
+      fit.reason = above ? "threshold above the tested range: no estimate" : "threshold below the tested range: no estimate";
+      if (fit.lapse_at_limit) join(fit.reason, fmt::format("lapse at its limit {:g}", options.lapse_limit));
+      return fit;
     }
   }
   if (fit.step && fit.has_threshold()) {

@@ -91,7 +91,9 @@ PsychometricFit fit_psychometric(const std::vector<PsychometricLevel>& levels, c
 
 //! The same maximum, climbed to from `near` (the fit of the data a bootstrap resample was
 //! drawn from) with the same Newton's method and precision; where the climb ends on a side of
-//! the box or not at a maximum, the whole search of fit_psychometric decides.
+//! the box or not at a maximum, and always with a fitted lapse (whose likelihood can have a
+//! second summit), the whole search of fit_psychometric decides. It skips what only a
+//! reported fit needs: a step's likelihood-ratio limits.
 PsychometricFit refit_psychometric(const std::vector<PsychometricLevel>& levels, const FitOptions& options,
                                    const PsychometricFit& near);
 
