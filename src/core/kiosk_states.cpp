@@ -229,14 +229,10 @@ bool KioskStates::quit_requested(Nanos t_ns) {
 }
 
 bool KioskStates::window_close_requested(Nanos t_ns) {
-  const Nanos t = advance(t_ns);
-  if (state_ == KioskState::operator_page) {
-    quit_ = true;
-    return true;
-  }
-  close_refused_ = true;
-  close_refused_at_ = t;
-  return false;
+  advance(t_ns);
+  if (state_ != KioskState::operator_page) return quit_requested(t_ns);  // refused, with its notice
+  quit_ = true;  // a window's close is deliberate: no question
+  return true;
 }
 
 bool KioskStates::operator_key(Nanos t_ns) {
