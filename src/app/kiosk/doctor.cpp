@@ -169,10 +169,22 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
   }
 }
 
-DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
-  const std::string& source = config.input.source;
+}  // namespace
+
+DoctorCheck wiimote_without_remote(const std::string& source) {
   if (source == "mouse" || source == "replay" || source == "camera")
     return {"wiimote", CheckLevel::ok, "not used: [input] source = \"" + source + "\"", ""};
+  return {"wiimote", source == "wiimote" ? CheckLevel::fail : CheckLevel::warn,
+          "no Wii Remote connected" + std::string(source == "auto" ? " (the kiosk plays with the mouse instead)" : ""),
+          "pair and connect it (bluetoothctl: scan on, the red sync button under the battery cover, then "
+          "pair, trust and connect its address); if it is connected, see the hidraw check"};
+}
+
+namespace {
+
+DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::optional<std::string>& identity) {
+  const std::string& source = config.input.source;
+  if (source == "mouse" || source == "replay" || source == "camera") return wiimote_without_remote(source);
   wm::HidDeviceFinder finder;
   std::optional<wm::HidDeviceInfo> found;
   try {
@@ -180,14 +192,7 @@ DoctorCheck check_wiimote(const DoctorOptions& o, const AppConfig& config, std::
   } catch (const std::exception& e) {
     return fail("wiimote", std::string("cannot list HID devices: ") + e.what(), "see the hidraw check");
   }
-  if (!found) {
-    DoctorCheck c{"wiimote", source == "wiimote" ? CheckLevel::fail : CheckLevel::warn,
-                  "no Wii Remote connected" +
-                      std::string(source == "auto" ? " (the kiosk plays with the mouse instead)" : ""),
-                  "pair and connect it (bluetoothctl: scan on, the red sync button under the battery cover, then "
-                  "pair, trust and connect its address); if it is connected, see the hidraw check"};
-    return c;
-  }
+  if (!found) return wiimote_without_remote(source);
   identity = remote_identity(*found);
   input::SteadyClock clock;
   wm::WiimoteDeviceConfig dc = wm::device_config(config);

@@ -48,6 +48,12 @@ std::optional<bool> vulkan_finds_gpu();
 //! exports it as WLR_RENDERER).
 CompositorRenderer kiosk_compositor_renderer(bool ask_unit);
 
+//! The wiimote check where no Wii Remote is held, in the one wording `mallet doctor` and the
+//! operator page's D share: "not used" (ok) for a mouse, replay or camera source; "no Wii
+//! Remote connected", a warning for "auto" (the kiosk plays with the mouse) and a failure for
+//! "wiimote".
+DoctorCheck wiimote_without_remote(const std::string& source);
+
 //! Every check, each device opened and released again. Never throws: a probe that fails is a
 //! `fail` line.
 std::vector<DoctorCheck> run_doctor(const DoctorOptions& options);

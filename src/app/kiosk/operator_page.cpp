@@ -109,22 +109,20 @@ std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render
   facts.audio = stage.output ? DoctorCheck{"audio", CheckLevel::ok, stage.audio_status, ""}
                              : DoctorCheck{"audio", CheckLevel::fail, stage.audio_status,
                                            "connect the sound card and check `aplay -l`; `mallet audio devices`"};
-  facts.wiimote = {"wiimote", CheckLevel::ok, input_line(stage), ""};
+  facts.wiimote = wiimote_without_remote(stage.config.input.source);  // as `mallet doctor` says it
   facts.camera = {"camera", CheckLevel::ok, "not used: [input] source = \"" + stage.config.input.source + "\"", ""};
   if (stage.device) {
     const input::wiimote::WiimoteState w = stage.device->state();
-    if (w.link == input::wiimote::LinkState::running)
+    if (w.link == input::wiimote::LinkState::running) {
       facts.connected_remote = remote_identity(w.device);
-    else
+      facts.wiimote = {"wiimote", CheckLevel::ok, input_line(stage), ""};
+    } else
       facts.wiimote = {"wiimote", CheckLevel::fail, input_line(stage), "press 1+2 on the remote; change its batteries"};
   } else if (stage.camera) {
     const IrLink link = ir_link(stage);
-    facts.wiimote.found = "not used: [input] source = \"camera\"";
     facts.camera = {"camera", CheckLevel::ok, input_line(stage), ""};
     if (link.up) facts.connected_remote = link.identity;
     else facts.camera = {"camera", CheckLevel::fail, input_line(stage), "plug the camera in; `mallet camera list`"};
-  } else if (stage.config.input.source == "wiimote") {
-    facts.wiimote.level = CheckLevel::fail;
   }
   DoctorOptions o;
   o.config = options.config;

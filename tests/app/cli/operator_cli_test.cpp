@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/kiosk/doctor.hpp"
 #include "audio/wav_file.hpp"
 #include "run_cli.hpp"
 #include "test_paths.hpp"
@@ -185,6 +186,16 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   }
   EXPECT_EQ(seen, std::vector<std::string>(std::begin(names), std::end(names))) << r.output;
   EXPECT_EQ(r.status, failed ? 1 : 0) << r.output;
+  // No Wii Remote here, and the shipped settings say "auto": the wiimote line is the one the
+  // operator page's D shows too (one wording, app/kiosk/doctor.hpp: wiimote_without_remote).
+  const DoctorCheck no_remote = wiimote_without_remote("auto");
+  EXPECT_EQ(no_remote.level, CheckLevel::warn);
+  const std::size_t at = r.output.find("warn  wiimote ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string wiimote_line = r.output.substr(at, r.output.find('\n', at) - at);
+  EXPECT_NE(wiimote_line.find(no_remote.found + " -> fix: " + no_remote.fix), std::string::npos) << wiimote_line;
+  EXPECT_EQ(wiimote_without_remote("wiimote").level, CheckLevel::fail);
+  EXPECT_EQ(wiimote_without_remote("mouse").found, "not used: [input] source = \"mouse\"");
   // The shipped settings, scenes and models are all readable.
   EXPECT_NE(r.output.find("ok    settings"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok    models"), std::string::npos) << r.output;
