@@ -29,21 +29,20 @@ void write_file(const std::filesystem::path& file, const std::string& text) {
 //! The fitted curve as a gnuplot expression of x.
 std::string gnuplot_curve(const study::FitOptions& o, const study::PsychometricFit& f) {
   const study::PsychometricModel& m = o.model;
-  const double c = (m.criterion - m.guess) / (1 - m.guess);
+  const double c = study::criterion_offset(m);
   std::string core;
   switch (m.shape) {
     case study::PsychometricShape::logistic:
-      core = fmt::format("1/(1 + exp(-({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold, std::log(c / (1 - c)));
+      core = fmt::format("1/(1 + exp(-({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold, c);
       break;
     case study::PsychometricShape::normal:
-      core = fmt::format("norm({:.9g}*(x - {:.9g}) + {:.9g})", f.slope, f.threshold, study::normal_quantile(c));
+      core = fmt::format("norm({:.9g}*(x - {:.9g}) + {:.9g})", f.slope, f.threshold, c);
       break;
     case study::PsychometricShape::gumbel:
-      core = fmt::format("(1 - exp(-exp({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold,
-                         std::log(-std::log(1 - c)));
+      core = fmt::format("(1 - exp(-exp({:.9g}*(x - {:.9g}) + {:.9g})))", f.slope, f.threshold, c);
       break;
     case study::PsychometricShape::weibull:
-      core = fmt::format("(x > 0 ? 1 - exp(-{:.9g}*(x/{:.9g})**{:.9g}) : 0)", -std::log(1 - c), f.threshold, f.slope);
+      core = fmt::format("(x > 0 ? 1 - exp(-{:.9g}*(x/{:.9g})**{:.9g}) : 0)", c, f.threshold, f.slope);
       break;
   }
   return fmt::format("{:.9g} + {:.9g}*{}", m.guess, 1 - m.guess - f.lapse, core);
@@ -312,15 +311,7 @@ void json_fits(nlohmann::ordered_json& fits, const study::StudySummary& s, const
     j["deviance_p"] = number_or_null(ci, ci ? c.intervals->deviance_p : 0);
     j["resamples"] = ci ? c.intervals->resamples : 0;
     j["flags"] = nlohmann::ordered_json::array();
-    const std::pair<bool, const char*> flags[] = {{!f.ok, "no_fit"},
-                                                  {f.threshold_below, "threshold_below_range"},
-                                                  {f.threshold_above, "threshold_above_range"},
-                                                  {f.extrapolated, "extrapolated"},
-                                                  {f.step, "step"},
-                                                  {f.flat, "flat"},
-                                                  {f.lapse_at_limit, "lapse_at_limit"}};
-    for (const auto& [on, name] : flags)
-      if (on) j["flags"].push_back(name);
+    for (const char* name : study::fit_flags(f)) j["flags"].push_back(name);
     j["note"] = f.reason;
     fits.push_back(std::move(j));
   }

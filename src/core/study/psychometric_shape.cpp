@@ -38,18 +38,26 @@ double normal_quantile(double p) {
   return x - u / (1 + x * u / 2);
 }
 
-double psychometric_core(const PsychometricModel& model, double threshold, double slope, double x) {
+double criterion_offset(const PsychometricModel& model) {
   const double f = std::clamp((model.criterion - model.guess) / (1.0 - model.guess), 1e-9, 1.0 - 1e-9);
   switch (model.shape) {
-    case PsychometricShape::logistic:
-      return 1.0 / (1.0 + std::exp(-(slope * (x - threshold) + std::log(f / (1.0 - f)))));
-    case PsychometricShape::normal:
-      return normal_cdf(slope * (x - threshold) + normal_quantile(f));
-    case PsychometricShape::gumbel:
-      return 1.0 - std::exp(-std::exp(slope * (x - threshold) + std::log(-std::log(1.0 - f))));
+    case PsychometricShape::logistic: return std::log(f / (1.0 - f));
+    case PsychometricShape::normal: return normal_quantile(f);
+    case PsychometricShape::gumbel: return std::log(-std::log(1.0 - f));
+    case PsychometricShape::weibull: return -std::log(1.0 - f);
+  }
+  return 0.0;
+}
+
+double psychometric_core(const PsychometricModel& model, double threshold, double slope, double x) {
+  const double offset = criterion_offset(model);
+  switch (model.shape) {
+    case PsychometricShape::logistic: return 1.0 / (1.0 + std::exp(-(slope * (x - threshold) + offset)));
+    case PsychometricShape::normal: return normal_cdf(slope * (x - threshold) + offset);
+    case PsychometricShape::gumbel: return 1.0 - std::exp(-std::exp(slope * (x - threshold) + offset));
     case PsychometricShape::weibull:
       if (x <= 0 || threshold <= 0) return 0.0;
-      return 1.0 - std::exp(std::log(1.0 - f) * std::pow(x / threshold, slope));
+      return 1.0 - std::exp(-offset * std::pow(x / threshold, slope));
   }
   return 0.0;
 }

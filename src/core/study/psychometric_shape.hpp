@@ -42,6 +42,10 @@ struct PsychometricParams {
   double lapse = 0;  //!< λ
 };
 
+//! The constant that puts F(T) at the criterion's f in `model`'s shape (the top of this file):
+//! logistic logit f, normal Φ⁻¹(f), Gumbel ln(−ln(1 − f)), Weibull −ln(1 − f).
+double criterion_offset(const PsychometricModel& model);
+
 //! F(x), the shape's sigmoid, for `model`'s criterion.
 double psychometric_core(const PsychometricModel& model, double threshold, double slope, double x);
 

@@ -67,16 +67,7 @@ std::string fit_quality_columns(const ConditionSummary& c) {
 
 std::string flags_of(const PsychometricFit& f) {
   std::string flags;
-  auto add = [&](bool on, const char* name) {
-    if (on) flags += (flags.empty() ? "" : ";") + std::string(name);
-  };
-  add(!f.ok, "no_fit");
-  add(f.threshold_below, "threshold_below_range");
-  add(f.threshold_above, "threshold_above_range");
-  add(f.extrapolated, "extrapolated");
-  add(f.step, "step");
-  add(f.flat, "flat");
-  add(f.lapse_at_limit, "lapse_at_limit");
+  for (const char* name : fit_flags(f)) flags += (flags.empty() ? "" : ";") + std::string(name);
   return flags;
 }
 
@@ -277,21 +268,13 @@ std::string fit_description(const FitOptions& o) {
   const PsychometricModel& m = o.model;
   if (m.shape == PsychometricShape::logistic && m.criterion == 0.75 && !o.fit_lapse && o.lapse == 0)
     return "P(correct) = 0.5 + 0.5/(1 + exp(-slope*(x - threshold))), x = difference in B (%), maximum likelihood";
-  const double f = (m.criterion - m.guess) / (1 - m.guess);
+  const double offset = criterion_offset(m);
   std::string F;
   switch (m.shape) {
-    case PsychometricShape::logistic:
-      F = fmt::format("1/(1 + exp(-(slope*(x - threshold) + {:.6g})))", std::log(f / (1 - f)));
-      break;
-    case PsychometricShape::normal:
-      F = fmt::format("Phi(slope*(x - threshold) + {:.6g})", normal_quantile(f));
-      break;
-    case PsychometricShape::gumbel:
-      F = fmt::format("1 - exp(-exp(slope*(x - threshold) + {:.6g}))", std::log(-std::log(1 - f)));
-      break;
-    case PsychometricShape::weibull:
-      F = fmt::format("1 - exp(-{:.6g}*(x/threshold)^slope)", -std::log(1 - f));
-      break;
+    case PsychometricShape::logistic: F = fmt::format("1/(1 + exp(-(slope*(x - threshold) + {:.6g})))", offset); break;
+    case PsychometricShape::normal: F = fmt::format("Phi(slope*(x - threshold) + {:.6g})", offset); break;
+    case PsychometricShape::gumbel: F = fmt::format("1 - exp(-exp(slope*(x - threshold) + {:.6g}))", offset); break;
+    case PsychometricShape::weibull: F = fmt::format("1 - exp(-{:.6g}*(x/threshold)^slope)", offset); break;
   }
   const std::string lapse = o.fit_lapse ? fmt::format("lapse fitted within [0, {:g}]", o.lapse_limit)
                                         : fmt::format("lapse fixed at {:g}", o.lapse);
@@ -378,6 +361,20 @@ std::string format_group(const std::vector<GroupThresholds>& group) {
     fmt::format_to(line, "{:<14} {:>12} {:13.3f} {:>10} {:13.3f}\n", g.condition, who, g.mean, se, g.median);
   }
   return out;
+}
+
+std::vector<const char*> fit_flags(const PsychometricFit& f) {
+  const std::pair<bool, const char*> all[] = {{!f.ok, "no_fit"},
+                                              {f.threshold_below, "threshold_below_range"},
+                                              {f.threshold_above, "threshold_above_range"},
+                                              {f.extrapolated, "extrapolated"},
+                                              {f.step, "step"},
+                                              {f.flat, "flat"},
+                                              {f.lapse_at_limit, "lapse_at_limit"}};
+  std::vector<const char*> on;
+  for (const auto& [holds, name] : all)
+    if (holds) on.push_back(name);
+  return on;
 }
 
 std::string fit_table_csv(const StudySummary& pooled,

@@ -92,6 +92,11 @@ inline constexpr const char* kFitTableColumns =
     "condition,participant,shape,criterion,lapse_mode,levels,trials,threshold_pct,threshold_lo,threshold_hi,"
     "slope,slope_lo,slope_hi,slope_at_least,lapse,lapse_lo,lapse_hi,log_likelihood,deviance,deviance_p,resamples,"
     "flags,note";
+//! What a fit's maximum means, as the table's `flags` and the JSON's `flags` name it:
+//! no_fit, threshold_below_range, threshold_above_range, extrapolated, step, flat,
+//! lapse_at_limit (those that hold, in that order).
+std::vector<const char*> fit_flags(const PsychometricFit& fit);
+
 std::string fit_table_csv(const StudySummary& pooled,
                           const std::vector<std::pair<std::string, StudySummary>>& participants);
 
