@@ -335,6 +335,21 @@ TEST(CalibrationFile, WriteThenLoadGivesTheSameCalibration) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
 }
 
+// "{:.17g}" writes a whole error without a point, so TOML reads it back as an integer; one
+// beyond 2^53 must still come back as the same double (the fuzzer found it read back as 0).
+TEST(CalibrationFile, ErrorsBeyondTwoToThe53RoundTripThroughTheirIntegerForm) {
+  Calibration c = sample_calibration();
+  c.rms_error_camera_px = 10362658707436286.0;  // even, so exact; 2^53 = 9007199254740992
+  c.max_error_camera_px = 9007199254741000.0;
+  c.max_error_screen_px = 68115169.0;
+  const std::string text = format_calibration(c);
+  EXPECT_NE(text.find("rms_error_camera_px = 10362658707436286 "), std::string::npos) << text;
+  const Calibration back = parse_calibration(text, "c.toml");
+  EXPECT_EQ(back.rms_error_camera_px, c.rms_error_camera_px);
+  EXPECT_EQ(back.max_error_camera_px, c.max_error_camera_px);
+  EXPECT_EQ(back.max_error_screen_px, c.max_error_screen_px);
+}
+
 TEST(CalibrationFile, RemoteIsOptional) {
   Calibration c = sample_calibration();
   c.remote.clear();

@@ -8,13 +8,23 @@ namespace mallet::config {
 
 namespace {
 
+// A TOML number as a double. An integer is rounded to the nearest double: toml++'s own
+// conversion (value<double>) gives nothing for an integer beyond 2^53, such as the
+// 10362658707436286 that "{:.17g}" writes for a large error.
+std::optional<double> number_of(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return static_cast<double>(i->get());
+  if (const auto* f = node.as_floating_point()) return f->get();
+  return std::nullopt;
+}
+
 std::string describe_value(const toml::node& node) {
   std::ostringstream out;
   if (node.is_string()) {
     out << '"' << node.as_string()->get() << '"';
-  } else if (node.is_number() || node.is_boolean()) {
-    if (auto v = node.value<double>()) out << *v;
-    else if (auto b = node.value<bool>()) out << (*b ? "true" : "false");
+  } else if (const auto v = number_of(node)) {
+    out << *v;
+  } else if (const auto* b = node.as_boolean()) {
+    out << (b->get() ? "true" : "false");
   } else {
     out << "a " << node.type();
   }
@@ -90,10 +100,10 @@ const toml::node& TableReader::required(std::string_view key) {
 
 double TableReader::number(std::string_view key) {
   const toml::node& node = required(key);
-  if (!node.is_number()) fail_at(&node, key, "expected a number, got " + describe_value(node));
-  const double v = *node.value<double>();
-  if (!std::isfinite(v)) fail_at(&node, key, "must be finite, got " + describe_value(node));
-  return v;
+  const std::optional<double> v = number_of(node);
+  if (!v) fail_at(&node, key, "expected a number, got " + describe_value(node));
+  if (!std::isfinite(*v)) fail_at(&node, key, "must be finite, got " + describe_value(node));
+  return *v;
 }
 
 template <typename T>
@@ -141,8 +151,9 @@ std::vector<T> TableReader::array_of(std::string_view key, const char* elements,
 
 std::vector<double> TableReader::numbers(std::string_view key) {
   return array_of<double>(key, "numbers", "a finite number", [](const toml::node& el) -> std::optional<double> {
-    if (!el.is_number() || !std::isfinite(*el.value<double>())) return std::nullopt;
-    return *el.value<double>();
+    const std::optional<double> v = number_of(el);
+    if (!v || !std::isfinite(*v)) return std::nullopt;
+    return v;
   });
 }
 
