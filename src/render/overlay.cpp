@@ -134,9 +134,10 @@ void Overlay::progress_ring(float cx, float cy, float radius, float line_width, 
   arc(cx, cy, radius - line_width / 2, outer, std::min(fraction, 1.0f), color);
 }
 
-float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4> color, TextAlign align) {
-  const float width = atlas_->measure(utf8);
-  if (!std::isfinite(x) || !std::isfinite(y)) return width;
+float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4> color, TextAlign align,
+                    float scale) {
+  const float width = atlas_->measure(utf8) * scale;
+  if (!std::isfinite(x) || !std::isfinite(y) || !(scale > 0)) return width;
   float pen = x;
   if (align == TextAlign::center) pen -= width / 2;
   if (align == TextAlign::right) pen -= width;
@@ -147,14 +148,15 @@ float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4
     const GlyphQuad q = atlas_->glyph(text[i]);
     if (q.x1 > q.x0 && q.y1 > q.y0) {  // a space has no quad, only an advance
       const auto first = static_cast<std::uint32_t>(vertices_.size());
-      vertices_.push_back({pen + q.x0, y + q.y0, q.u0, q.v0, color});
-      vertices_.push_back({pen + q.x1, y + q.y0, q.u1, q.v0, color});
-      vertices_.push_back({pen + q.x1, y + q.y1, q.u1, q.v1, color});
-      vertices_.push_back({pen + q.x0, y + q.y1, q.u0, q.v1, color});
+      const float x0 = pen + q.x0 * scale, x1 = pen + q.x1 * scale, y0 = y + q.y0 * scale, y1 = y + q.y1 * scale;
+      vertices_.push_back({x0, y0, q.u0, q.v0, color});
+      vertices_.push_back({x1, y0, q.u1, q.v0, color});
+      vertices_.push_back({x1, y1, q.u1, q.v1, color});
+      vertices_.push_back({x0, y1, q.u0, q.v1, color});
       quad(first, first + 1, first + 2, first + 3);
     }
-    pen += q.advance;
-    if (i + 1 < text.size()) pen += atlas_->kerning(text[i], text[i + 1]);
+    pen += q.advance * scale;
+    if (i + 1 < text.size()) pen += atlas_->kerning(text[i], text[i + 1]) * scale;
   }
   return width;
 }

@@ -35,9 +35,11 @@ class Overlay {
   //! A ring from 12 o'clock clockwise over `fraction` (0..1) of the turn: a progress ring.
   void progress_ring(float cx, float cy, float radius, float line_width, float fraction,
                      std::array<float, 4> color);
-  //! UTF-8 text with its baseline at y; returns the advance width in pixels.
+  //! UTF-8 text with its baseline at y; returns the advance width in pixels. `scale` sets
+  //! it smaller than the atlas's size (the operator page's dense text; 0.5..1: the atlas's
+  //! linear filter shrinks a glyph cleanly down to half).
   float text(float x, float y, std::string_view utf8, std::array<float, 4> color,
-             TextAlign align = TextAlign::left);
+             TextAlign align = TextAlign::left, float scale = 1.0f);
 
   const std::vector<OverlayVertex>& vertices() const { return vertices_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }

@@ -38,7 +38,7 @@ sound and the actuator signal play on the configured audio device, and the attra
 ghost player plays whenever nobody has moved for --idle-after seconds. Visitors cannot close
 it: Ctrl+Alt+O opens the operator page (Up/Down volume, Left/Right actuator gain, R
 recalibrate, S next scene of [scenes] choices, M the wall's next material, L next language,
-Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the
+T latency test, D doctor, Page Down/Up its next/previous screen, Q Q quit, Esc close). Texts are in [kiosk] language (en, de, fr, ja). SIGHUP re-reads the
 settings and the scene (a bad file is refused, the old ones stay). Settings refused at start
 do not keep the kiosk dark: it runs on its last good settings (kept in the state folder as
 last-good-settings.toml at each start or reload that loaded), else on the shipped defaults,

@@ -1,7 +1,10 @@
 #include "app/kiosk/operator_page.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include <fmt/printf.h>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -9,6 +12,7 @@
 #include "app/kiosk/doctor.hpp"
 #include "app/kiosk/input_choice.hpp"
 #include "core/journal.hpp"
+#include "core/visitor_language.hpp"
 #include "render/text_wrap.hpp"
 
 namespace mallet::app {
@@ -34,69 +38,200 @@ OperatorAction operator_action(int key, int mods, bool page_open) {
     case GLFW_KEY_L: return OperatorAction::next_language;
     case GLFW_KEY_T: return OperatorAction::latency_test;
     case GLFW_KEY_D: return OperatorAction::doctor;
+    case GLFW_KEY_PAGE_DOWN: return OperatorAction::next_page;
+    case GLFW_KEY_PAGE_UP: return OperatorAction::previous_page;
     default: return OperatorAction::none;
   }
 }
 
-void draw_operator_page(render::Overlay& o, const std::vector<std::string>& lines, bool doctor, float w, float h,
-                        float clear_corner) {
-  const float px = o.atlas().pixel_height();
-  const float pw = std::min(w - 2 * px, px * 40);
-  // Long lines (how the input is read and why, the timing figures, the key legend) wrap at
-  // a semicolon, a comma, before a parenthesis or between two keys' entries onto indented
-  // continuation lines, else at a space; the widths are the font's own, in every language.
+namespace {
+
+constexpr float kLargestScale = 0.75f, kSmallestScale = 0.5f, kSmallestTextPx = 12.0f;
+constexpr float kLineSpacing = 1.4f;  //!< a row's height, in the text's size
+constexpr float kWidestLine = 33.0f;  //!< the panel's widest, in the atlas's size (44 of its largest text)
+
+//! The mark column's text for a tone (empty: the line has no mark).
+const char* mark_of(PageTone tone) {
+  switch (tone) {
+    case PageTone::warning: return "!";
+    case PageTone::fail: return to_string(CheckLevel::fail);
+    case PageTone::warn: return to_string(CheckLevel::warn);
+    case PageTone::ok: return to_string(CheckLevel::ok);
+    default: return "";
+  }
+}
+
+//! A text's rows: the first fits `first_room`, each continuation `next_room` (in the atlas's
+//! pixels). A row ends at a semicolon, a comma, before a parenthesis or between two keys'
+//! entries, as far on as fits; else at the last space that fits; a word wider than a row is
+//! cut between characters (render::wrap_text), never dropped.
+std::vector<std::string> page_rows(const render::FontAtlas& font, std::string text, float first_room,
+                                   float next_room) {
   struct Break {
     const char* separator;
-    std::size_t kept;    //!< its characters that end the line ("," stays, " (" goes on)
+    std::size_t kept;    //!< its characters that end the row ("," stays, " (" goes on)
     std::size_t resume;  //!< where the continuation starts, from the separator
   };
   static constexpr Break kBreaks[] = {{"; ", 1, 2}, {", ", 1, 2}, {" (", 0, 1}, {"    ", 0, 4}};
-  const render::FontAtlas& font = o.atlas();
-  const float room = pw - 2 * px;
-  std::vector<std::string> page;
-  for (std::string text : lines) {
-    if (doctor) {  // a check a line, cut to the page; the whole line is in the log
-      const std::vector<std::string> cut = render::wrap_text(font, text, room - font.measure("..."));
-      page.push_back(cut.size() > 1 ? cut.front() + "..." : text);
+  std::vector<std::string> rows;
+  for (;;) {
+    const float room = rows.empty() ? first_room : next_room;
+    if (font.measure(text) <= room) break;
+    std::size_t cut = std::string::npos;
+    const Break* at_break = nullptr;
+    for (const Break& b : kBreaks)
+      for (std::size_t at = text.find(b.separator); at != std::string::npos; at = text.find(b.separator, at + 1))
+        if (at > 8 && (cut == std::string::npos || at > cut) && font.measure(text.substr(0, at + b.kept)) <= room)
+          cut = at, at_break = &b;
+    if (at_break) {
+      rows.push_back(text.substr(0, cut + at_break->kept));
+      text = text.substr(cut + at_break->resume);
       continue;
     }
-    std::string indent;
-    while (font.measure(indent + text) > room) {
-      std::size_t cut = std::string::npos;
-      const Break* at_break = nullptr;
-      for (const Break& b : kBreaks)
-        for (std::size_t at = text.find(b.separator); at != std::string::npos; at = text.find(b.separator, at + 1))
-          if (at > 8 && (cut == std::string::npos || at > cut) &&
-              font.measure(indent + text.substr(0, at + b.kept)) <= room)
-            cut = at, at_break = &b;
-      if (!at_break) {  // no separator that fits: the words that do
-        const std::vector<std::string> words = render::wrap_text(font, text, room - font.measure(indent));
-        if (words.size() < 2) break;
-        page.push_back(indent + words.front());
-        text.erase(0, words.front().size());  // the first line is the text's start, as written
-        text.erase(0, text.find_first_not_of(' '));
-        indent = "    ";
-        continue;
-      }
-      page.push_back(indent + text.substr(0, cut + at_break->kept));
-      text = text.substr(cut + at_break->resume);
-      indent = "    ";
-    }
-    page.push_back(indent + text);
+    const std::vector<std::string> words = render::wrap_text(font, text, room);  // the words that fit
+    if (words.size() < 2) break;
+    rows.push_back(words.front());
+    text.erase(0, words.front().size());  // the first row is the text's start, as written
+    text.erase(0, text.find_first_not_of(' '));
   }
-  const float line = px * 1.4f, ph = line * static_cast<float>(page.size() + 1);
-  float x0 = (w - pw) / 2, y0 = std::max(0.0f, (h - ph) / 2);
-  if (clear_corner > 0 && x0 < clear_corner && y0 < clear_corner) {  // the photodiode's square stays seen
-    if (w - pw >= clear_corner + px / 2) x0 = w - pw;
-    else y0 = clear_corner + px / 2;
-  }
-  o.fill_rect(x0, y0, pw, ph, {0.05f, 0.05f, 0.07f, 0.88f});
-  o.stroke_rect(x0, y0, pw, ph, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  for (std::size_t i = 0; i < page.size(); ++i)
-    o.text(x0 + px, y0 + line * static_cast<float>(i + 1), page[i], {1.0f, 1.0f, 1.0f, i == 0 ? 1.0f : 0.85f});
+  rows.push_back(text);
+  return rows;
 }
 
-std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render::ProductWindow& win,
+//! One line's rows, placed relative to the panel's text origin (x from its left, y as a row index).
+struct LineRows {
+  std::vector<PageRow> rows;  //!< y: the row's index within the line
+  int count = 0;              //!< how many rows it takes
+};
+
+LineRows line_rows(const render::FontAtlas& font, const PageLine& line, float scale, float room, float mark_w,
+                   float head_w) {
+  const float em = font.pixel_height() * scale;
+  LineRows out;
+  float tx = 0;
+  if (const std::string mark = mark_of(line.tone); !mark.empty()) {
+    out.rows.push_back({0, 0, mark, line.tone});
+    tx += mark_w;
+  }
+  if (!line.head.empty()) {
+    out.rows.push_back({tx, 0, line.head, PageTone::status});
+    tx += head_w;
+  }
+  // Continuation rows: under the text's own column beside a mark or a name, else indented.
+  const bool hangs = tx > 0;
+  const float next_x = hangs ? tx : tx + 1.5f * em;
+  const PageTone text_tone = line.tone == PageTone::title || line.tone == PageTone::warning ? line.tone
+                                                                                              : PageTone::status;
+  int row = 0;
+  std::size_t from = 0;
+  for (;;) {  // '\n' starts a continuation row
+    const std::size_t nl = line.text.find('\n', from);
+    const std::string part = line.text.substr(from, nl == std::string::npos ? std::string::npos : nl - from);
+    const float first_x = row == 0 ? tx : next_x;
+    for (std::string& r : page_rows(font, part, (room - first_x) / scale, (room - next_x) / scale)) {
+      out.rows.push_back({row == 0 ? tx : next_x, static_cast<float>(row), std::move(r), text_tone});
+      ++row;
+    }
+    if (nl == std::string::npos) break;
+    from = nl + 1;
+  }
+  out.count = std::max(row, 1);
+  return out;
+}
+
+}  // namespace
+
+PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector<PageLine>& lines, float w, float h,
+                                float clear_corner, int page) {
+  const float px = font.pixel_height();
+  const float smallest = std::clamp(kSmallestTextPx / px, kSmallestScale, kLargestScale);
+  PageLayout out;
+  std::vector<LineRows> laid;
+  int max_rows = 0;
+  float room = 0;
+  for (float scale = kLargestScale;; scale = std::max(smallest, scale - 0.05f)) {
+    const float em = px * scale;
+    out.scale = scale;
+    out.width = std::min(w - 2 * em, kWidestLine * px);  // smaller text: more words a row
+    room = out.width - 2 * em;
+    float mark_w = 0, head_w = 0;
+    for (const PageLine& l : lines) {
+      if (*mark_of(l.tone)) mark_w = std::max(mark_w, font.measure(mark_of(l.tone)) * scale + 0.6f * em);
+      if (!l.head.empty()) head_w = std::max(head_w, font.measure(l.head) * scale + em);
+    }
+    laid.clear();
+    int total = 0;
+    for (const PageLine& l : lines) {
+      laid.push_back(line_rows(font, l, scale, room, mark_w, head_w));
+      total += laid.back().count;
+    }
+    max_rows = static_cast<int>(std::floor((h - em) / (kLineSpacing * em))) - 1;  // a row's room above and below
+    if (total <= max_rows || scale <= smallest) break;
+  }
+  // The lines on screens taken in turn when they do not fit one: the title on each, then as
+  // many whole lines as fit with the footer's row (a line taller than a screen has one alone).
+  std::vector<std::vector<std::size_t>> screens(1);
+  const bool titled = !lines.empty() && lines.front().tone == PageTone::title;
+  int used = titled ? laid.front().count : 0;
+  int total = used;
+  for (std::size_t i = titled ? 1 : 0; i < laid.size(); ++i) total += laid[i].count;
+  const int room_rows = total <= max_rows ? max_rows : max_rows - 1;  // the footer's row
+  for (std::size_t i = titled ? 1 : 0; i < laid.size(); ++i) {
+    if (used + laid[i].count > room_rows && !screens.back().empty()) {
+      screens.emplace_back();
+      used = titled ? laid.front().count : 0;
+    }
+    screens.back().push_back(i);
+    used += laid[i].count;
+  }
+  out.pages = static_cast<int>(screens.size());
+  out.page = ((page % out.pages) + out.pages) % out.pages;
+  std::vector<std::size_t> shown = screens[static_cast<std::size_t>(out.page)];
+  if (titled) shown.insert(shown.begin(), 0);
+
+  const float em = px * out.scale, line = kLineSpacing * em;
+  int rows = 0;
+  for (std::size_t i : shown) rows += laid[i].count;
+  if (out.pages > 1) ++rows;
+  out.height = line * static_cast<float>(rows + 1);
+  out.x = (w - out.width) / 2;
+  out.y = std::max(0.0f, (h - out.height) / 2);
+  if (clear_corner > 0 && out.x < clear_corner && out.y < clear_corner) {  // the photodiode's square stays seen
+    if (w - out.width >= clear_corner + em / 2) out.x = w - out.width;
+    else out.y = clear_corner + em / 2;
+  }
+  // Whole-pixel baselines keep the glyphs crisp.
+  int row = 0;
+  for (std::size_t i : shown) {
+    for (const PageRow& r : laid[i].rows)
+      out.rows.push_back({out.x + em + r.x, std::round(out.y + line * (static_cast<float>(row + 1) + r.y)), r.text,
+                          r.tone});
+    row += laid[i].count;
+  }
+  if (out.pages > 1)
+    out.rows.push_back({out.x + em, std::round(out.y + line * static_cast<float>(row + 1)),
+                        fmt::sprintf(tr("Page Down: more   (%d of %d)"), out.page + 1, out.pages), PageTone::title});
+  return out;
+}
+
+void draw_operator_page(render::Overlay& o, const PageLayout& layout) {
+  o.fill_rect(layout.x, layout.y, layout.width, layout.height, {0.05f, 0.05f, 0.07f, 0.88f});
+  o.stroke_rect(layout.x, layout.y, layout.width, layout.height, 2, {1.0f, 1.0f, 1.0f, 0.5f});
+  for (const PageRow& r : layout.rows) {
+    std::array<float, 4> color{1.0f, 1.0f, 1.0f, 0.85f};
+    switch (r.tone) {
+      case PageTone::title: color = {1.0f, 1.0f, 1.0f, 1.0f}; break;
+      case PageTone::status: break;
+      case PageTone::warning:
+      case PageTone::warn: color = {1.0f, 0.76f, 0.28f, 1.0f}; break;
+      case PageTone::fail: color = {1.0f, 0.45f, 0.42f, 1.0f}; break;
+      case PageTone::ok: color = {0.45f, 0.86f, 0.5f, 1.0f}; break;
+    }
+    o.text(r.x, r.y, r.text, color, render::TextAlign::left, layout.scale);
+  }
+}
+
+std::vector<PageLine> doctor_page_lines(const KioskStage& stage, const render::ProductWindow& win,
                                            const KioskOptions& options, double frame_ms,
                                            const std::string& state_problem) {
   KioskDeviceFacts facts;
@@ -128,14 +263,20 @@ std::vector<std::string> doctor_page_lines(const KioskStage& stage, const render
   o.config = options.config;
   o.config_dir = options.config_dir;
   const std::vector<DoctorCheck> checks = run_doctor_with(o, facts);
-  std::vector<std::string> lines;
+  std::vector<PageLine> lines;
   int failing = 0;
   for (const DoctorCheck& c : checks) {
-    // On the page what was found (not the tracker the settings do not use: the page has a
-    // line for each of the others, and a 720p screen no more); in the journal every whole
-    // line with its fix.
-    if (!(c.level == CheckLevel::ok && c.found.rfind("not used", 0) == 0))
-      lines.push_back(format_check({c.name, c.level, c.found, ""}));
+    // On the page what was found and the fix of a check that is not ok (not the tracker the
+    // settings do not use); in the journal every check whole.
+    if (!(c.level == CheckLevel::ok && c.found.rfind("not used", 0) == 0)) {
+      const PageTone tone = c.level == CheckLevel::fail   ? PageTone::fail
+                            : c.level == CheckLevel::warn ? PageTone::warn
+                                                          : PageTone::ok;
+      std::string text = c.found;
+      std::replace(text.begin(), text.end(), '\n', ' ');
+      if (!c.fix.empty()) text += "\nfix: " + c.fix;
+      lines.push_back({tone, text, c.name});
+    }
     journal::notice("doctor: {}", format_check(c).c_str());
     failing += c.level == CheckLevel::fail;
   }

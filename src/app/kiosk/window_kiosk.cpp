@@ -135,7 +135,10 @@ class WindowKiosk {
     bool repeat;  //!< the window system's auto-repeat of a held key
   };
   std::vector<Key> keys_;  //!< pressed since the last frame
-  std::vector<std::string> doctor_;        //!< the page's doctor lines (D); empty: the page's own
+  std::vector<PageLine> doctor_;           //!< the page's doctor lines (D); empty: the page's own
+  int page_ = 0;                           //!< the page's screen shown (PgDn), when it takes several
+  std::vector<std::string> page_figures_;  //!< the page's frame and timing lines, as last sampled ...
+  Nanos page_figures_at_ = 0;              //!< ... then
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
@@ -452,6 +455,7 @@ void WindowKiosk::handle_keys(Nanos now) {
       case OperatorAction::none: break;  // visitors' keys do nothing
       case OperatorAction::open:
         states_->operator_chord(now);
+        page_ = 0;
         journal::notice("operator: page {}", states_->state() == KioskState::operator_page ? "open" : "closed");
         break;
       case OperatorAction::close:
@@ -488,7 +492,10 @@ void WindowKiosk::handle_keys(Nanos now) {
       case OperatorAction::doctor:
         if (doctor_.empty()) doctor_asked_ = true;
         else doctor_.clear();  // D again: back to the page
+        page_ = 0;
         break;
+      case OperatorAction::next_page: ++page_; break;  // wraps at the last (layout_operator_page)
+      case OperatorAction::previous_page: --page_; break;
     }
   }
   keys_.clear();
@@ -613,47 +620,57 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     // What a frame costs, not the budget's interval; and the state folder as the kiosk found it.
     doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_, health_.state().problem());
   }
-  std::vector<std::string> lines;
-  const double uptime = to_seconds(now - health_.started());
+  // The page's figures change once a second, not each frame: an unchanged page is not drawn
+  // again (the window's skip_unchanged), so the open page costs no more than play.
+  if (page_figures_.empty() || now - page_figures_at_ >= kNanosPerSecond) {
+    const double uptime = to_seconds(now - health_.started());
+    page_figures_ = {fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
+                                 work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)),
+                     timing_line()};
+    page_figures_at_ = now;
+  }
+  std::vector<PageLine> lines;
   // The page's words are the operator's language (translated texts keep printf's syntax,
   // which gettext checks: fmt::sprintf); its status lines (input, audio, timing, settings,
   // the doctor's checks) stay as the journal and `mallet doctor` write them.
-  lines.push_back(fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"),
-                               to_string(stage_->config.quality), visitor_language()));
+  lines.push_back({PageTone::title, fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"),
+                                                 to_string(stage_->config.quality), visitor_language())});
   // What needs the operator first, before the status: settings refused (at start, on a
   // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
-  if (states_->quit_asked()) lines.emplace_back("! " + std::string(tr("Q again quits the kiosk (any other key: stay)")));
-  if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back(test);
-  for (const std::string& p : stage_->problems) lines.push_back("! " + p);
-  if (health_.state().failing()) lines.push_back("! " + health_.state().problem());
-  lines.push_back(input_line(*stage_));
-  lines.push_back(stage_->audio_status);
-  lines.push_back(fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
-                              work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)));
-  lines.push_back(fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100));
-  lines.push_back(fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_));
-  lines.emplace_back(tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close"));
-  const int wall = stage_->route->loop().wall_material();
-  std::string scene_line =
-      fmt::sprintf(tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().string());
-  if (wall >= 0) {  // its name as on the screen, and as the log and the results write it
-    const Material& m = stage_->scene.materials[static_cast<std::size_t>(wall)];
-    scene_line += fmt::sprintf(tr("   wall: %s  (M next)"), m.display_name + " (" + m.name + ")");
-  }
-  lines.push_back(scene_line);
-  const std::string& tuned = stage_->calibration_status_sensitivity;
-  lines.push_back(stage_->remote ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
-                                 : tr("calibration: R runs the screen with the mouse (not saved)"));
-  lines.push_back(timing_line());
-  lines.push_back(stage_->settings_line);
+  if (states_->quit_asked()) lines.push_back({PageTone::warning, tr("Q again quits the kiosk (any other key: stay)")});
+  if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back({PageTone::status, test});
+  for (const std::string& p : stage_->problems) lines.push_back({PageTone::warning, p});
+  if (health_.state().failing()) lines.push_back({PageTone::warning, health_.state().problem()});
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
-    lines.resize(1);
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
-    lines.emplace_back(tr("Each check with its fix: journalctl -u mallet -g doctor"));
-    lines.emplace_back(tr("D back to the page    Esc close"));
+    lines.push_back({PageTone::status, tr("D back to the page    Esc close")});
+  } else {
+    lines.push_back({PageTone::status, input_line(*stage_)});
+    lines.push_back({PageTone::status, stage_->audio_status});
+    lines.push_back({PageTone::status, page_figures_[0]});
+    lines.push_back({PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100)});
+    lines.push_back({PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_)});
+    lines.push_back(
+        {PageTone::status, tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close")});
+    const int wall = stage_->route->loop().wall_material();
+    std::string scene_line =
+        fmt::sprintf(tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().string());
+    if (wall >= 0) {  // its name as on the screen, and as the log and the results write it
+      const Material& m = stage_->scene.materials[static_cast<std::size_t>(wall)];
+      scene_line += fmt::sprintf(tr("   wall: %s  (M next)"), m.display_name + " (" + m.name + ")");
+    }
+    lines.push_back({PageTone::status, scene_line});
+    const std::string& tuned = stage_->calibration_status_sensitivity;
+    lines.push_back({PageTone::status, stage_->remote
+                                           ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
+                                           : tr("calibration: R runs the screen with the mouse (not saved)")});
+    lines.push_back({PageTone::status, page_figures_[1]});
+    lines.push_back({PageTone::status, stage_->settings_line});
   }
-  draw_operator_page(o, lines, !doctor_.empty(), w, h,
-                     latency_test_.pulsing(now) ? latency_square_side() : 0.0f);
+  const PageLayout layout = layout_operator_page(*win_.font, lines, w, h,
+                                                 latency_test_.pulsing(now) ? latency_square_side() : 0.0f, page_);
+  page_ = layout.page;
+  draw_operator_page(o, layout);
 }
 
 int WindowKiosk::run() {
@@ -758,6 +775,10 @@ int WindowKiosk::run() {
       continue;
     }
     state.mallet_centre = view.displayed(present);
+    // The mallet shows where it strikes: not under the operator page's text nor the
+    // calibration's instructions, where its ball would sit, dimmed, on the words.
+    state.draw_mallet =
+        states_->state() != KioskState::operator_page && states_->state() != KioskState::calibration;
     // The bar under the mallet (where it is held, not where it bounces) and the bar struck.
     state.bar_lights = bar_lights(stage_->scene, view.shown, view.vibration, present);
     state.overlay = win_.overlay.get();

@@ -1,0 +1,205 @@
+// The operator page laid out for the screen (issue 29, items 1 and 2): at every shape, with
+// the walkthrough's three faults or with many, every row stays on the screen and inside the
+// panel, no word is lost, the warnings come first, and a doctor's check keeps its columns.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/kiosk/operator_page.hpp"
+#include "render/render_setup.hpp"
+
+namespace mallet::app {
+namespace {
+
+struct Shape {
+  float w, h;
+};
+constexpr Shape kShapes[] = {{1920, 1080}, {1280, 1024}, {1080, 1920}, {2560, 1080}, {1280, 720}, {800, 600}};
+
+// The page a running kiosk showed in the walkthrough, with its three faults.
+std::vector<PageLine> walkthrough_page() {
+  return {
+      {PageTone::title, "Mallet: operator page   quality: balanced   language: en"},
+      {PageTone::warning,
+       "drop-in /etc/mallet/mallet.d/50-room.toml skipped: /etc/mallet/mallet.d/50-room.toml:3:1: [audio] "
+       "volum: unknown key (known: volume, device, output_latency_ms, soundfont)"},
+      {PageTone::warning,
+       "scene choice /etc/mallet/scenes/bumps.toml skipped: /etc/mallet/scenes/bumps.toml:12:12: [[bumps]] "
+       "radius_m: must be > 0, got -0.08"},
+      {PageTone::warning,
+       "visitor study off: /etc/mallet/mallet.toml: [study] visitor_protocol: "
+       "/etc/mallet/study/visitor.toml: cannot open the file (No such file or directory)"},
+      {PageTone::status, "input: mouse (no Wii Remote found at start-up); mouse: the window system's events, "
+                         "once a frame (evdev: no mouse among /dev/input/event*)"},
+      {PageTone::status, "audio: none (running silent)"},
+      {PageTone::status, "frame: 16.6 ms (its work 12.5 ms)   uptime: 0 h 00 min"},
+      {PageTone::status, "volume 80 %  (Up / Down)"},
+      {PageTone::status, "actuator gain 0.20  (Left / Right)"},
+      {PageTone::status, "R recalibrate    T latency test    D doctor    L language    Q quit    Esc close"},
+      {PageTone::status, "scene: percussion.toml  (S next)"},
+      {PageTone::status, "calibration: R runs the screen with the mouse (not saved)"},
+      {PageTone::status, "timing: align asap, prediction 10 ms ahead, frames immediate, frame period 16.5 ms "
+                         "(60.6 Hz), display 0 ms, audio out 0.0 ms (the device's)"},
+      {PageTone::status, "settings: /work/main/config/mallet.toml"},
+  };
+}
+
+std::vector<PageLine> doctor_page() {
+  return {
+      {PageTone::title, "Mallet: operator page   quality: balanced   language: en"},
+      {PageTone::ok, "lavapipe (LLVM 15.0.6, 256 bits), a CPU renderer, 1280x1024 at 12.5 ms a frame", "vulkan"},
+      {PageTone::fail, "none (running silent)\nfix: connect the sound card and check `aplay -l`; `mallet audio devices`",
+       "audio"},
+      {PageTone::warn,
+       "no Wii Remote found among the HID devices (the mouse is used)\nfix: pair the remote (press 1+2) and "
+       "see docs/operators.md, \"Pairing a Wii Remote\"",
+       "wiimote"},
+      {PageTone::ok, "/var/lib/mallet writable", "state"},
+      {PageTone::status, "D back to the page    Esc close"},
+  };
+}
+
+std::vector<std::string> words_of(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// Every row inside the screen and the panel: its ink from the ascent to the descent, its
+// width as the font sets it at the layout's scale.
+void expect_on_screen(const render::FontAtlas& font, const PageLayout& page, Shape s, const std::string& what) {
+  EXPECT_GE(page.x, 0) << what;
+  EXPECT_GE(page.y, 0) << what;
+  EXPECT_LE(page.x + page.width, s.w + 0.5f) << what;
+  EXPECT_LE(page.y + page.height, s.h + 0.5f) << what;
+  EXPECT_GE(font.pixel_height() * page.scale, 12.0f - 1e-3f) << what << ": the text stays readable";
+  for (const PageRow& r : page.rows) {
+    const float right = r.x + font.measure(r.text) * page.scale;
+    EXPECT_GE(r.x, page.x) << what << ": " << r.text;
+    EXPECT_LE(right, page.x + page.width) << what << ": " << r.text;
+    EXPECT_GE(r.y - font.ascent() * page.scale, page.y) << what << ": " << r.text;
+    EXPECT_LE(r.y + font.descent() * page.scale, page.y + page.height) << what << ": " << r.text;
+  }
+}
+
+// The words of every line, in order, across all of the page's screens; the title once a screen.
+void expect_every_word(const render::FontAtlas& font, const std::vector<PageLine>& lines, Shape s,
+                       const std::string& what) {
+  std::vector<std::string> want;
+  for (std::size_t i = 1; i < lines.size(); ++i) {  // the title is checked on each screen
+    for (const char* mark : {"!", "fail", "warn", "ok"})
+      if ((lines[i].tone == PageTone::warning && std::string(mark) == "!") ||
+          (lines[i].tone == PageTone::fail && std::string(mark) == "fail") ||
+          (lines[i].tone == PageTone::warn && std::string(mark) == "warn") ||
+          (lines[i].tone == PageTone::ok && std::string(mark) == "ok"))
+        want.emplace_back(mark);
+    for (const std::string& w : words_of(lines[i].head)) want.push_back(w);
+    for (const std::string& w : words_of(lines[i].text)) want.push_back(w);
+  }
+  const PageLayout first = layout_operator_page(font, lines, s.w, s.h, 0, 0);
+  std::vector<std::string> got;
+  for (int p = 0; p < first.pages; ++p) {
+    const PageLayout page = layout_operator_page(font, lines, s.w, s.h, 0, p);
+    ASSERT_EQ(page.page, p);
+    ASSERT_EQ(page.pages, first.pages);
+    expect_on_screen(font, page, s, what + ", screen " + std::to_string(p + 1));
+    ASSERT_FALSE(page.rows.empty());
+    EXPECT_EQ(page.rows.front().text, lines.front().text) << what << ": the title heads each screen";
+    const std::size_t footer = page.pages > 1 ? 1 : 0;
+    for (std::size_t r = 1; r + footer < page.rows.size(); ++r)
+      for (const std::string& w : words_of(page.rows[r].text)) got.push_back(w);
+  }
+  EXPECT_EQ(got, want) << what << ": " << first.pages << " screen(s)";
+}
+
+TEST(OperatorPageLayout, TheWalkthroughsThreeFaultsFitEveryShapeWithEveryWordAndWarningsFirst) {
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    const std::string what = std::to_string(int(s.w)) + "x" + std::to_string(int(s.h));
+    const std::vector<PageLine> lines = walkthrough_page();
+    const PageLayout page = layout_operator_page(*font, lines, s.w, s.h);
+    EXPECT_EQ(page.pages, 1) << what << ": fourteen lines fit one screen";
+    expect_every_word(*font, lines, s, what);
+    // The warnings' marks come right after the title's row, before any status row.
+    std::vector<float> warning_ys, status_ys;
+    for (const PageRow& r : page.rows)
+      (r.tone == PageTone::warning ? warning_ys : status_ys).push_back(r.y);
+    ASSERT_EQ(std::count_if(page.rows.begin(), page.rows.end(), [](const PageRow& r) { return r.text == "!"; }), 3)
+        << what;
+    for (float wy : warning_ys)
+      for (std::size_t i = 1; i < status_ys.size(); ++i) EXPECT_LT(wy, status_ys[i]) << what;
+  }
+}
+
+TEST(OperatorPageLayout, ManyWarningsTakeScreensInTurnAndLoseNoWord) {
+  std::vector<PageLine> lines = walkthrough_page();
+  for (int i = 0; i < 40; ++i)
+    lines.insert(lines.begin() + 1, PageLine(PageTone::warning, "drop-in /etc/mallet/mallet.d/" + std::to_string(i) +
+                                                                    "-x.toml skipped: a long reason, with words, "
+                                                                    "that wraps onto a second row on most screens"));
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    const std::string what = std::to_string(int(s.w)) + "x" + std::to_string(int(s.h));
+    EXPECT_GT(layout_operator_page(*font, lines, s.w, s.h).pages, 1) << what;
+    expect_every_word(*font, lines, s, what);
+    // Page Up from the first screen is the last; Page Down from the last, the first.
+    const PageLayout first = layout_operator_page(*font, lines, s.w, s.h, 0, 0);
+    EXPECT_EQ(layout_operator_page(*font, lines, s.w, s.h, 0, -1).page, first.pages - 1);
+    EXPECT_EQ(layout_operator_page(*font, lines, s.w, s.h, 0, first.pages).page, 0);
+  }
+}
+
+TEST(OperatorPageLayout, TheDoctorsChecksKeepTheirColumnsAndShowEachFixWhole) {
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    const std::string what = std::to_string(int(s.w)) + "x" + std::to_string(int(s.h));
+    const std::vector<PageLine> lines = doctor_page();
+    expect_every_word(*font, lines, s, what);
+    const PageLayout page = layout_operator_page(*font, lines, s.w, s.h);
+    // Each level at one x, each name at one x right of every level, each finding at one x
+    // right of every name; a fix's row under its finding.
+    std::map<std::string, float> level_x, name_x, text_x;
+    for (std::size_t i = 0; i + 2 < page.rows.size(); ++i) {
+      const PageRow& r = page.rows[i];
+      if (r.text == "fail" || r.text == "warn" || r.text == "ok") {
+        level_x[r.text] = r.x;
+        name_x[page.rows[i + 1].text] = page.rows[i + 1].x;
+        text_x[page.rows[i + 1].text] = page.rows[i + 2].x;
+        EXPECT_EQ(page.rows[i + 1].y, r.y) << what;
+        EXPECT_EQ(page.rows[i + 2].y, r.y) << what;
+      }
+    }
+    ASSERT_EQ(level_x.size(), 3u) << what;
+    ASSERT_EQ(name_x.size(), 4u) << what;
+    for (const auto& [name, x] : name_x) {
+      EXPECT_EQ(x, name_x.begin()->second) << what << ": " << name;
+      EXPECT_EQ(text_x[name], text_x.begin()->second) << what << ": " << name;
+      for (const auto& [level, lx] : level_x) EXPECT_LT(lx + font->measure(level) * page.scale, x) << what;
+      EXPECT_LT(x + font->measure(name) * page.scale, text_x[name]) << what;
+    }
+    for (const auto& [level, x] : level_x) EXPECT_EQ(x, level_x.begin()->second) << what << ": " << level;
+    // The fix starts a row of its own, in the finding's column.
+    const auto fix = std::find_if(page.rows.begin(), page.rows.end(),
+                                  [](const PageRow& r) { return r.text.rfind("fix: connect", 0) == 0; });
+    ASSERT_NE(fix, page.rows.end()) << what;
+    EXPECT_EQ(fix->x, text_x.begin()->second) << what;
+    EXPECT_EQ(std::count_if(page.rows.begin(), page.rows.end(),
+                            [](const PageRow& r) { return r.text.find("...") != std::string::npos; }),
+              0)
+        << what << ": nothing is cut";
+  }
+}
+
+TEST(OperatorPageLayout, TheLatencySquaresCornerStaysClear) {
+  const auto font = render::overlay_font({1280, 1024});
+  const float side = font->pixel_height() * 4;
+  const PageLayout page = layout_operator_page(*font, walkthrough_page(), 1280, 1024, side);
+  EXPECT_TRUE(page.x >= side || page.y >= side) << page.x << ", " << page.y;
+}
+
+}  // namespace
+}  // namespace mallet::app
