@@ -44,7 +44,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   }
   if (auto t = top.optional_table("actuator")) {
     t->read("gain", c.actuator.gain, 0.0, 10.0);
-    t->read("soft_clip_knee", c.actuator.soft_clip_knee, 0.1, 0.99);
+    t->read("soft_clip_knee", c.actuator.soft_clip_knee, kMinSoftClipKnee, kMaxSoftClipKnee);
     t->finish();
   }
   if (auto t = top.optional_table("audio")) {
