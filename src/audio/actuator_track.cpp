@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <limits>
 
-#include "core/soft_clip.hpp"
-
 namespace mallet::audio {
 
 ActuatorTrack::ActuatorTrack(const Scene& scene, std::span<const Impact> impacts,
                              const ActuatorConfig& config, int sample_rate_hz)
-    : knee_(config.soft_clip_knee), sample_rate_(sample_rate_hz) {
+    : limiter_(config.soft_clip_knee, sample_rate_hz), sample_rate_(sample_rate_hz) {
   for (const Impact& impact : impacts) {
     ActuatorSignal signal(impact, scene.materials.at(impact.material).actuator, config.gain,
                           sample_rate_hz);
@@ -35,9 +33,8 @@ void ActuatorTrack::render(std::int64_t first, std::span<float> out) {
     for (std::int64_t n = from; n < to; ++n) mix_[n - first] += v.signal.at_sample(n, sample_rate_);
   }
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const double x = mix_[i];
-    if (x > knee_ || x < -knee_) ++clipped_;
-    out[i] = static_cast<float>(soft_clip(x, knee_));
+    out[i] = static_cast<float>(limiter_.tick(mix_[i]));
+    clipped_ += limiter_.limiting();
   }
 }
 

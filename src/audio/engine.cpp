@@ -7,12 +7,12 @@
 #include "audio/denormals.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/sample_clock.hpp"
-#include "core/soft_clip.hpp"
 
 namespace mallet::audio {
 
 namespace {
 constexpr int kMaxBlock = 4096;  // longer requests are rendered in pieces
+// The speaker's limiter threshold: below it the note is the synthesis' own samples.
 constexpr double kAcousticKnee = 0.9;
 }  // namespace
 
@@ -20,7 +20,10 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
     : settings_(settings),
       presets_(std::move(presets)),
       volume_(settings.acoustic_volume),
-      gain_(settings.actuator.gain) {
+      gain_(settings.actuator.gain),
+      acoustic_limiter_(kAcousticKnee, std::max(settings.sample_rate_hz, 1)),
+      actuator_limiter_(settings.actuator.soft_clip_knee, std::max(settings.sample_rate_hz, 1)),
+      mixed_limiter_(std::min(kAcousticKnee, settings.actuator.soft_clip_knee), std::max(settings.sample_rate_hz, 1)) {
   const AudioRouting& r = settings_.routing;
   if (settings_.sample_rate_hz < 1000) throw std::invalid_argument("audio: sample rate below 1000 Hz");
   if (r.channels < 1 || r.acoustic < 0 || r.acoustic >= r.channels || r.actuator < 0 || r.actuator >= r.channels)
@@ -203,15 +206,26 @@ void AudioEngine::process(float* out, int frames) {
     }
 
     const double volume = volume_.load(std::memory_order_relaxed);
-    const double knee = settings_.actuator.soft_clip_knee;
     std::uint64_t clipped = 0;
     float* o = out + static_cast<std::ptrdiff_t>(done) * channels;
-    for (int i = 0; i < n; ++i) {
-      const double a = acoustic_bus_[static_cast<std::size_t>(i)] * volume;
-      const double t = actuator_bus_[static_cast<std::size_t>(i)];
-      clipped += (std::fabs(a) > kAcousticKnee) + (std::fabs(t) > knee);
-      o[i * channels + routing.acoustic] += static_cast<float>(soft_clip(a, kAcousticKnee));
-      o[i * channels + routing.actuator] += static_cast<float>(soft_clip(t, knee));
+    if (routing.acoustic != routing.actuator) {
+      // Two signals, two limiters: a loud note never turns the actuator down.
+      for (int i = 0; i < n; ++i) {
+        const double a = acoustic_limiter_.tick(acoustic_bus_[static_cast<std::size_t>(i)] * volume);
+        clipped += acoustic_limiter_.limiting();
+        const double t = actuator_limiter_.tick(actuator_bus_[static_cast<std::size_t>(i)]);
+        clipped += actuator_limiter_.limiting();
+        o[i * channels + routing.acoustic] = static_cast<float>(a);
+        o[i * channels + routing.actuator] = static_cast<float>(t);
+      }
+    } else {
+      // One channel carries both: its sum is what must stay under the ceiling.
+      for (int i = 0; i < n; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        o[i * channels + routing.acoustic] =
+            static_cast<float>(mixed_limiter_.tick(acoustic_bus_[k] * volume + actuator_bus_[k]));
+        clipped += mixed_limiter_.limiting();
+      }
     }
     if (clipped) clipped_.fetch_add(clipped, std::memory_order_relaxed);
     int active = 0;

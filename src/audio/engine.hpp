@@ -22,6 +22,11 @@
 // Voice pool: a fixed number of voices; each impact takes one (actuator + acoustic).
 // A voice is retired when both envelopes are below −100 dB of full scale. When all
 // voices are busy the quietest voice is stolen (ties: the oldest).
+//
+// Output limit: after the volume and the gain, each signal passes its own zero-latency
+// peak limiter (audio/peak_limiter.hpp; threshold 0.9 for the note, soft_clip_knee for the
+// actuator, ceiling PeakLimiter::kCeiling), so no setting drives a channel to full scale and
+// nothing is delayed. When both signals share one channel, their sum is limited instead.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -31,6 +36,7 @@
 
 #include "audio/damped_oscillator.hpp"
 #include "audio/modal_bar.hpp"
+#include "audio/peak_limiter.hpp"
 #include "audio/spsc_ring.hpp"
 #include "core/app_config.hpp"
 #include "core/impact.hpp"
@@ -67,7 +73,7 @@ struct EngineCounters {
   std::uint64_t dropped = 0;   //!< ring full at post()
   std::uint64_t late = 0;      //!< started after their scheduled sample
   std::uint64_t stolen = 0;    //!< voices taken from a sounding impact
-  std::uint64_t clipped = 0;   //!< output samples that passed the soft-clip knee
+  std::uint64_t clipped = 0;   //!< samples (per signal) the output limiter turned down
   int active_voices = 0;
 };
 
@@ -160,6 +166,8 @@ class AudioEngine {
   std::uint64_t serial_ = 0;
   std::atomic<double> volume_;
   std::atomic<double> gain_;
+  PeakLimiter acoustic_limiter_, actuator_limiter_;  //!< when the two signals have their own channels
+  PeakLimiter mixed_limiter_;                         //!< when they share one
   std::atomic<std::uint64_t> impacts_{0}, dropped_{0}, late_{0}, stolen_{0}, clipped_{0};
   std::atomic<int> active_{0};
   static_assert(std::atomic<double>::is_always_lock_free);

@@ -19,8 +19,12 @@ namespace mallet {
 
 struct ActuatorConfig {
   double gain = 0.2;             //!< the paper's amplifier knob: output = gain·A·v·e^(−Bt)·sin
-  double soft_clip_knee = 0.9;   //!< identity below, tanh shoulder to full scale above
+  double soft_clip_knee = 0.9;   //!< the output limiter's threshold: identity below (audio/peak_limiter.hpp)
 };
+
+//! soft_clip_knee's range in the settings: the top stays under the output limiter's
+//! ceiling (0.98, audio/peak_limiter.hpp, which checks it), so the shoulder keeps room.
+inline constexpr double kMinSoftClipKnee = 0.1, kMaxSoftClipKnee = 0.95;
 
 //! Which output channel carries what. Both on one channel = mono mix (no actuator fitted).
 struct AudioRouting {

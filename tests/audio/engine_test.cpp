@@ -1,8 +1,11 @@
 // The real-time engine, without a device: sample-accurate starts inside blocks, both
 // channels on the same sample, the actuator channel equal to the exact reference,
-// scheduling modes, voice stealing, and no allocation in the callback.
+// scheduling modes, voice stealing, no allocation in the callback, and no volume or gain
+// that drives a channel to full scale.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <new>
 #include <numbers>
@@ -11,6 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "audio/engine.hpp"
+#include "core/config/instruments_config.hpp"
+#include "core/named.hpp"
+#include "core/operator_knobs.hpp"
+#include "core/soft_clip.hpp"
 #include "test_paths.hpp"
 
 // Counts heap allocations made while `g_counting` is set (i.e. inside process()).
@@ -188,7 +195,7 @@ TEST(AudioEngine, ThousandSimultaneousStrikesNeitherClipUncontrolledNorAllocate)
     g_counting = false;
     for (float x : out) {
       ASSERT_TRUE(std::isfinite(x));
-      ASSERT_LE(std::fabs(x), 1.0f);
+      ASSERT_LE(std::fabs(x), static_cast<float>(PeakLimiter::kCeiling));
     }
   }
   EXPECT_EQ(g_allocations.load(), 0u);
@@ -229,6 +236,119 @@ TEST(AudioEngine, RefusesSettingsItCannotHonourBeforeAnyAudioRuns) {
   low_rate.sample_rate_hz = 500;  // metal's 300 Hz actuator is above Nyquist
   EXPECT_THROW(AudioEngine(percussion(), simple_presets(), low_rate), std::invalid_argument);
   EXPECT_THROW(AudioEngine(percussion(), {}, EngineSettings{}), std::invalid_argument);
+}
+
+// The shipped scene's own acoustic presets (config/instruments.toml), as audio_setup picks them.
+std::vector<ModalPreset> shipped_presets() {
+  const std::vector<ModalPreset> library = config::load_instruments(percussion().instruments_file);
+  std::vector<ModalPreset> presets;
+  for (const Instrument& inst : percussion().instruments) presets.push_back(*find_named(library, inst.voice));
+  return presets;
+}
+
+// A visitor playing for `seconds`: a strike every 150 ms over all the bars, fast and slow,
+// with a chord of four now and then.
+std::vector<Impact> busy_visitor(double seconds) {
+  std::vector<Impact> impacts;
+  const auto bars = static_cast<int>(percussion().targets.size());
+  for (int k = 0; k * 0.15 < seconds; ++k) {
+    const Nanos t = 1'000'000 + k * 150'000'000LL + (k * 7'919) % 20'833;  // off the sample grid
+    impacts.push_back(strike((k * 5) % bars, t, 0.5 + 0.25 * (k % 11)));  // 0.5 .. 3 m/s
+    if (k % 9 == 0)
+      for (int j = 1; j < 4; ++j) impacts.push_back(strike((k + 3 * j) % bars, t, 3.0));
+  }
+  return impacts;
+}
+
+double peak(const std::vector<double>& x) {
+  double p = 0;
+  for (double v : x) p = std::max(p, std::fabs(v));
+  return p;
+}
+
+TEST(AudioEngine, NoVolumeOrGainTheSettingsAllowDrivesEitherChannelToFullScale) {
+  const std::vector<Impact> impacts = busy_visitor(1.0);
+  // What full volume and gain would give without the limiter: the engine is linear below its
+  // thresholds, so a quiet run scaled up is the unlimited signal. It must go past full scale,
+  // or this test would prove nothing.
+  EngineSettings quiet;
+  quiet.acoustic_volume = 0.01;
+  quiet.actuator.gain = 0.001;
+  AudioEngine reference(percussion(), shipped_presets(), quiet);
+  const auto raw = run(reference, impacts, 48000, 256);
+  ASSERT_LT(peak(channel(raw, 2, 0)), 0.9);
+  ASSERT_LT(peak(channel(raw, 2, 1)), 0.9);
+  EXPECT_GT(peak(channel(raw, 2, 0)) * kVolumeKnob.hi / quiet.acoustic_volume, 1.0);
+  EXPECT_GT(peak(channel(raw, 2, 1)) * kGainKnob.hi / quiet.actuator.gain, 1.0);
+
+  const float ceiling = static_cast<float>(PeakLimiter::kCeiling);
+  for (double volume = 0.0; volume <= kVolumeKnob.hi + 1e-9; volume += 0.5) {
+    for (double gain : {0.0, 1.0, kGainKnob.hi}) {
+      EngineSettings s;
+      s.acoustic_volume = volume;
+      s.actuator.gain = gain;
+      AudioEngine engine(percussion(), shipped_presets(), s);
+      const auto out = run(engine, impacts, 48000, 256);
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(out[i]));
+        ASSERT_LE(std::fabs(out[i]), ceiling) << "volume " << volume << " gain " << gain << " channel " << i % 2;
+      }
+    }
+  }
+  // The mono mix (one channel for both) at the top of both ranges.
+  EngineSettings mono;
+  mono.routing = {1, 0, 0};
+  mono.acoustic_volume = kVolumeKnob.hi;
+  mono.actuator.gain = kGainKnob.hi;
+  AudioEngine engine(percussion(), shipped_presets(), mono);
+  for (float x : run(engine, impacts, 48000, 256)) ASSERT_LE(std::fabs(x), ceiling);
+}
+
+TEST(AudioEngine, AtVolumeFourTenSecondsOfPlayHaveNoSampleAtFullScale) {
+  // The reported case (issue 29): [audio] volume = 4.0, 10 s of a visitor playing. The old
+  // output stage (soft_clip to 1 per sample) gave full-scale samples here; the limiter none.
+  const std::vector<Impact> impacts = busy_visitor(10.0);
+  EngineSettings s;
+  s.acoustic_volume = 4.0;
+  AudioEngine engine(percussion(), shipped_presets(), s);
+  const auto out = run(engine, impacts, 10 * 48000, 512);
+  EngineSettings unit;
+  unit.acoustic_volume = 1.0 / 64;  // linear: below the threshold throughout
+  AudioEngine reference(percussion(), shipped_presets(), unit);
+  const auto raw = channel(run(reference, impacts, 10 * 48000, 512), 2, 0);
+  ASSERT_LT(peak(raw), 0.9);
+
+  int full_scale_before = 0, full_scale_after = 0;
+  for (double x : raw) full_scale_before += std::fabs(static_cast<float>(soft_clip(x * 64 * 4.0, 0.9))) >= 1.0f;
+  for (std::size_t i = 0; i < out.size(); ++i) full_scale_after += std::fabs(out[i]) >= 1.0f;
+  const double peak_after = peak(channel(out, 2, 0));
+  std::printf("volume 4.0, 10 s: %d full-scale samples with the old soft clip, %d with the limiter; "
+              "peak %.4f unlimited, %.4f limited\n",
+              full_scale_before, full_scale_after, peak(raw) * 64 * 4.0, peak_after);
+  EXPECT_GT(full_scale_before, 0);  // the case is reproduced, or the test proves nothing
+  EXPECT_EQ(full_scale_after, 0);
+  EXPECT_LE(peak_after, PeakLimiter::kCeiling);
+  EXPECT_GT(engine.counters().clipped, 0u);
+}
+
+TEST(AudioEngine, ALoudSpeakerNeverTurnsTheActuatorDownNorDelaysEither) {
+  // Each signal has its own limiter: at volume 4 the actuator channel is bit for bit what
+  // it is at volume 0.1, and the first sample of each strike is where it was.
+  const std::vector<Impact> impacts = busy_visitor(1.0);
+  EngineSettings loud, soft;
+  loud.acoustic_volume = kVolumeKnob.hi;
+  soft.acoustic_volume = 0.1;
+  AudioEngine a(percussion(), shipped_presets(), loud), b(percussion(), shipped_presets(), soft);
+  const auto x = run(a, impacts, 48000, 128), y = run(b, impacts, 48000, 128);
+  EXPECT_GT(a.counters().clipped, 0u);  // the speaker was limited
+  EXPECT_EQ(channel(x, 2, 1), channel(y, 2, 1));
+  EXPECT_EQ(first_nonzero(channel(x, 2, 0)), first_nonzero(channel(y, 2, 0)));
+  const Nanos t = 96 * kNanosPerSecond / 48000 + 7'000;
+  AudioEngine c(percussion(), shipped_presets(), loud);
+  const auto one = run(c, {strike(3, t, 3.0)}, 4800, 64);
+  const std::int64_t own = (t * 48000 + kNanosPerSecond - 1) / kNanosPerSecond;
+  EXPECT_EQ(first_nonzero(channel(one, 2, 0)), own);
+  EXPECT_EQ(first_nonzero(channel(one, 2, 1)), own);
 }
 
 }  // namespace

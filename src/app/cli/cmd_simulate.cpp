@@ -108,7 +108,8 @@ SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and ex
       std::printf("note: %llu touch(es) slower than min_impact_speed_m_per_s made no impact\n",
                   static_cast<unsigned long long>(c.touches_below_min_speed));
     if (r.clipped_samples)
-      std::printf("note: %llu actuator samples passed the soft-clip knee (lower [actuator].gain)\n",
+      std::printf("note: %llu samples were turned down by the output limiter "
+                  "(lower [actuator].gain or [audio].volume)\n",
                   static_cast<unsigned long long>(r.clipped_samples));
     for (const auto& p : r.written) std::printf("wrote %s\n", p.string().c_str());
   });

@@ -7,6 +7,7 @@
 
 #include "core/config/app_config_table.hpp"
 #include "core/config/toml_reader.hpp"
+#include "core/operator_knobs.hpp"
 #include "core/present_clock.hpp"
 #include "core/quality.hpp"
 #include "core/visitor_language.hpp"
@@ -43,8 +44,8 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->finish();
   }
   if (auto t = top.optional_table("actuator")) {
-    t->read("gain", c.actuator.gain, 0.0, 10.0);
-    t->read("soft_clip_knee", c.actuator.soft_clip_knee, 0.1, 0.99);
+    t->read("gain", c.actuator.gain, kGainKnob.lo, kGainKnob.hi);  // the operator page's range too
+    t->read("soft_clip_knee", c.actuator.soft_clip_knee, kMinSoftClipKnee, kMaxSoftClipKnee);
     t->finish();
   }
   if (auto t = top.optional_table("audio")) {
@@ -63,7 +64,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->read("schedule_ahead_ms", a.schedule_ahead_ms, 0, 1000);
     t->read("max_voices", a.max_voices, 1, 4096);
     t->read("max_modes", a.max_modes, 1, kMaxModalModes);
-    t->read("volume", a.volume, 0, 4);
+    t->read("volume", a.volume, kVolumeKnob.lo, kVolumeKnob.hi);  // the operator page's range too
     const std::string route = t->string_or("acoustic", "modal");
     if (route == "modal") a.acoustic = AcousticRoute::modal;
     else if (route == "midi") a.acoustic = AcousticRoute::midi;
