@@ -29,10 +29,14 @@ Check validate(const KioskStatesConfig& c) {
 
 const char* to_string(KioskState state) { return name_in(kKioskStateNames, state); }
 
-std::string_view hint_text(KioskHint hint, SceneKind scene) {
+std::string_view hint_text(KioskHint hint, SceneKind scene, bool mouse) {
   switch (hint) {
     case KioskHint::none: return "";
     case KioskHint::invitation:
+      if (mouse)  // no mallet to pick up: the mouse moves it, and a click does nothing
+        return scene == SceneKind::texture ? tr("Move the mouse over the disc")
+               : scene == SceneKind::wall  ? tr("Move the mouse onto the wall to tap it")
+                                           : tr("Move the mouse down onto a bar to strike it");
       return scene == SceneKind::texture ? tr("Pick up the mallet and move it over the disc")
              : scene == SceneKind::wall  ? tr("Pick up the mallet and tap the wall")
                                          : tr("Pick up the mallet and strike a bar");

@@ -92,8 +92,9 @@ struct KioskOverlay {
 //! invitation.
 enum class KioskHint { none, invitation, point_at_screen, close_needs_chord, remote_missing };
 //! "" for none. The invitation asks for what the scene is played with: a bar to strike, the
-//! disc to move over (texture), the wall to tap. In the visitor's language (tr()).
-std::string_view hint_text(KioskHint hint, SceneKind scene = SceneKind::percussion);
+//! disc to move over (texture), the wall to tap; with the `mouse` as the input, to move the
+//! mouse (there is no mallet to pick up). In the visitor's language (tr()).
+std::string_view hint_text(KioskHint hint, SceneKind scene = SceneKind::percussion, bool mouse = false);
 
 class KioskStates {
  public:

@@ -1,6 +1,7 @@
 #include "render/overlay_text.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -10,7 +11,7 @@
 
 namespace mallet::render {
 
-void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height) {
+NoteBox draw_banner(render::Overlay& overlay, std::string_view text, float width, float height) {
   const render::FontAtlas& font = overlay.atlas();
   const float px = font.pixel_height();
   // As many lines as the screen's width needs (a portrait screen, a long language), each
@@ -33,20 +34,48 @@ void draw_banner(render::Overlay& overlay, std::string_view text, float width, f
   for (std::size_t i = 0; i < lines.size(); ++i)
     overlay.text(width / 2, y + px * 0.9f + px * 0.35f + line * static_cast<float>(i), lines[i],
                  {1.0f, 1.0f, 1.0f, 1.0f}, render::TextAlign::center);
+  return {x, y, w, h};
+}
+
+NoteBox draw_corner_note(render::Overlay& overlay, std::string_view text, Corner corner, float width,
+                         float height) {
+  const render::FontAtlas& font = overlay.atlas();
+  constexpr float kScale = 0.6f;  // discreet: 3/5 of the visitors' letters
+  const float em = font.pixel_height() * kScale, margin = em * 0.5f;
+  NoteBox box;
+  box.width = font.measure(text) * kScale + em;
+  box.height = em * 1.5f;
+  box.x = corner == Corner::bottom_left ? margin : width - margin - box.width;
+  box.y = height - margin - box.height;
+  overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, 0.7f});
+  // The baseline whole-pixel (crisp), the ink centred in the band.
+  const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * kScale / 2);
+  overlay.text(box.x + em / 2, baseline, text, {1.0f, 1.0f, 1.0f, 0.8f}, render::TextAlign::left, kScale);
+  return box;
 }
 
 void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                      float height, const std::vector<BarLabel>& labels) {
-  const float px = overlay.atlas().pixel_height();
+  const render::FontAtlas& font = overlay.atlas();
+  const float px = font.pixel_height();
   for (const BarLabel& label : labels) {
     const Target& t = scene.targets.at(static_cast<std::size_t>(label.target));
-    // On the bar's top, a little in from its near end (the end towards the visitor).
-    const glm::dvec3 at{(t.x_min + t.x_max) / 2, t.top_y, t.length_m / 2 - 0.03};
-    const glm::dvec2 s = render::project_to_screen(view_proj, at);
-    const float x = static_cast<float>(s.x) * width, y = static_cast<float>(s.y) * height;
-    const float w = overlay.atlas().measure(label.text) + px * 0.4f;
-    overlay.fill_rect(x - w / 2, y - px * 0.95f, w, px * 1.2f, {0.0f, 0.0f, 0.0f, 0.45f});
-    overlay.text(x, y, label.text, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center);
+    // On the bar's top, a little in from its near end (the end towards the visitor): centred
+    // between its two edges as the view shows them, and no wider than the bar, so that
+    // neighbours never run together (a narrow glockenspiel, a portrait screen). Smaller
+    // letters where the bar is narrow, down to 12 px (or 30 % of the visitors' size).
+    const double z = t.length_m / 2 - 0.03;
+    const glm::dvec2 left = render::project_to_screen(view_proj, {t.x_min, t.top_y, z});
+    const glm::dvec2 right = render::project_to_screen(view_proj, {t.x_max, t.top_y, z});
+    const float x = static_cast<float>((left.x + right.x) / 2) * width;
+    const float y = std::round(static_cast<float>((left.y + right.y) / 2) * height);
+    const float bar = static_cast<float>(std::abs(right.x - left.x)) * width;
+    const float ink = font.measure(label.text);
+    const float smallest = std::min(1.0f, std::max(0.3f, 12.0f / px));
+    const float scale = std::clamp((bar * 0.92f) / (ink + px * 0.4f), smallest, 1.0f);
+    const float w = (ink + px * 0.4f) * scale;
+    overlay.fill_rect(x - w / 2, y - px * 0.95f * scale, w, px * 1.2f * scale, {0.0f, 0.0f, 0.0f, 0.45f});
+    overlay.text(x, y, label.text, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center, scale);
   }
 }
 

@@ -13,9 +13,21 @@
 
 namespace mallet::render {
 
+//! A text's band on the screen, in pixels.
+struct NoteBox {
+  float x = 0, y = 0, width = 0, height = 0;
+};
+
 //! The text centred near the top of a width×height screen, on a translucent band; wrapped
 //! onto more lines where one would not fit the screen's width (render/text_wrap.hpp).
-void draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
+//! Returns the band.
+NoteBox draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
+
+enum class Corner { bottom_left, bottom_right };
+//! A small note for the staff in a bottom corner ("Mouse (no Wii Remote)", "No sound"):
+//! smaller than the visitors' words, discreet, on a dark band of its own, so that it reads
+//! (at least 4.5:1, WCAG 2.1 AA) over every scene, the grey texture scene's too.
+NoteBox draw_corner_note(render::Overlay& overlay, std::string_view text, Corner corner, float width, float height);
 
 //! A label on a bar: its near end, as `view_proj` shows the bar on a width×height image, on
 //! a small translucent band so it reads on wood and metal alike.

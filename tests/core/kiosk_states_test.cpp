@@ -63,6 +63,18 @@ TEST(KioskStates, TheInvitationAsksForWhatTheSceneIsPlayedWith) {
     EXPECT_EQ(hint_text(KioskHint::invitation, kind).find("bar"), std::string_view::npos) << to_string(kind);
 }
 
+TEST(KioskStates, WithTheMouseTheInvitationAsksForAMoveNotAMalletToPickUp) {
+  for (SceneKind kind : {SceneKind::percussion, SceneKind::texture, SceneKind::wall}) {
+    const std::string_view said = hint_text(KioskHint::invitation, kind, true);
+    EXPECT_EQ(said.find("Pick up"), std::string_view::npos) << said;
+    EXPECT_EQ(said.rfind("Move the mouse", 0), 0u) << said;
+    EXPECT_NE(said, hint_text(KioskHint::invitation, kind, false));
+  }
+  EXPECT_NE(hint_text(KioskHint::invitation, SceneKind::percussion, true).find("bar"), std::string_view::npos);
+  // The other hints do not depend on the input.
+  EXPECT_EQ(hint_text(KioskHint::remote_missing, SceneKind::percussion, true), hint_text(KioskHint::remote_missing));
+}
+
 using Event = std::function<bool(KioskStates&, Nanos)>;
 
 struct Row {

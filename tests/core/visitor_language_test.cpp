@@ -66,17 +66,18 @@ TEST_F(VisitorLanguage, EveryVisitorLineIsShortEnoughToReadAtAGlance) {
     use_visitor_language(language);
     for (const KioskHint hint : {KioskHint::invitation, KioskHint::point_at_screen, KioskHint::close_needs_chord,
                                  KioskHint::remote_missing})
-      for (const SceneKind scene : {SceneKind::percussion, SceneKind::texture, SceneKind::wall}) {
-        const std::string_view text = hint_text(hint, scene);
-        std::size_t characters = 0, words = 1;
-        for (const char c : text) {
-          characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-          words += c == ' ';
+      for (const SceneKind scene : {SceneKind::percussion, SceneKind::texture, SceneKind::wall})
+        for (const bool mouse : {false, true}) {
+          const std::string_view text = hint_text(hint, scene, mouse);
+          std::size_t characters = 0, words = 1;
+          for (const char c : text) {
+            characters += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+            words += c == ' ';
+          }
+          EXPECT_GT(characters, 0u);
+          EXPECT_LE(characters, 55u) << language << ": " << text;
+          EXPECT_LE(words, 25u) << language << ": " << text;
         }
-        EXPECT_GT(characters, 0u);
-        EXPECT_LE(characters, 55u) << language << ": " << text;
-        EXPECT_LE(words, 25u) << language << ": " << text;
-      }
   }
 }
 

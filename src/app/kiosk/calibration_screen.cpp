@@ -63,12 +63,23 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
       last_round_ = fmt::sprintf(tr("Round %d: largest error %.1f px (limit %.1f px): measuring again"),
                                  session_.round(), fit->max_px, session_.config().max_error_screen_px);
     else
-      last_round_ = fmt::sprintf(tr("Round %d refused: %s"), session_.round(), session_.failure());
+      last_round_ = fmt::sprintf(tr("Round %d: the rings could not be matched to the screen: measuring again"),
+                                 session_.round());
   }
   if (step == CalibrationStep::accepted) accept();
   if (step == CalibrationStep::failed) {
+    // Plain words on the screen, what to do next included; the fit's own reason goes to the
+    // journal (failure()).
     outcome_ = Outcome::failed;
-    message_ = fmt::sprintf(tr("Calibration failed (%s); the previous calibration stays"), session_.failure());
+    failure_ = session_.failure();
+    if (const auto& fit = session_.last_fit())
+      message_ = fmt::sprintf(tr("Calibration failed: the light did not hold still on the rings (largest error "
+                                 "%.0f px, limit %.0f px). Hold it still and try again; the previous "
+                                 "calibration stays."),
+                              fit->max_px, session_.config().max_error_screen_px);
+    else
+      message_ = tr("Calibration failed: the rings could not be matched to the screen. Check that the camera "
+                    "sees the whole screen and try again; the previous calibration stays.");
   }
   return step;
 }
@@ -128,7 +139,15 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
     pen += px * 0.2f;
   };
   say(tr("Calibration"), white);
-  say(tr("Hold the mallet's light still on the ring until it fills"), {1, 1, 1, 0.8f});
+  say(remote_ == "mouse" ? tr("Hold the pointer still on the ring until it fills")
+                        : tr("Hold the mallet's light still on the ring until it fills"),
+      {1, 1, 1, 0.8f});
+  // The way out, at the foot of the screen.
+  const std::string way_out = tr("Esc stops the calibration; the previous one stays");
+  const std::vector<std::string> out_lines = render::wrap_text(o.atlas(), way_out, w - 4 * px);
+  for (std::size_t i = 0; i < out_lines.size(); ++i)
+    o.text(w / 2, h - px * (1.3f * static_cast<float>(out_lines.size() - i) - 0.2f), out_lines[i],
+           {1, 1, 1, 0.7f}, render::TextAlign::center);
 
   if (tuning()) {
     const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
@@ -138,7 +157,8 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
                     static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
     const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) +
                              std::string(tuner_->preset()) + "   " + (dot_seen_ ? tr("light seen") : tr("no light seen"));
-    o.text(w / 2, h * 0.70f, line, white, render::TextAlign::center);
+    pen = h * 0.70f;
+    say(line, white);
     return;
   }
   const std::vector<Vec2>& targets = session_.targets();
@@ -158,12 +178,13 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
     }
   }
 
-  o.text(w / 2, h * 0.70f, status_line(), outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white,
-         render::TextAlign::center);
+  // Below the middle row of targets, each line wrapped to the screen: never cut at its edges.
+  pen = h * 0.70f;
+  say(status_line(), outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white);
   if (outcome_ == Outcome::measuring && !last_round_.empty())
-    o.text(w / 2, h * 0.70f + px * 1.5f, last_round_, {1, 0.75f, 0.4f, 1}, render::TextAlign::center);
+    say(last_round_, {1, 0.75f, 0.4f, 1});
   else if (outcome_ == Outcome::measuring && !tuner_note_.empty())
-    o.text(w / 2, h * 0.70f + px * 1.5f, tuner_note_, {1, 1, 1, 0.7f}, render::TextAlign::center);
+    say(tuner_note_, {1, 1, 1, 0.7f});
 }
 
 }  // namespace mallet::app

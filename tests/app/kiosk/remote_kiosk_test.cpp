@@ -257,6 +257,34 @@ TEST(RemoteKiosk, TheCalibrationLabelNamesTheTargetBeingMeasuredAndItsRound) {
   EXPECT_EQ(screen.status_line(), screen.message());
 }
 
+TEST(RemoteKiosk, AFailedCalibrationSaysWhatToDoInPlainWordsAndTheJournalGetsTheFitsReason) {
+  // The two top corners' lights swapped (a fold: each round's fit refused or far off), or
+  // each hold 5 % of the screen off its target, a new way each time (far off).
+  for (const bool swapped : {false, true}) {
+    CalibrationScreen screen(session_config(), std::nullopt, "r");
+    Nanos t = kNanosPerSecond;
+    const std::vector<Vec2>& targets = screen.session().targets();
+    for (int guard = 0; guard < 200 && screen.outcome() == CalibrationScreen::Outcome::measuring; ++guard) {
+      const int i = screen.session().current_target().value_or(0);
+      const Vec2 target = targets[static_cast<std::size_t>(i)];
+      const Vec2 held = swapped ? (i == 0 ? targets[2] : i == 2 ? targets[0] : target)
+                                : Vec2{target.x + 0.05 * std::sin(guard * 1.7), target.y + 0.05 * std::cos(guard * 2.3)};
+      carry_and_hold(screen, t, camera_of(held));
+    }
+    ASSERT_EQ(screen.outcome(), CalibrationScreen::Outcome::failed) << swapped << ": " << screen.message();
+    const std::string said = screen.message();
+    for (const char* jargon : {"vanishing", "homography", "reprojection", "folds", "rank", "singular"})
+      EXPECT_EQ(said.find(jargon), std::string::npos) << said;
+    EXPECT_NE(said.find("try again"), std::string::npos) << said;
+    EXPECT_NE(said.find("the previous calibration stays"), std::string::npos) << said;
+    EXPECT_FALSE(screen.failure().empty());
+    EXPECT_EQ(screen.failure(), screen.session().failure());
+    if (!swapped) {
+      EXPECT_NE(said.find("did not hold still"), std::string::npos) << said;
+    }
+  }
+}
+
 //! A calibration that maps camera_of() back exactly.
 Calibration mirrored_calibration() {
   std::vector<Vec2> cam, scr;

@@ -1,0 +1,34 @@
+#!/bin/bash
+# A walkthrough of the real kiosk as a visitor and an operator would take it, on one screen
+# shape and in one language: OUT/walk-NAME-LANG-STEP.png for each step. Run it under an Xvfb
+# screen of the shape wanted, e.g. the four shapes of issue 29 in the four languages:
+#   for s in 1920x1080:16x9 1280x1024:5x4 1080x1920:9x16 2560x1080:21x9; do for l in en de fr ja; do
+#     xvfb-run -a -s "-screen 0 ${s%:*}x24" docs/screens/take-walkthrough.sh build/release/mallet OUT ${s#*:} $l
+#   done; done
+# The steps: 1-attract (the invitation), 2-play (the mouse sweeps onto the third bar),
+# 3-operator (Ctrl+Alt+O), 4-doctor (D), 5-calibration (D, R: the mouse's calibration),
+# 6-calibration-esc (Esc stops it), 7-texture and 8-wall (the page's S, then Esc and a move).
+#   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
+set -eu
+mallet=$1; out=$2; name=$3; lang=$4
+work=$(mktemp -d); export XDG_RUNTIME_DIR=$work/xdg MALLET_STATE_DIR=$work/state; mkdir -m 700 "$XDG_RUNTIME_DIR"
+mkdir "$work/drop-ins"; printf '[kiosk]\nlanguage = "%s"\n' "$lang" >"$work/drop-ins/language.toml"
+"$mallet" run --config-dir "$work/drop-ins" >"$work/log" 2>&1 & pid=$!
+trap 'kill $pid 2>/dev/null || true; rm -rf "$work"' EXIT
+for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
+read -r w h < <(xdotool getdisplaygeometry)
+shot() { sleep "${2:-1}"; import -window root "$out/walk-$name-$lang-$1.png"; }
+shot 1-attract 4
+x=$(( w / 2 - (h * 16 / 9 < w ? h * 16 / 9 : w) * 36 / 100 ))
+for y in $(seq $(( h * 35 / 100 )) $(( h / 40 )) $(( h * 62 / 100 ))) $(seq $(( h * 62 / 100 )) -$(( h / 25 )) $(( h * 52 / 100 ))); do
+  xdotool mousemove "$x" "$y"; sleep 0.05
+done
+shot 2-play 0.3
+xdotool key ctrl+alt+o; shot 3-operator 1.5
+xdotool key d; shot 4-doctor 2
+xdotool key d r; shot 5-calibration 1.5
+xdotool key Escape; shot 6-calibration-esc 1
+xdotool key s; sleep 2; xdotool key Escape; xdotool mousemove $(( w / 3 )) $(( h / 2 )); shot 7-texture 2
+xdotool key ctrl+alt+o; sleep 0.5; xdotool key s; sleep 2; xdotool key Escape
+xdotool mousemove $(( w / 2 )) $(( h / 3 )); shot 8-wall 2
+grep -i "operator:\|calibration\|warning\|refused" "$work/log" >&2 || true

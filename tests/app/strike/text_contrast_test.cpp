@@ -1,0 +1,83 @@
+// The words on the visitors' screen meet WCAG 2.1 AA (4.5:1) on every scene, measured on
+// rendered frames (lavapipe): the invitation's band and the staff's corner notes over the dark
+// percussion room, the grey texture scene and the wall (issue 29, items 10 and 16). A text's
+// contrast is its brightest ink against the median of its band (most of a band is not ink).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/kiosk_states.hpp"
+#include "render/image.hpp"
+#include "render/overlay.hpp"
+#include "render/overlay_text.hpp"
+#include "render/render_setup.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+double linear(std::uint8_t c) {
+  const double s = c / 255.0;
+  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+}
+
+double luminance(const std::uint8_t* p) { return 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2]); }
+
+//! WCAG 2.1's contrast ratio of the brightest pixel inside `box` (1 px in from its edge)
+//! against the box's median pixel.
+double contrast_in(const render::Image& image, const render::NoteBox& box) {
+  std::vector<double> l;
+  const int x0 = static_cast<int>(std::ceil(box.x)) + 1, x1 = static_cast<int>(std::floor(box.x + box.width)) - 1;
+  const int y0 = static_cast<int>(std::ceil(box.y)) + 1, y1 = static_cast<int>(std::floor(box.y + box.height)) - 1;
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) l.push_back(luminance(image.at(x, y)));
+  if (l.empty()) return 0;
+  std::sort(l.begin(), l.end());
+  return (l.back() + 0.05) / (l[l.size() / 2] + 0.05);
+}
+
+struct Case {
+  const char* name;
+  const Scene& (*scene)();
+};
+
+TEST(TextContrast, TheInvitationAndTheCornerNotesReadOnEveryScene) {
+  for (const Case c : {Case{"percussion", &test::percussion}, Case{"texture", &test::texture},
+                       Case{"wall", &test::wall}}) {
+    render::HeadlessOptions o;
+    o.size = {1280, 720};
+    o.cache_dir = "";
+    o.device = "llvmpipe";
+    render::HeadlessRenderer r(c.scene(), o);
+    const std::unique_ptr<render::FontAtlas> font = render::overlay_font(o.size);
+    render::Overlay overlay(*font);
+    const float w = 1280, h = 720;
+    const render::NoteBox banner =
+        render::draw_banner(overlay, hint_text(KioskHint::invitation, c.scene().kind, true), w, h);
+    const render::NoteBox mouse =
+        render::draw_corner_note(overlay, "Mouse (no Wii Remote)", render::Corner::bottom_left, w, h);
+    const render::NoteBox silent = render::draw_corner_note(overlay, "No sound", render::Corner::bottom_right, w, h);
+    render::FrameState state;
+    state.draw_mallet = false;
+    state.overlay = &overlay;
+    const render::Image frame = r.render(state);
+    std::printf("%-10s invitation %.1f:1, mouse note %.1f:1, no-sound note %.1f:1\n", c.name,
+                contrast_in(frame, banner), contrast_in(frame, mouse), contrast_in(frame, silent));
+    EXPECT_GE(contrast_in(frame, banner), 4.5) << c.name << ": the invitation";
+    EXPECT_GE(contrast_in(frame, mouse), 4.5) << c.name << ": the mouse note";
+    EXPECT_GE(contrast_in(frame, silent), 4.5) << c.name << ": the no-sound note";
+    // The notes stay in their corners, on the screen, clear of each other.
+    EXPECT_GE(mouse.x, 0);
+    EXPECT_LE(silent.x + silent.width, w);
+    EXPECT_LE(mouse.x + mouse.width, silent.x);
+    EXPECT_LE(mouse.y + mouse.height, h);
+    EXPECT_GT(mouse.y, h * 0.8f);
+  }
+}
+
+}  // namespace
+}  // namespace mallet::app
