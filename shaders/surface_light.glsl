@@ -19,7 +19,20 @@ struct SurfaceLight {
   float alpha;
 };
 
-SurfaceLight surface_light(vec3 world_position, vec3 world_normal, vec2 uv) {
+// Lambert's max(n·l, 0) with its corner at the terminator rounded over ±w: the same light
+// where n·l ≥ w, none where n·l ≤ −w, and between them a parabola that meets both with the
+// same slope. On the sphere a corner in the light's slope shows as a hard band along the
+// terminator (the eye sharpens it: Mach bands); a light of some size has none.
+float soft_terminator(float n_dot_l, float w) {
+  if (w <= 0.0) return max(n_dot_l, 0.0);
+  if (n_dot_l >= w) return n_dot_l;
+  if (n_dot_l <= -w) return 0.0;
+  return (n_dot_l + w) * (n_dot_l + w) / (4.0 * w);
+}
+
+// terminator_width: soft_terminator's w for the diffuse light (0: Lambert's, as the bars
+// have it: their faces are flat, they have no terminator).
+SurfaceLight surface_light(vec3 world_position, vec3 world_normal, vec2 uv, float terminator_width) {
   vec4 albedo = draw.base_color;
   if (draw.params.w > 0.5) albedo *= texture(base_color_texture, uv);
   float metallic = clamp(draw.params.x, 0.0, 1.0);
@@ -37,7 +50,7 @@ SurfaceLight surface_light(vec3 world_position, vec3 world_normal, vec2 uv) {
   float k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
   float geometry = n_dot_l / (n_dot_l * (1.0 - k) + k) * n_dot_v / (n_dot_v * (1.0 - k) + k);
   vec3 specular = ggx(max(dot(n, h), 0.0), roughness) * fresnel * geometry / (4.0 * n_dot_v + 1e-4);
-  vec3 diffuse = (1.0 - metallic) * (1.0 - fresnel) * albedo.rgb / PI;
+  vec3 diffuse = (1.0 - metallic) * (1.0 - fresnel) * albedo.rgb / PI * soft_terminator(dot(n, l), terminator_width);
 
   // A room around the instruments: a bright ceiling and a dark floor, reflected by metal
   // and lighting everything softly.
@@ -47,8 +60,12 @@ SurfaceLight surface_light(vec3 world_position, vec3 world_normal, vec2 uv) {
   vec3 ambient_diffuse = (1.0 - metallic) * albedo.rgb * mix(ground, sky, n.y * 0.5 + 0.5);
 
   SurfaceLight s;
-  s.direct = (diffuse + specular) * frame.light_color.rgb * n_dot_l;
+  s.direct = (diffuse + specular * n_dot_l) * frame.light_color.rgb;
   s.ambient = (ambient_diffuse + environment * f0 * (1.0 - 0.7 * roughness)) * frame.light_color.w;
   s.alpha = albedo.a;
   return s;
+}
+
+SurfaceLight surface_light(vec3 world_position, vec3 world_normal, vec2 uv) {
+  return surface_light(world_position, world_normal, uv, 0.0);
 }

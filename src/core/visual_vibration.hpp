@@ -42,14 +42,29 @@ class VisualVibration {
 
   //! The struck bar (Target::id), -1 before any impact.
   int target() const { return state_ ? state_->target : -1; }
-  //! How brightly the struck bar glows at `now`, 0..1: it fades with the same visual decay
-  //! as the bounce, e^(−B·t) (Eq. 1's envelope, without its amplitude and oscillation), from
-  //! a brightness set by the strike's speed (full at 2 m/s and above, a quarter at most at
-  //! the softest). 0 before the impact and without one.
+  //! How brightly the struck bar glows at `now`, 0..1, from a brightness set by the strike's
+  //! speed (full at 2 m/s and above, a quarter at the softest) times glow_of_envelope() of
+  //! Eq. 1's envelope e^(−B·t) with the material's visual B. 0 before the impact and without
+  //! one.
   double glow(Nanos now) const {
     if (!state_ || now < state_->t0) return 0.0;
     const double brightness = std::clamp(state_->speed / 2.0, 0.25, 1.0);
-    return brightness * std::exp(-state_->params.decay_per_s * to_seconds(now - state_->t0));
+    return brightness * glow_of_envelope(std::exp(-state_->params.decay_per_s * to_seconds(now - state_->t0)));
+  }
+
+  //! The envelope below which the glow is out: 1/256, one step of 8-bit colour (−48 dB).
+  static constexpr double kGlowEnvelopeFloor = 1.0 / 256;
+  //! The glow for an envelope value e (1 at the strike, falling to 0), 0..1: a flash, e
+  //! itself, over a tail, e in decibels from the peak (0 dB → 1) to kGlowEnvelopeFloor
+  //! (→ 0), half of each. Eyes (like ears) judge a fading light by ratios, not differences:
+  //! e itself drops below a tenth of the peak within 0.26–0.29 s at the shipped B (8–9/s)
+  //! and reads as a blink; its level in dB falls linearly in time and is still half at
+  //! 0.3 s. Both are functions of e alone, so the glow keeps Eq. 1's timing: a larger B
+  //! fades it sooner, in proportion, and it is out where the envelope is.
+  static double glow_of_envelope(double e) {
+    if (!(e > kGlowEnvelopeFloor)) return 0.0;
+    const double level = 1.0 - std::log(std::min(e, 1.0)) / std::log(kGlowEnvelopeFloor);
+    return 0.5 * std::min(e, 1.0) + 0.5 * level;
   }
 
  private:

@@ -27,9 +27,10 @@ namespace mallet::render {
 //! further behind than that.
 inline constexpr double kStillMalletPx = 1.0 / 256;
 //! A lit bar whose glow changed less than this since it was drawn stays drawn as it was (a
-//! fading bar's tail). The glow adds at most 0.55 of full light (the renderer's glow
-//! colour), so this moves a lit bar's pixels by under one 8-bit level where they are
-//! brighter than 5 % of full light, and by under two on its darkest faces. Its appearing
+//! fading bar's tail). The glow adds at most 0.8 of full light (a component of the
+//! material's glow colour at 1, times the renderer's kGlowStrength), so this moves a lit
+//! bar's pixels by at most one 8-bit level where they are brighter than 5 % of full light,
+//! and by a few on its darkest faces. Its appearing
 //! and its going out (below 1/255, core/bar_lights.hpp) are always drawn.
 inline constexpr float kStillGlow = 1.0f / 512;
 

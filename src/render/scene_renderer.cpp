@@ -18,6 +18,7 @@
 #include "shaders/scene_vert.h"
 #include "shaders/shadow_frag.h"
 #include "shaders/shadow_vert.h"
+#include "shaders/sphere_frag.h"
 
 namespace mallet::render {
 namespace {
@@ -28,9 +29,7 @@ constexpr VkFormat kLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr std::uint32_t kMaxModelSets = 256;
 constexpr std::uint32_t kShadowTextures = 3;  //!< shadow.frag's: unshadowed, shadow share, depth
 
-//! The key light: nearly overhead and a little in front, so the sphere's shadow falls
-//! just behind the point under it, where the eye (above and in front) sees it.
-const glm::vec3 kToLight = glm::normalize(glm::vec3(0.0f, 1.0f, 0.22f));
+//! The key light (its direction: key_light_direction()).
 constexpr float kLightTanRadius = 0.035f;  // a 2° disc: a soft but readable penumbra
 constexpr float kLightIntensity = 2.6f;
 constexpr float kAmbient = 0.55f;
@@ -39,6 +38,7 @@ struct FrameUniform {
   glm::mat4 view_proj;
   glm::vec4 eye, light_dir, sphere, light_color;
   glm::mat4 sphere_view_proj;
+  glm::vec4 mallet;  //!< xyz: the head's centre; w: its radius (sphere.frag's, drawn or not its shadow)
 };
 struct DrawConstants {
   glm::mat4 model;
@@ -50,8 +50,9 @@ static_assert(sizeof(DrawConstants) == 112, "push constants: 128 bytes guarantee
 struct ShadowConstants {
   glm::mat4 inverse_view_proj;
   glm::vec4 inverse_size;
-  glm::vec4 lit;          //!< the lit bars shaded on the screen: x, z their ids + 1 (0: none); y, w their glow
-  glm::vec4 glow_color;   //!< rgb: kBarGlowColor
+  //! The two lit bars shaded on the screen: x the bar's id + 1 (0: none), yzw the light it
+  //! gives off (its glow colour × kGlowStrength × its glow).
+  glm::vec4 lit_a, lit_b;
   glm::vec4 shadow_rect;  //!< where the shadow can fall, pixels: x0, y0, x1, y1
 };
 static_assert(sizeof(ShadowConstants) <= 128, "push constants: 128 bytes guaranteed");
@@ -73,8 +74,15 @@ float glow_of(const FrameState& state, int target) {
   return glow;
 }
 
-//! A lit bar's light at glow 1: warm, like a stage light on wood and metal alike.
-constexpr glm::vec3 kBarGlowColor{0.55f, 0.42f, 0.22f};
+//! A lit bar's light at glow 1 is its material's glow colour (Instance::glow_color, linear)
+//! times this: bright enough to catch the eye on the lit bar (added to its shading), not so
+//! bright that the bar's grain or metal is lost under it.
+constexpr float kGlowStrength = 0.8f;
+
+//! The light a lit bar gives off this frame (none when it is not lit).
+glm::vec3 glow_light(const FrameState& state, const Instance& instance) {
+  return instance.glow_color * (kGlowStrength * glow_of(state, instance.target));
+}
 
 template <std::size_t N>
 vk::ShaderModule make_shader(VkDevice dev, const std::uint32_t (&code)[N]) {
@@ -447,6 +455,11 @@ void SceneRenderer::build_pipelines(VkPipelineCache cache) {
       background_pipeline_ = build(vs.get(), fs.get(), input.info, Depth::test_and_write, Blend::opaque,
                                    scene_pipeline_layout_.get(), "creating the background pipeline",
                                    background_samples());
+    // The head: depth-tested at the exact sphere's depth (sphere.frag writes it), never
+    // writing it, blended over what is drawn by its coverage (its antialiased edge).
+    vk::ShaderModule sphere = make_shader(dev, sphere_frag_spv);
+    sphere_pipeline_ = build(vs.get(), sphere.get(), input.info, Depth::test_only, Blend::alpha_over,
+                             scene_pipeline_layout_.get(), "creating the mallet head's pipeline", settings_.samples);
     vk::ShaderModule light = make_shader(dev, gbuffer_frag_spv), glow = make_shader(dev, glow_frag_spv);
     if (screen_space_shadow()) {
       light_pipeline_ = build(vs.get(), light.get(), input.info, Depth::test_and_write, Blend::opaque,
@@ -555,7 +568,7 @@ PixelRect SceneRenderer::shadow_rect(const FrameState& state) const {
   return shadow_bounds(view_proj_, static_cast<int>(attachment_extent_.width),
                        static_cast<int>(attachment_extent_.height),
                        {{state.mallet_centre.x, state.mallet_centre.y, 0.0}, scene_.mallet_radius_m,
-                        glm::dvec3(kToLight), kLightTanRadius},
+                        key_light_direction(scene_), kLightTanRadius},
                        instruments_box_);
 }
 
@@ -571,8 +584,8 @@ FrameLook SceneRenderer::look_of(const FrameState& state, VkExtent2D extent) con
     look.mallet_centre = state.mallet_centre;
     const glm::dvec3 c{state.mallet_centre.x, state.mallet_centre.y, 0.0};
     look.mallet_px = project_to_screen(view_proj_, c) * glm::dvec2(look.width, look.height);
-    // The head as it is drawn: its model's box, placed and seen as record() draws it.
-    const Instance head = mallet_instance(scene_, state.mallet_centre);
+    // The head as it is drawn: its hull's box, placed and seen as record() draws it.
+    const Instance head = mallet_hull(scene_, state.mallet_centre);
     const Box& model = models_.at(head.model).bounds;
     Box placed;
     for (int i = 0; i < 8; ++i) placed.add(glm::dvec3(glm::dmat4(head.transform) * glm::dvec4(model.corner(i), 1.0)));
@@ -607,7 +620,7 @@ std::size_t SceneRenderer::triangle_count() const {
   return n;
 }
 
-void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, float glow) {
+void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, glm::vec3 emissive) {
   const GpuModel& model = models_.at(instance.model);
   const VkDeviceSize offset = 0;
   VkBuffer vb = model.vertices.buffer.get();
@@ -619,7 +632,7 @@ void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance,
                      {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]},
                      {m.metallic, m.roughness, static_cast<float>(shadow), m.textured ? 1.0f : 0.0f},
                      // w: the bar's id + 1 (0: not a bar), which the cached light keeps per pixel
-                     glm::vec4(kBarGlowColor * glow, static_cast<float>(instance.target + 1))};
+                     glm::vec4(emissive, static_cast<float>(instance.target + 1))};
     vkCmdPushConstants(cmd, scene_pipeline_layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                        0, sizeof(dc), &dc);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, scene_pipeline_layout_.get(), 1, 1, &m.set, 0,
@@ -804,11 +817,13 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
   u.sphere_view_proj =
       sphere_view_projection(scene_, static_cast<double>(extent.width) / extent.height, state.mallet_centre);
   u.eye = glm::vec4(eye_position(scene_), 1.0f);
-  u.light_dir = glm::vec4(kToLight, kLightTanRadius);
+  u.light_dir = glm::vec4(glm::vec3(key_light_direction(scene_)), kLightTanRadius);
   const bool caster = settings_.shadow && state.draw_mallet;
   u.sphere = glm::vec4(static_cast<float>(state.mallet_centre.x), static_cast<float>(state.mallet_centre.y), 0.0f,
                        caster ? static_cast<float>(scene_.mallet_radius_m) : 0.0f);
   u.light_color = glm::vec4(glm::vec3(kLightIntensity), kAmbient);
+  u.mallet = glm::vec4(static_cast<float>(state.mallet_centre.x), static_cast<float>(state.mallet_centre.y), 0.0f,
+                       static_cast<float>(scene_.mallet_radius_m));
   std::memcpy(slot.frame_uniform.mapped, &u, sizeof(u));
 
   drawn_area_ = area;
@@ -900,20 +915,18 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                          {1.0f / static_cast<float>(extent.width), 1.0f / static_cast<float>(extent.height), 0.0f,
                           0.0f},
                          glm::vec4(0.0f),
-                         glm::vec4(kBarGlowColor, 0.0f),
+                         glm::vec4(0.0f),
                          glm::vec4(static_cast<float>(shadow.x0), static_cast<float>(shadow.y0),
                                    static_cast<float>(shadow.x1), static_cast<float>(shadow.y1))};
       int shaded_lights = 0;
       for (std::size_t k = 0; k < instruments_.size(); ++k) {
         const Instance& i = instruments_[k];
-        const float glow = glow_of(state, i.target);
-        if (glow <= 0) continue;
+        if (glow_of(state, i.target) <= 0) continue;
         if (triangles_of(i) <= kRedrawLitBarTriangles || shaded_lights == 2) {
           redrawn_lit.push_back(&i);
           continue;
         }
-        sc.lit[2 * shaded_lights] = static_cast<float>(i.target + 1);
-        sc.lit[2 * shaded_lights + 1] = glow;
+        (shaded_lights == 0 ? sc.lit_a : sc.lit_b) = glm::vec4(static_cast<float>(i.target + 1), glow_light(state, i));
         ++shaded_lights;
         if (!instrument_rects_[k].empty()) changed.push_back(instrument_rects_[k]);
       }
@@ -954,12 +967,16 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
     // constant's cost); multisampled, redrawn whole with their light and the shadow on them.
     const bool add_glow = screen_space_shadow() && !redrawn_lit.empty();
     if (add_glow) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, glow_pipeline_.get());
-    for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_of(state, i->target));
+    for (const Instance* i : redrawn_lit) draw_instance(cmd, *i, Shadow::receives, glow_light(state, *i));
     if (add_glow) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, over_background_pipeline_.get());
   } else if (state.draw_instruments) {
-    for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_of(state, i.target));
+    for (const Instance& i : instruments_) draw_instance(cmd, i, Shadow::receives, glow_light(state, i));
   }
-  if (state.draw_mallet) draw_instance(cmd, mallet_instance(scene_, state.mallet_centre), Shadow::the_sphere);
+  if (state.draw_mallet) {
+    // Its hull, each pixel shaded as the exact sphere and blended over by its coverage.
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sphere_pipeline_.get());
+    draw_instance(cmd, mallet_hull(scene_, state.mallet_centre), Shadow::the_sphere);
+  }
   if (state.overlay) draw_overlay(cmd, *state.overlay, slot, extent);
   vkCmdEndRendering(cmd);
 

@@ -14,6 +14,9 @@
 // compares them: to 1/255 on the screen, exactly when redrawn), at a small part of the cost
 // on a CPU rasteriser (`mallet bench render`). The mallet is drawn there without writing depth (the
 // cache's), so its model must hide its own back by culling alone: convex, as the sphere is.
+// Its model is a hull (drawn kMalletHullScale larger), shaded as the exact sphere of the
+// scene's radius and blended over by each pixel's coverage (sphere.frag): a smooth ball with
+// an antialiased edge at one sample a pixel. The model gives its material, not its shape.
 //
 // Per frame the caller gives the displayed mallet centre (the contact solver's
 // displayed position plus the visual vibration evaluated at the frame's predicted
@@ -183,8 +186,8 @@ class SceneRenderer {
   VkSampleCountFlagBits background_samples() const {
     return settings_.samples != VK_SAMPLE_COUNT_1_BIT ? settings_.samples : settings_.background_samples;
   }
-  //! `glow` (0..1): light the bar gives off (a lit bar), added to its shading.
-  void draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, float glow = 0);
+  //! `emissive` (linear): light the bar gives off (a lit bar), added to its shading.
+  void draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, glm::vec3 emissive = glm::vec3(0.0f));
   void draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Slot& slot, VkExtent2D extent);
   VkDescriptorSet allocate_set(VkDescriptorSetLayout layout);
   void write_image_set(VkDescriptorSet set, VkImageView view);
@@ -206,6 +209,7 @@ class SceneRenderer {
   vk::Pipeline light_pipeline_;   //!< the cached light per pixel (gbuffer.frag), one sample a pixel
   vk::Pipeline shadow_pipeline_;  //!< the shadow over the cached background, shaded on the screen
   vk::Pipeline glow_pipeline_;    //!< a lit bar's glow added over it (glow.frag), single-sampled frames
+  vk::Pipeline sphere_pipeline_;  //!< the mallet head's hull shaded as the exact sphere (sphere.frag), blended
   vk::Pipeline background_pipeline_;       //!< at background_samples, when they differ from the frames' 
   std::array<Slot, kSlots> slots_;
   VkExtent2D attachment_extent_{};

@@ -1,11 +1,19 @@
 #include "render/scene_view.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace mallet::render {
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+glm::dvec3 key_light_direction(const Scene& scene) {
+  if (scene.kind == SceneKind::texture) return glm::normalize(glm::dvec3(0.0, 0.35, 1.0));
+  return glm::normalize(glm::dvec3(0.0, 1.0, 0.22));
+}
 
 glm::vec3 eye_position(const Scene& scene) {
   return {static_cast<float>(scene.camera.eye_x_m), static_cast<float>(scene.camera.eye_y_m),
@@ -72,7 +80,10 @@ std::vector<Instance> instrument_instances(const Scene& scene) {
       const Target& bar = scene.targets.at(id);
       glm::dmat4 m = glm::translate(glm::dmat4(1.0), {(bar.x_min + bar.x_max) / 2, bar.top_y, 0.0});
       m = glm::scale(m, {bar.x_max - bar.x_min, bar.thickness_m, bar.length_m});
-      out.push_back({inst.bar_model, glm::mat4(m), bar.id});
+      const std::array<double, 3>& glow = scene.material_of(bar).glow_srgb;
+      out.push_back({inst.bar_model, glm::mat4(m), bar.id,
+                     glm::vec3(static_cast<float>(srgb_to_linear(glow[0])), static_cast<float>(srgb_to_linear(glow[1])),
+                               static_cast<float>(srgb_to_linear(glow[2])))});
     }
     if (inst.rail_model.empty()) continue;  // the wall stands alone
     // Two rails under the bars' nodal points, from the first bar to the last: graded
@@ -100,6 +111,12 @@ Instance mallet_instance(const Scene& scene, Vec2 centre) {
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), {centre.x, centre.y, 0.0});
   m = glm::scale(m, glm::dvec3(scene.mallet_radius_m));
   return {scene.mallet_model, glm::mat4(m), -1};
+}
+
+Instance mallet_hull(const Scene& scene, Vec2 centre) {
+  Instance hull = mallet_instance(scene, centre);
+  hull.transform = hull.transform * glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(kMalletHullScale)));
+  return hull;
 }
 
 double sphere_visibility(const SphereShadow& s, glm::dvec3 p) {

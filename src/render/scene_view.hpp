@@ -38,7 +38,11 @@ struct Instance {
   std::string model;   //!< file name in models/
   glm::mat4 transform; //!< model → world
   int target = -1;     //!< the bar's id, or -1
+  glm::vec3 glow_color{0.0f};  //!< a bar's: its material's glow_srgb, linear (the light it gives off when lit)
 };
+
+//! An sRGB colour component (0..1) as linear light.
+double srgb_to_linear(double c);
 
 //! The nodal points of a free bar's first mode, as a fraction of its length from each end:
 //! where real instruments support their bars (rails, cords).
@@ -52,6 +56,24 @@ std::vector<Instance> instrument_instances(const Scene& scene);
 
 //! The mallet head (Scene::mallet_model): a unit sphere scaled to the scene's radius at `centre` (plane z = 0).
 Instance mallet_instance(const Scene& scene, Vec2 centre);
+
+//! How much larger than the head its model is drawn: a hull whose pixels the renderer shades
+//! as the exact sphere (scene's sphere.frag: the ray through each pixel meets it or not), with
+//! a margin for the antialiased edge. The shipped 48 × 22 sphere's outline lies within
+//! cos(π/22) ≈ 0.99 of its radius: scaled by 1.25 it reaches a quarter of the radius beyond
+//! the head, more than a pixel at every size the goldens and the kiosk draw it.
+inline constexpr double kMalletHullScale = 1.25;
+//! mallet_instance() scaled by kMalletHullScale about the centre: what is rasterised.
+Instance mallet_hull(const Scene& scene, Vec2 centre);
+
+//! The direction towards the key light (unit, world): nearly overhead and a little in front
+//! for the instruments, so that the sphere's shadow falls just behind the point under it,
+//! where the eye (above and in front) sees it; from in front and a little above for the
+//! second paper's texture, whose disc faces the visitor: from above, the cursor's shadow
+//! on the disc a radius behind it would be drawn out into a streak nearly 5 times as long
+//! as the cursor is wide (the light grazing the disc at 12°), and the disc, lit edge on,
+//! would be grey.
+glm::dvec3 key_light_direction(const Scene& scene);
 
 //! An axis-aligned box in world metres; empty until a point is added.
 struct Box {

@@ -1,7 +1,9 @@
 // The bars a visitor sees lit: the one under the hovering mallet, the one just struck.
 #include "core/bar_lights.hpp"
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -48,8 +50,8 @@ TEST(BarLights, AStruckBarGlowsAndFadesWithItsMaterialsVisualDecay) {
   EXPECT_EQ(v.target(), bar.id);
   EXPECT_EQ(v.glow(hard.t_ns - 1), 0.0);
   EXPECT_DOUBLE_EQ(v.glow(hard.t_ns), 1.0);
-  // e^(−B·t) on the int64 clock: after 100 ms, and after a month of uptime the same.
-  EXPECT_NEAR(v.glow(hard.t_ns + 100'000'000), std::exp(-b * 0.1), 1e-12);
+  // Of e^(−B·t) on the int64 clock: after 100 ms, and after a month of uptime the same.
+  EXPECT_NEAR(v.glow(hard.t_ns + 100'000'000), VisualVibration::glow_of_envelope(std::exp(-b * 0.1)), 1e-12);
   // A soft strike glows less.
   Impact soft = hard;
   soft.speed_m_per_s = 0.3;
@@ -60,9 +62,72 @@ TEST(BarLights, AStruckBarGlowsAndFadesWithItsMaterialsVisualDecay) {
   const std::array<BarLight, 2> lights = bar_lights(s, {0.0, 0.3}, v, hard.t_ns + 50'000'000);
   EXPECT_EQ(lights[0].target, -1);  // the mallet high above everything
   EXPECT_EQ(lights[1].target, bar.id);
-  EXPECT_NEAR(lights[1].glow, std::exp(-b * 0.05), 1e-6);
+  EXPECT_NEAR(lights[1].glow, VisualVibration::glow_of_envelope(std::exp(-b * 0.05)), 1e-6);
   // Faded below one step of 8-bit colour: not lit at all.
   EXPECT_EQ(bar_lights(s, {0.0, 0.3}, v, hard.t_ns + 2'000'000'000)[1].target, -1);
+}
+
+TEST(BarLights, AStruckBarGlowsInSightForAThirdOfASecondAndGoesOutWithEq1sEnvelope) {
+  // A visitor without sound must catch it: a hard strike's glow is still above a quarter of
+  // its peak 0.3 s after, on wood and on metal (e^(−B·t) itself is below a tenth there).
+  // It never brightens again, it is out once the envelope falls below kGlowEnvelopeFloor,
+  // and it is a function of the envelope alone: metal's larger B fades it sooner in
+  // proportion, reaching any glow at B_wood / B_metal of wood's time.
+  const Scene& s = test::percussion();
+  const double floor_db = std::log(VisualVibration::kGlowEnvelopeFloor);
+  std::vector<double> decays;
+  for (const Instrument& inst : s.instruments) {
+    const Target& bar = s.targets.at(static_cast<std::size_t>(inst.targets.front()));
+    const VibrationParams& visual = s.materials.at(static_cast<std::size_t>(bar.material)).visual;
+    ASSERT_GT(visual.decay_per_s, 0.0) << inst.name;
+    decays.push_back(visual.decay_per_s);
+    VisualVibration v;
+    Impact hard;
+    hard.t_ns = 5'000'000'000;
+    hard.target = bar.id;
+    hard.material = bar.material;
+    hard.speed_m_per_s = 2.0;
+    v.start(hard, visual);
+    EXPECT_DOUBLE_EQ(v.glow(hard.t_ns), 1.0) << inst.name;
+    EXPECT_GT(v.glow(hard.t_ns + 300'000'000), 0.25) << inst.name;
+    EXPECT_LT(std::exp(-visual.decay_per_s * 0.3), 0.1) << inst.name;
+    double before = v.glow(hard.t_ns);
+    for (Nanos t = 1'000'000; t <= 2'000'000'000; t += 1'000'000) {
+      const double now = v.glow(hard.t_ns + t);
+      ASSERT_LE(now, before) << inst.name << " at " << t << " ns";
+      before = now;
+    }
+    // Out where the envelope reaches the floor (1 ms on either side of it).
+    const auto out_ns = static_cast<Nanos>(-floor_db / visual.decay_per_s * 1e9);
+    EXPECT_GT(v.glow(hard.t_ns + out_ns - 1'000'000), 0.0) << inst.name;
+    EXPECT_EQ(v.glow(hard.t_ns + out_ns + 1'000'000), 0.0) << inst.name;
+    EXPECT_EQ(bar_lights(s, {0.0, 0.3}, v, hard.t_ns + out_ns + 1'000'000)[1].target, -1) << inst.name;
+  }
+  ASSERT_EQ(decays.size(), 2u);
+  ASSERT_NE(decays[0], decays[1]);
+  for (double t : {0.05, 0.1, 0.2, 0.3, 0.45}) {
+    EXPECT_NEAR(VisualVibration::glow_of_envelope(std::exp(-decays[0] * t)),
+                VisualVibration::glow_of_envelope(std::exp(-decays[1] * (t * decays[0] / decays[1]))), 1e-12);
+  }
+  EXPECT_EQ(VisualVibration::glow_of_envelope(0.0), 0.0);
+  EXPECT_EQ(VisualVibration::glow_of_envelope(1.0), 1.0);
+}
+
+TEST(BarLights, EachMaterialGlowsInItsOwnColour) {
+  // Amber on the wood, steel blue on the metal (config/materials.toml, glow_srgb): the
+  // wood's glow warmer than it is cool, the metal's the other way round.
+  const Scene& s = test::percussion();
+  for (const Instrument& inst : s.instruments) {
+    const Material& m = s.materials.at(static_cast<std::size_t>(inst.material));
+    const std::array<double, 3>& c = m.glow_srgb;
+    if (m.name == "wood") {
+      EXPECT_GT(c[0], c[2] + 0.5) << inst.name;
+    } else {
+      ASSERT_EQ(m.name, "metal");
+      EXPECT_GT(c[2], c[0] + 0.2) << inst.name;
+      EXPECT_GE(c[2], 0.9) << inst.name;  // bright
+    }
+  }
 }
 
 TEST(BarLights, TheOtherScenesHaveNoBarsToLight) {

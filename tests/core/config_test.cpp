@@ -1,5 +1,7 @@
 // A malformed config names the file, the line and the key; the shipped files load.
+#include <array>
 #include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -61,6 +63,18 @@ TEST(MaterialsConfig, MissingKeyWrongTypeAndMisspeltKeyAreRefused) {
   });
   EXPECT_EQ(typo.line(), 5u);
   EXPECT_NE(std::string(typo.what()).find("unknown key"), std::string::npos) << typo.what();
+}
+
+TEST(MaterialsConfig, GlowColourIsReadOrDefaultsAndAWrongOneNamesItsLine) {
+  EXPECT_EQ(config::parse_materials(kGoodMaterial, "m.toml").all().at(0).glow_srgb, Material::kDefaultGlowSrgb);
+  const MaterialLibrary lib =
+      config::parse_materials(std::string(kGoodMaterial) + "glow_srgb = [1.0, 0.5, 0.25]\n", "m.toml");
+  EXPECT_EQ(lib.all().at(0).glow_srgb, (std::array<double, 3>{1.0, 0.5, 0.25}));
+  for (const char* bad : {"glow_srgb = [1.0, 0.5]\n", "glow_srgb = [1.0, 0.5, 1.5]\n"}) {
+    const FileError e = file_error_of([&] { config::parse_materials(std::string(kGoodMaterial) + bad, "m.toml"); });
+    EXPECT_EQ(e.line(), 5u) << bad;
+    EXPECT_NE(std::string(e.what()).find("material.wood.glow_srgb"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SceneConfig, ShippedSceneHasTwoOctavesInEqualTemperament) {

@@ -1,5 +1,7 @@
 #include "core/config/materials_config.hpp"
 
+#include <vector>
+
 #include "core/config/toml_reader.hpp"
 
 namespace mallet::config {
@@ -28,6 +30,13 @@ MaterialLibrary read(const toml::table& root, const std::string& file) {
     m.source = t.string_or("source", "");
     m.visual = read_triple(t.table("visual"), "amplitude_s");
     m.actuator = read_triple(t.table("actuator"), "amplitude");
+    if (t.has("glow_srgb")) {
+      const std::vector<double> c = t.numbers("glow_srgb");
+      if (c.size() != 3) t.fail("glow_srgb", "needs three numbers (red, green, blue in 0..1)");
+      for (double v : c)
+        if (!(v >= 0 && v <= 1)) t.fail("glow_srgb", "components must be in 0..1");
+      m.glow_srgb = {c[0], c[1], c[2]};
+    }
     t.finish();
     materials.push_back(std::move(m));
   }
