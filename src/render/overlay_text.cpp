@@ -79,6 +79,27 @@ void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::ma
   }
 }
 
+NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                       float height, std::string_view name) {
+  if (scene.kind != SceneKind::wall || scene.targets.empty()) return {};
+  const Target& wall = scene.targets.front();
+  const glm::dvec2 under = render::project_to_screen(view_proj, {(wall.x_min + wall.x_max) / 2,
+                                                                   wall.top_y - wall.thickness_m, 0.0});
+  const render::FontAtlas& font = overlay.atlas();
+  constexpr float kScale = 0.8f;
+  const float em = font.pixel_height() * kScale;
+  NoteBox box;
+  box.width = font.measure(name) * kScale + em;
+  box.height = em * 1.5f;
+  box.x = static_cast<float>(under.x) * width - box.width / 2;
+  // Below the wall, clear of the corner notes' row (draw_corner_note) at the screen's foot.
+  box.y = std::min(static_cast<float>(under.y) * height + em * 0.5f, height - em * 3.2f);
+  overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, 0.55f});
+  const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * kScale / 2);
+  overlay.text(box.x + box.width / 2, baseline, name, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center, kScale);
+  return box;
+}
+
 void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                      float height) {
   if (scene.kind != SceneKind::percussion) return;

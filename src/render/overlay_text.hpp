@@ -38,6 +38,12 @@ struct BarLabel {
 void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                      float height, const std::vector<BarLabel>& labels);
 
+//! The wall's material by name ("Wood", "Rubber") under the wall, as `view_proj` shows it,
+//! on a dark band: the three walls look alike by design (the paper's white rectangle), so
+//! the name says which one a visitor taps and which one the operator's M chose.
+NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
+                       float height, std::string_view name);
+
 //! Each bar's note name ([visual] note_names) on its near end, as `view_proj` shows the bar
 //! on a width×height image, on a small translucent band so it reads on wood and metal alike.
 void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,

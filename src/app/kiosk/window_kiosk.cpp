@@ -602,6 +602,12 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
   else if (stage_->config.note_names)
     render::draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
+  if (stage_->scene.kind == SceneKind::wall && states_->state() != KioskState::calibration) {
+    const int wall = stage_->route->loop().wall_material();
+    if (wall >= 0)
+      render::draw_wall_name(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
+                             stage_->scene.materials[static_cast<std::size_t>(wall)].display_name);
+  }
   const KioskHint hint = states_->hint();
   // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
   // hint that something needs doing, a lost remote, comes first).

@@ -6,10 +6,13 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "app/kiosk/operator_page.hpp"
+#include "golden_match.hpp"
 #include "render/render_setup.hpp"
+#include "test_paths.hpp"
 
 namespace mallet::app {
 namespace {
@@ -191,6 +194,31 @@ TEST(OperatorPageLayout, TheDoctorsChecksKeepTheirColumnsAndShowEachFixWhole) {
                             [](const PageRow& r) { return r.text.find("...") != std::string::npos; }),
               0)
         << what << ": nothing is cut";
+  }
+}
+
+// The page with the walkthrough's three faults over the percussion scene, at 16:9 and 5:4,
+// as lavapipe draws it (tests/golden_match.hpp; MALLET_UPDATE_GOLDENS=1 to update).
+TEST(OperatorPageGolden, WithThreeWarningsAt16x9And5x4) {
+  for (const auto& [w, h, name] : {std::tuple{960u, 540u, "operator_page_warnings_16x9"},
+                                   std::tuple{640u, 512u, "operator_page_warnings_5x4"}}) {
+    render::HeadlessOptions o;
+    o.size = {w, h};
+    o.validation = render::Validation::required;
+    o.cache_dir = "";
+    o.device = "llvmpipe";
+    if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+    render::HeadlessRenderer r(test::percussion(), o);
+    const auto font = render::overlay_font(o.size);
+    render::Overlay overlay(*font);
+    const PageLayout page = layout_operator_page(*font, walkthrough_page(), static_cast<float>(w),
+                                                 static_cast<float>(h));
+    ASSERT_EQ(page.pages, 1) << name;
+    draw_operator_page(overlay, page);
+    render::FrameState state;
+    state.draw_mallet = false;
+    state.overlay = &overlay;
+    test::expect_matches_golden(r.render(state), name, r);
   }
 }
 

@@ -1,7 +1,6 @@
 // Golden images: a handful of states of the percussion scene rendered offscreen (lavapipe
-// in CI) and compared with tests/golden/*.png: ≤ 3/255 per channel, and fewer than 0.1%
-// of the pixels beyond that. A failing test writes the actual and a difference image to
-// golden-output/ in the build's test directory.
+// in CI) and compared with tests/golden/*.png (tests/golden_match.hpp: ≤ 3/255 per channel,
+// and fewer than 0.1% of the pixels beyond that).
 //
 // Updating the goldens after an intended change of the picture (look at them first):
 //   MALLET_UPDATE_GOLDENS=1 build/debug/strike_tests --gtest_filter='Golden*'
@@ -24,6 +23,7 @@
 #include "render/font_atlas.hpp"
 #include "render/image.hpp"
 #include "render/overlay.hpp"
+#include "golden_match.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -31,8 +31,6 @@ namespace {
 
 using test::percussion;
 
-constexpr int kTolerance = 3;                 // per channel, of 255
-constexpr double kMaxDifferingFraction = 0.001;
 
 render::HeadlessOptions golden_options() {
   render::HeadlessOptions o;
@@ -66,23 +64,7 @@ Replay replay_of(std::initializer_list<std::array<double, 3>> samples) {
 
 void expect_matches_golden(const render::Image& actual, const std::string& name,
                            render::HeadlessRenderer& used = renderer()) {
-  const std::filesystem::path golden = test::source_dir() / "tests" / "golden" / (name + ".png");
-  if (const char* update = std::getenv("MALLET_UPDATE_GOLDENS"); update && std::string(update) == "1") {
-    render::write_png(actual, golden);
-    GTEST_SKIP() << "updated " << golden;
-  }
-  ASSERT_TRUE(std::filesystem::exists(golden)) << golden << " is missing (see the comment at the top of this file)";
-  const render::ImageDiff diff = render::compare_images(actual, render::read_png(golden), kTolerance);
-  if (!diff.same_size || diff.differing_fraction > kMaxDifferingFraction) {
-    const std::filesystem::path dir = std::filesystem::current_path() / "golden-output";
-    std::filesystem::create_directories(dir);
-    render::write_png(actual, dir / (name + ".actual.png"));
-    render::write_png(diff.difference, dir / (name + ".diff.png"));
-    ADD_FAILURE() << name << ": " << diff.differing_pixels << " pixels (" << diff.differing_fraction * 100
-                  << "%) differ by more than " << kTolerance << "/255, max " << diff.max_channel_delta
-                  << "; wrote " << (dir / (name + ".actual.png")) << " and .diff.png";
-  }
-  EXPECT_EQ(used.context().validation_messages(), 0u) << used.context().first_validation_message();
+  test::expect_matches_golden(actual, name, used);
 }
 
 render::Image render_at(const Replay& replay, Nanos t) {

@@ -15,6 +15,7 @@
 #include "render/overlay.hpp"
 #include "render/overlay_text.hpp"
 #include "render/render_setup.hpp"
+#include "render/scene_view.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -61,6 +62,8 @@ TEST(TextContrast, TheInvitationAndTheCornerNotesReadOnEveryScene) {
     const render::NoteBox mouse =
         render::draw_corner_note(overlay, "Mouse (no Wii Remote)", render::Corner::bottom_left, w, h);
     const render::NoteBox silent = render::draw_corner_note(overlay, "No sound", render::Corner::bottom_right, w, h);
+    const render::NoteBox wall_name = render::draw_wall_name(
+        overlay, c.scene(), render::view_projection(c.scene(), w / h), w, h, "Aluminium");
     render::FrameState state;
     state.draw_mallet = false;
     state.overlay = &overlay;
@@ -70,6 +73,12 @@ TEST(TextContrast, TheInvitationAndTheCornerNotesReadOnEveryScene) {
     EXPECT_GE(contrast_in(frame, banner), 4.5) << c.name << ": the invitation";
     EXPECT_GE(contrast_in(frame, mouse), 4.5) << c.name << ": the mouse note";
     EXPECT_GE(contrast_in(frame, silent), 4.5) << c.name << ": the no-sound note";
+    if (c.scene().kind == SceneKind::wall) {
+      EXPECT_GE(contrast_in(frame, wall_name), 4.5) << c.name << ": the wall's name";
+      EXPECT_LE(wall_name.y + wall_name.height, mouse.y) << "clear of the corner notes";
+    } else {
+      EXPECT_EQ(wall_name.width, 0.0f) << c.name << ": only the wall has a name under it";
+    }
     // The notes stay in their corners, on the screen, clear of each other.
     EXPECT_GE(mouse.x, 0);
     EXPECT_LE(silent.x + silent.width, w);
