@@ -14,6 +14,16 @@ namespace {
 
 Vec2 above(const Target& t, double x, double gap, const Scene& s) { return {x, t.top_y + s.mallet_radius_m + gap}; }
 
+//! A strike on `bar` at `t_ns` at `speed` m/s.
+Impact impact_on(const Target& bar, Nanos t_ns, double speed) {
+  Impact i;
+  i.t_ns = t_ns;
+  i.target = bar.id;
+  i.material = bar.material;
+  i.speed_m_per_s = speed;
+  return i;
+}
+
 TEST(BarLights, TheBarUnderTheHoveringMalletIsTheOneItWouldStrike) {
   const Scene& s = test::percussion();
   const Target& a = s.targets.at(2);
@@ -41,11 +51,7 @@ TEST(BarLights, AStruckBarGlowsAndFadesWithItsMaterialsVisualDecay) {
   // Before any impact nothing glows.
   EXPECT_EQ(bar_lights(s, {0.0, 0.3}, VisualVibration{}, 0)[1].target, -1);
   VisualVibration v;
-  Impact hard;
-  hard.t_ns = 1'000'000'000;
-  hard.target = bar.id;
-  hard.material = bar.material;
-  hard.speed_m_per_s = 2.5;
+  const Impact hard = impact_on(bar, 1'000'000'000, 2.5);
   v.start(hard, s.materials.at(static_cast<std::size_t>(bar.material)).visual);
   EXPECT_EQ(v.target(), bar.id);
   EXPECT_EQ(v.glow(hard.t_ns - 1), 0.0);
@@ -82,11 +88,7 @@ TEST(BarLights, AStruckBarGlowsInSightForAThirdOfASecondAndGoesOutWithEq1sEnvelo
     ASSERT_GT(visual.decay_per_s, 0.0) << inst.name;
     decays.push_back(visual.decay_per_s);
     VisualVibration v;
-    Impact hard;
-    hard.t_ns = 5'000'000'000;
-    hard.target = bar.id;
-    hard.material = bar.material;
-    hard.speed_m_per_s = 2.0;
+    const Impact hard = impact_on(bar, 5'000'000'000, 2.0);
     v.start(hard, visual);
     EXPECT_DOUBLE_EQ(v.glow(hard.t_ns), 1.0) << inst.name;
     EXPECT_GT(v.glow(hard.t_ns + 300'000'000), 0.25) << inst.name;
