@@ -92,8 +92,9 @@ NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::
   box.width = font.measure(name) * kScale + em;
   box.height = em * 1.5f;
   box.x = static_cast<float>(under.x) * width - box.width / 2;
-  // Below the wall, clear of the corner notes' row (draw_corner_note) at the screen's foot.
-  box.y = std::min(static_cast<float>(under.y) * height + em * 0.5f, height - em * 3.2f);
+  // A plaque on the wall's lower part, far from the top face where it is tapped, and above
+  // the corner notes' row (draw_corner_note) at the screen's foot.
+  box.y = std::min(static_cast<float>(under.y) * height - box.height - em * 0.5f, height - em * 3.2f);
   overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, 0.55f});
   const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * kScale / 2);
   overlay.text(box.x + box.width / 2, baseline, name, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center, kScale);

@@ -38,8 +38,8 @@ struct BarLabel {
 void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                      float height, const std::vector<BarLabel>& labels);
 
-//! The wall's material by name ("Wood", "Rubber") under the wall, as `view_proj` shows it,
-//! on a dark band: the three walls look alike by design (the paper's white rectangle), so
+//! The wall's material by name ("Wood", "Rubber") on a plaque at the foot of the wall, as
+//! `view_proj` shows it, on a dark band: the three walls look alike by design (the paper's white rectangle), so
 //! the name says which one a visitor taps and which one the operator's M chose.
 NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                        float height, std::string_view name);

@@ -48,7 +48,8 @@ namespace {
 
 constexpr float kLargestScale = 0.75f, kSmallestScale = 0.5f, kSmallestTextPx = 12.0f;
 constexpr float kLineSpacing = 1.4f;  //!< a row's height, in the text's size
-constexpr float kWidestLine = 33.0f;  //!< the panel's widest, in the atlas's size (44 of its largest text)
+constexpr float kWidestLine = 33.0f;     //!< the panel's widest, in the atlas's size (44 of its largest text) ...
+constexpr float kWidestLineEms = 64.0f;  //!< ... or in the text's own size, whichever is wider
 
 //! The mark column's text for a tone (empty: the line has no mark).
 const char* mark_of(PageTone tone) {
@@ -152,7 +153,8 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
   for (float scale = kLargestScale;; scale = std::max(smallest, scale - 0.05f)) {
     const float em = px * scale;
     out.scale = scale;
-    out.width = std::min(w - 2 * em, kWidestLine * px);  // smaller text: more words a row
+    // Smaller text on a wide screen: a wider panel, so that fewer lines wrap.
+    out.width = std::min(w - 2 * em, std::max(kWidestLine * px, kWidestLineEms * em));
     room = out.width - 2 * em;
     float mark_w = 0, head_w = 0;
     for (const PageLine& l : lines) {
