@@ -82,6 +82,10 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
     inst.material = material;
     // Told apart from the stimulus bar at a glance: the other bar model.
     inst.bar_model = stimulus_instrument.bar_model == "metal_bar.glb" ? "wood_bar.glb" : "metal_bar.glb";
+    // On the rails that go with that bar (grey metal bars on wooden rails looked borrowed),
+    // unless the stimulus's instrument has rails of its own making.
+    if (stimulus_instrument.rail_model == "xylophone_rail.glb" || stimulus_instrument.rail_model == "glockenspiel_rail.glb")
+      inst.rail_model = inst.bar_model == "metal_bar.glb" ? "glockenspiel_rail.glb" : "xylophone_rail.glb";
     Target t = reference;
     const double half = (reference.x_max - reference.x_min) / 2;
     t.x_min = centres[k] - half;

@@ -72,10 +72,13 @@ TEST(StudyStrike, TheSceneHasOneAnswerBarPerChoiceApartFromTheStimulusBar) {
       if (std::none_of(bars.begin(), bars.end(), [&](const AnswerBar& b) { return b.target == t.id; })) {
         EXPECT_FALSE(t.hand_strikes) << t.id;
       }
-    // sound = false: the stimuli's instrument is silent, the answer bars click.
+    // sound = false: the stimuli's instrument is silent, the answer bars click. Each bar
+    // rests on the rails made for its kind (metal on the glockenspiel's, wood on the xylophone's).
     for (const Instrument& inst : scene.instruments) {
       if (!inst.targets.empty()) {
         EXPECT_EQ(inst.speaker, inst.voice == "click") << inst.name;
+        EXPECT_EQ(inst.rail_model, inst.bar_model == "metal_bar.glb" ? "glockenspiel_rail.glb" : "xylophone_rail.glb")
+            << inst.name << ": " << inst.bar_model;
       }
     }
   }
