@@ -603,10 +603,13 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   else if (stage_->config.note_names)
     render::draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
   if (stage_->scene.kind == SceneKind::wall && states_->state() != KioskState::calibration) {
+    // The shipped wall materials' names (config/materials.toml) are in the catalogues; a name
+    // a lab gives its own material shows as written.
+    [[maybe_unused]] static constexpr const char* kShippedWallNames[] = {N_("Rubber"), N_("Wood"), N_("Aluminium")};
     const int wall = stage_->route->loop().wall_material();
     if (wall >= 0)
       render::draw_wall_name(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
-                             stage_->scene.materials[static_cast<std::size_t>(wall)].display_name);
+                             tr(stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str()));
   }
   const KioskHint hint = states_->hint();
   // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
