@@ -8,6 +8,7 @@
 
 #include "core/journal.hpp"
 #include "core/visitor_language.hpp"
+#include "render/overlay_text.hpp"
 #include "render/text_wrap.hpp"
 
 namespace mallet::app {
@@ -142,12 +143,10 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
   say(remote_ == "mouse" ? tr("Hold the pointer still on the ring until it fills")
                         : tr("Hold the mallet's light still on the ring until it fills"),
       {1, 1, 1, 0.8f});
-  // The way out, at the foot of the screen.
-  const std::string way_out = tr("Esc stops the calibration; the previous one stays");
-  const std::vector<std::string> out_lines = render::wrap_text(o.atlas(), way_out, w - 4 * px);
-  for (std::size_t i = 0; i < out_lines.size(); ++i)
-    o.text(w / 2, h - px * (1.3f * static_cast<float>(out_lines.size() - i) - 0.2f), out_lines[i],
-           {1, 1, 1, 0.7f}, render::TextAlign::center);
+  // The way out, a small note in the bottom-left corner: below the bottom row of targets,
+  // whose rings (the current one's is the largest) it would otherwise touch.
+  render::draw_corner_note(o, tr("Esc stops the calibration; the previous one stays"), render::Corner::bottom_left, w,
+                           h);
 
   if (tuning()) {
     const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
