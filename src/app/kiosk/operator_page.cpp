@@ -142,8 +142,28 @@ LineRows line_rows(const render::FontAtlas& font, const PageLine& line, float sc
 
 }  // namespace
 
+namespace {
+
+//! Moves a laid-out page by (dx, dy).
+PageLayout moved(PageLayout layout, float dx, float dy) {
+  layout.x += dx;
+  layout.y += dy;
+  for (PageRow& r : layout.rows) r.x += dx, r.y += dy;
+  return layout;
+}
+
+}  // namespace
+
 PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector<PageLine>& lines, float w, float h,
                                 float clear_corner, int page) {
+  if (clear_corner > 0) {  // the photodiode's square stays seen: the page moved right, else laid out below it
+    const PageLayout plain = layout_operator_page(font, lines, w, h, 0, page);
+    if (plain.x >= clear_corner || plain.y >= clear_corner) return plain;
+    const float gap = font.pixel_height() * plain.scale / 2;
+    if (w - plain.width >= clear_corner + gap) return moved(plain, w - plain.width - plain.x, 0);
+    const float top = std::ceil(clear_corner + gap);  // whole pixels: the baselines stay crisp
+    return moved(layout_operator_page(font, lines, w, h - top, 0, page), 0, top);
+  }
   const float px = font.pixel_height();
   const float smallest = std::clamp(kSmallestTextPx / px, kSmallestScale, kLargestScale);
   PageLayout out;
@@ -198,10 +218,6 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
   out.height = line * static_cast<float>(rows + 1);
   out.x = (w - out.width) / 2;
   out.y = std::max(0.0f, (h - out.height) / 2);
-  if (clear_corner > 0 && out.x < clear_corner && out.y < clear_corner) {  // the photodiode's square stays seen
-    if (w - out.width >= clear_corner + em / 2) out.x = w - out.width;
-    else out.y = clear_corner + em / 2;
-  }
   // Whole-pixel baselines keep the glyphs crisp.
   int row = 0;
   for (std::size_t i : shown) {

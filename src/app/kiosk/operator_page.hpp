@@ -82,7 +82,8 @@ struct PageLayout {
 //! comma, before a parenthesis or between two keys' entries, else at a space, onto indented
 //! continuation rows; a check's level and name (D) stand in columns of their own, its text
 //! wrapping beside them. `clear_corner`: the side of a square at the top-left corner the
-//! panel keeps clear of (the latency test's; 0: none): moved right, else down.
+//! panel keeps clear of (the latency test's; 0: none): moved right, else laid out again in
+//! the height below the square.
 PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector<PageLine>& lines, float width,
                                 float height, float clear_corner = 0, int page = 0);
 

@@ -3,6 +3,7 @@
 // panel, no word is lost, the warnings come first, and a doctor's check keeps its columns.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <string>
@@ -222,11 +223,21 @@ TEST(OperatorPageGolden, WithThreeWarningsAt16x9And5x4) {
   }
 }
 
-TEST(OperatorPageLayout, TheLatencySquaresCornerStaysClear) {
-  const auto font = render::overlay_font({1280, 1024});
-  const float side = font->pixel_height() * 4;
-  const PageLayout page = layout_operator_page(*font, walkthrough_page(), 1280, 1024, side);
-  EXPECT_TRUE(page.x >= side || page.y >= side) << page.x << ", " << page.y;
+TEST(OperatorPageLayout, TheLatencySquaresCornerStaysClearAndThePageStaysOnTheScreen) {
+  // The square (4 letters a side) during the ten pulses: the page beside it where the screen
+  // is wide enough, else below it, laid out again in the height left (a portrait screen, the
+  // doctor's many lines).
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    const float side = font->pixel_height() * 4;
+    for (const std::vector<PageLine>& lines : {walkthrough_page(), doctor_page()}) {
+      const PageLayout page = layout_operator_page(*font, lines, s.w, s.h, side);
+      const std::string what = std::to_string(int(s.w)) + "x" + std::to_string(int(s.h));
+      EXPECT_TRUE(page.x >= side || page.y >= side) << what << ": " << page.x << ", " << page.y;
+      expect_on_screen(*font, page, s, what + " beside the square");
+      for (const PageRow& r : page.rows) EXPECT_EQ(r.y, std::round(r.y)) << what << ": whole-pixel baselines";
+    }
+  }
 }
 
 }  // namespace
