@@ -69,10 +69,9 @@ CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
   }
   if (step == CalibrationStep::accepted) accept();
   if (step == CalibrationStep::failed) {
-    // Plain words on the screen, what to do next included; the fit's own reason goes to the
-    // journal (failure()).
+    // Plain words on the screen, what to do next included; the fit's own reason
+    // (session().failure()) goes to the journal beside them.
     outcome_ = Outcome::failed;
-    failure_ = session_.failure();
     if (const auto& fit = session_.last_fit())
       message_ = fmt::sprintf(tr("Calibration failed: the light did not hold still on the rings (largest error "
                                  "%.0f px, limit %.0f px). Hold it still and try again; the previous "

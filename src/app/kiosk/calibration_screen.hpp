@@ -59,9 +59,6 @@ class CalibrationScreen {
   //! One line for the screen after the end: the accepted error and where it went, or why it
   //! failed (the previous calibration stays).
   const std::string& message() const { return message_; }
-  //! Why the fit failed, in its own words (a refused fit's reason, the errors), for the
-  //! journal beside message()'s plain words; empty unless it did.
-  const std::string& failure() const { return failure_; }
   //! Whether an accepted calibration was to be written to save_to and how that went: none
   //! when nothing was to be written (not accepted, or no save_to); else the write's outcome
   //! (its refusal: why, one line), for the state folder's report.
@@ -81,7 +78,6 @@ class CalibrationScreen {
   CalibrationSession session_;
   std::optional<std::filesystem::path> save_to_;
   std::string remote_;
-  std::string failure_;
   Outcome outcome_ = Outcome::measuring;
   std::optional<Calibration> result_;
   std::string message_;

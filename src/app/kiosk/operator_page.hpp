@@ -55,6 +55,7 @@ enum class PageTone {
 struct PageLine {
   PageLine(PageTone t, std::string line, std::string name = {})
       : tone(t), text(std::move(line)), head(std::move(name)) {}
+  bool operator==(const PageLine&) const = default;
   PageTone tone = PageTone::status;
   std::string text;  //!< '\n' starts a continuation row (a check's fix)
   std::string head;  //!< a doctor's check's name, set in a column of its own; empty: none

@@ -137,8 +137,19 @@ class WindowKiosk {
   std::vector<Key> keys_;  //!< pressed since the last frame
   std::vector<PageLine> doctor_;           //!< the page's doctor lines (D); empty: the page's own
   int page_ = 0;                           //!< the page's screen shown (PgDn), when it takes several
-  std::vector<std::string> page_figures_;  //!< the page's frame and timing lines, as last sampled ...
-  Nanos page_figures_at_ = 0;              //!< ... then
+  //! The page's frame and timing lines, sampled once a second.
+  struct PageFigures {
+    std::string frame, timing;
+    Nanos at = 0;
+  };
+  std::optional<PageFigures> page_figures_;
+  //! The page as last laid out, and for what: laid out again only when one of them changes.
+  struct PageShown {
+    std::vector<PageLine> lines;
+    float width = 0, height = 0, clear_corner = 0;
+    PageLayout layout;
+  };
+  std::optional<PageShown> page_shown_;
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
@@ -421,7 +432,7 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     health_.state().wrote(calibration_path().filename().string(), *saved);
   notice_ = calibration_->message();
   notice_until_ = now + 6 * kNanosPerSecond;
-  if (const std::string& why = calibration_->failure(); !why.empty())
+  if (const std::string& why = calibration_->session().failure(); !why.empty())
     journal::notice("{} ({})", notice_.c_str(), why.c_str());  // the screen's plain words, and the fit's own
   else
     journal::notice("{}", notice_.c_str());
@@ -640,12 +651,12 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   }
   // The page's figures change once a second, not each frame: an unchanged page is not drawn
   // again (the window's skip_unchanged), so the open page costs no more than play.
-  if (page_figures_.empty() || now - page_figures_at_ >= kNanosPerSecond) {
+  if (!page_figures_ || now - page_figures_->at >= kNanosPerSecond) {
     const double uptime = to_seconds(now - health_.started());
-    page_figures_ = {fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
-                                 work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)),
-                     timing_line()};
-    page_figures_at_ = now;
+    page_figures_ =
+        PageFigures{fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
+                                work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)),
+                    timing_line(), now};
   }
   std::vector<PageLine> lines;
   // The page's words are the operator's language (translated texts keep printf's syntax,
@@ -665,7 +676,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   } else {
     lines.push_back({PageTone::status, input_line(*stage_)});
     lines.push_back({PageTone::status, stage_->audio_status});
-    lines.push_back({PageTone::status, page_figures_[0]});
+    lines.push_back({PageTone::status, page_figures_->frame});
     lines.push_back({PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100)});
     lines.push_back({PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_)});
     lines.push_back(
@@ -682,13 +693,19 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.push_back({PageTone::status, stage_->remote
                                            ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
                                            : tr("calibration: R runs the screen with the mouse (not saved)")});
-    lines.push_back({PageTone::status, page_figures_[1]});
+    lines.push_back({PageTone::status, page_figures_->timing});
     lines.push_back({PageTone::status, stage_->settings_line});
   }
-  const PageLayout layout = layout_operator_page(*win_.font, lines, w, h,
-                                                 latency_test_.pulsing(now) ? latency_square_side() : 0.0f, page_);
-  page_ = layout.page;
-  draw_operator_page(o, layout);
+  // Laid out only when its lines, the screen, the latency square or the screen asked for
+  // change (at most once a second while nothing else does), not at every frame.
+  const float corner = latency_test_.pulsing(now) ? latency_square_side() : 0.0f;
+  if (!page_shown_ || page_shown_->lines != lines || page_shown_->width != w || page_shown_->height != h ||
+      page_shown_->clear_corner != corner || page_shown_->layout.page != page_) {
+    PageLayout layout = layout_operator_page(*win_.font, lines, w, h, corner, page_);
+    page_shown_ = PageShown{std::move(lines), w, h, corner, std::move(layout)};
+  }
+  page_ = page_shown_->layout.page;
+  draw_operator_page(o, page_shown_->layout);
 }
 
 int WindowKiosk::run() {

@@ -277,8 +277,7 @@ TEST(RemoteKiosk, AFailedCalibrationSaysWhatToDoInPlainWordsAndTheJournalGetsThe
       EXPECT_EQ(said.find(jargon), std::string::npos) << said;
     EXPECT_NE(said.find("try again"), std::string::npos) << said;
     EXPECT_NE(said.find("the previous calibration stays"), std::string::npos) << said;
-    EXPECT_FALSE(screen.failure().empty());
-    EXPECT_EQ(screen.failure(), screen.session().failure());
+    EXPECT_FALSE(screen.session().failure().empty()) << "the fit's own reason, for the journal";
     if (!swapped) {
       EXPECT_NE(said.find("did not hold still"), std::string::npos) << said;
     }
