@@ -80,22 +80,10 @@ class PeakLimiter {
     return std::clamp(x * gain, -ceiling_, ceiling_);
   }
 
-  //! Limits `frames` samples in place; returns how many of them it turned down.
-  std::int64_t process(double* x, int frames) {
-    std::int64_t limited = 0;
-    for (int i = 0; i < frames; ++i) {
-      x[i] = tick(x[i]);
-      limited += limiting();
-    }
-    return limited;
-  }
-
   //! True when the last sample was turned down (its gain was below 1).
   bool limiting() const { return envelope_ > threshold_; }
   //! The gain applied to the last sample (1 when not limiting).
   double gain() const { return limiting() ? soft_clip(envelope_, threshold_, ceiling_) / envelope_ : 1.0; }
-  double threshold() const { return threshold_; }
-  double ceiling() const { return ceiling_; }
 
  private:
   static constexpr double kMaxEnvelope = 1e12;

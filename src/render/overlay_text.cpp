@@ -1,6 +1,7 @@
 #include "render/overlay_text.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -37,21 +38,36 @@ NoteBox draw_banner(render::Overlay& overlay, std::string_view text, float width
   return {x, y, w, h};
 }
 
+namespace {
+
+//! A band for `text` at `scale` of the atlas's size: the text's width plus one letter, one
+//! and a half letters high; at (0, 0) until placed.
+NoteBox band_for(const render::FontAtlas& font, std::string_view text, float scale) {
+  const float em = font.pixel_height() * scale;
+  return {0, 0, font.measure(text) * scale + em, em * 1.5f};
+}
+
+//! `text` at `scale`, centred on its dark band `box` (alpha `shade`), its baseline on a whole
+//! pixel (crisp).
+NoteBox draw_on_band(render::Overlay& overlay, const NoteBox& box, std::string_view text, float scale, float shade,
+                     std::array<float, 4> colour) {
+  const render::FontAtlas& font = overlay.atlas();
+  overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, shade});
+  const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * scale / 2);
+  overlay.text(box.x + box.width / 2, baseline, text, colour, render::TextAlign::center, scale);
+  return box;
+}
+
+}  // namespace
+
 NoteBox draw_corner_note(render::Overlay& overlay, std::string_view text, Corner corner, float width,
                          float height) {
-  const render::FontAtlas& font = overlay.atlas();
   constexpr float kScale = 0.6f;  // discreet: 3/5 of the visitors' letters
-  const float em = font.pixel_height() * kScale, margin = em * 0.5f;
-  NoteBox box;
-  box.width = font.measure(text) * kScale + em;
-  box.height = em * 1.5f;
+  const float margin = overlay.atlas().pixel_height() * kScale * 0.5f;
+  NoteBox box = band_for(overlay.atlas(), text, kScale);
   box.x = corner == Corner::bottom_left ? margin : width - margin - box.width;
   box.y = height - margin - box.height;
-  overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, 0.7f});
-  // The baseline whole-pixel (crisp), the ink centred in the band.
-  const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * kScale / 2);
-  overlay.text(box.x + em / 2, baseline, text, {1.0f, 1.0f, 1.0f, 0.8f}, render::TextAlign::left, kScale);
-  return box;
+  return draw_on_band(overlay, box, text, kScale, 0.7f, {1.0f, 1.0f, 1.0f, 0.8f});
 }
 
 void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
@@ -85,20 +101,14 @@ NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::
   const Target& wall = scene.targets.front();
   const glm::dvec2 under = render::project_to_screen(view_proj, {(wall.x_min + wall.x_max) / 2,
                                                                    wall.top_y - wall.thickness_m, 0.0});
-  const render::FontAtlas& font = overlay.atlas();
   constexpr float kScale = 0.8f;
-  const float em = font.pixel_height() * kScale;
-  NoteBox box;
-  box.width = font.measure(name) * kScale + em;
-  box.height = em * 1.5f;
+  const float em = overlay.atlas().pixel_height() * kScale;
+  NoteBox box = band_for(overlay.atlas(), name, kScale);
   box.x = static_cast<float>(under.x) * width - box.width / 2;
   // A plaque on the wall's lower part, far from the top face where it is tapped, and above
   // the corner notes' row (draw_corner_note) at the screen's foot.
   box.y = std::min(static_cast<float>(under.y) * height - box.height - em * 0.5f, height - em * 3.2f);
-  overlay.fill_rect(box.x, box.y, box.width, box.height, {0.0f, 0.0f, 0.0f, 0.55f});
-  const float baseline = std::round(box.y + box.height / 2 + (font.ascent() - font.descent()) * kScale / 2);
-  overlay.text(box.x + box.width / 2, baseline, name, {1.0f, 1.0f, 1.0f, 0.95f}, render::TextAlign::center, kScale);
-  return box;
+  return draw_on_band(overlay, box, name, kScale, 0.55f, {1.0f, 1.0f, 1.0f, 0.95f});
 }
 
 void draw_note_names(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,

@@ -179,11 +179,8 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   view_proj_ = render::view_projection(scene);
   instruments_ = instrument_instances(scene);
   if (scene.background_srgb) {  // the scene's own background (sRGB) replaces the dark room
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double v = (*scene.background_srgb)[c];
-      settings_.clear_color[c] =
-          static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-    }
+    for (std::size_t c = 0; c < 3; ++c)
+      settings_.clear_color[c] = static_cast<float>(srgb_to_linear((*scene.background_srgb)[c]));
   }
 
   // Layouts, pool, sampler, the white texture untextured materials sample.

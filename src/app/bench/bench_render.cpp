@@ -26,6 +26,7 @@
 #include "render/render_setup.hpp"
 #include "core/config/scene_config.hpp"
 #include "render/image.hpp"
+#include "render/scene_view.hpp"
 #include "render/vk_error.hpp"
 
 namespace mallet::app {
@@ -33,10 +34,7 @@ namespace mallet::app {
 //! The reference's box filter averages light, not sRGB codes, as an MSAA resolve into an
 //! sRGB image does: codes → linear, mean, → codes.
 render::Image downsample_linear_light(const render::Image& image, int factor) {
-  auto to_linear = [](std::uint8_t c) {
-    const double v = c / 255.0;
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-  };
+  auto to_linear = [](std::uint8_t c) { return render::srgb_to_linear(c / 255.0); };
   auto to_code = [](double v) {
     const double s = v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
     return static_cast<std::uint8_t>(std::lround(std::clamp(s, 0.0, 1.0) * 255));

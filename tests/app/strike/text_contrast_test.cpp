@@ -25,12 +25,10 @@
 namespace mallet::app {
 namespace {
 
-double linear(std::uint8_t c) {
-  const double s = c / 255.0;
-  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+double luminance(const std::uint8_t* p) {
+  auto linear = [](std::uint8_t c) { return render::srgb_to_linear(c / 255.0); };
+  return 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2]);
 }
-
-double luminance(const std::uint8_t* p) { return 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2]); }
 
 //! WCAG 2.1's contrast ratio of the brightest pixel inside `box` (1 px in from its edge)
 //! against the box's median pixel.
