@@ -28,7 +28,23 @@ std::vector<ContactZone> contact_zones(const Scene& scene) {
       }
     }
   }
+  // A bar higher than another (stacked instruments) holds only through itself: the space
+  // below it, beside the lower instrument's ends too, is the lower instrument's to swing in.
+  for (ContactZone& a : zones)
+    for (const ContactZone& b : zones)
+      if (b.plane_y < a.plane_y) {
+        const Target& t = scene.targets[a.target];
+        a.floor_y = t.top_y - t.thickness_m - r;
+        break;
+      }
   return zones;
+}
+
+const ContactZone* zone_at(const std::vector<ContactZone>& zones, Vec2 c) {
+  const ContactZone* best = nullptr;
+  for (const ContactZone& z : zones)
+    if (z.contains(c.x) && c.y >= z.floor_y && (!best || z.plane_y > best->plane_y)) best = &z;
+  return best;
 }
 
 Mallet::Mallet(const Scene& scene, ContactConfig config)
@@ -49,6 +65,7 @@ void Mallet::reset() { last_.reset(); }
 void Mallet::disarm(const ContactZone& zone, double hand_y) {
   armed_ = false;
   rearm_y_ = std::max(hand_y, zone.plane_y) + config_.rearm_height_m;
+  rearm_floor_y_ = zone.floor_y;
 }
 
 Impact Mallet::impact_on(const ContactZone& zone, Nanos t_ns, double speed_m_per_s, double x_m) const {
@@ -63,16 +80,9 @@ Impact Mallet::impact_on(const ContactZone& zone, Nanos t_ns, double speed_m_per
   return out;
 }
 
-const ContactZone* Mallet::zone_at(double x) const {
-  const ContactZone* best = nullptr;
-  for (const ContactZone& z : zones_)
-    if (z.contains(x) && (!best || z.plane_y > best->plane_y)) best = &z;
-  return best;
-}
-
 Vec2 Mallet::displayed_centre(Vec2 hand) const {
-  const ContactZone* z = zone_at(hand.x);
-  if (z && hand.y < z->plane_y) return {hand.x, z->plane_y};
+  const ContactZone* z = zone_at(hand);
+  if (z && hand.y < z->plane_y) return {hand.x, z->rest_y(hand.y)};
   return hand;
 }
 
@@ -106,6 +116,7 @@ std::optional<Impact> Mallet::update(Nanos t_ns, Vec2 hand) {
     if (hit) {
       armed_ = false;
       rearm_y_ = hit->plane_y + config_.rearm_height_m;
+      rearm_floor_y_ = hit->floor_y;
       double v = (a.y - hand.y) / to_seconds(dt);
       if (v < config_.min_impact_speed_m_per_s) {
         ++counters_.touches_below_min_speed;
@@ -122,11 +133,12 @@ std::optional<Impact> Mallet::update(Nanos t_ns, Vec2 hand) {
   }
 
   // Any contact (a strike, a touch, a sideways entry, a first sample on a bar) disarms
-  // until the hand rises clear of the plane it touched.
-  if (const ContactZone* z = zone_at(hand.x); z && hand.y <= z->plane_y) {
+  // until the hand rises clear of the plane it touched, or passes under its bar.
+  if (const ContactZone* z = zone_at(hand); z && z->holds(hand)) {
     armed_ = false;
     rearm_y_ = z->plane_y + config_.rearm_height_m;
-  } else if (!armed_ && hand.y >= rearm_y_) {
+    rearm_floor_y_ = z->floor_y;
+  } else if (!armed_ && (hand.y >= rearm_y_ || hand.y < rearm_floor_y_)) {
     armed_ = true;
   }
   last_ = Last{t_ns, hand};

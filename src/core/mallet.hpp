@@ -24,7 +24,16 @@
 //    is a contact without a strike: nothing crossed the top face.
 //  * Samples with a non-finite position, or a time not after the previous sample's,
 //    are ignored and counted (see Counters).
+//  * Instruments stacked one above the other (a portrait screen, core/scene_layout.hpp):
+//    a bar higher than another of the scene's bars holds the sphere only through its own
+//    thickness. Below its underside (the centre lower than the floor, bottom − r) the
+//    sphere is under the bar, free, over the instrument below; inside the bar it rests on
+//    the nearer face (the top, or the underside from below). Passing under the bar re-arms,
+//    as rising clear of it does. Where every bar is at one height (the scenes side by side),
+//    a bar holds the sphere however low the hand goes, as above.
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -47,9 +56,21 @@ struct ContactZone {
   double lo = 0, hi = 0;   //!< centre x range; `hi` excluded when `hi_open`
   bool hi_open = false;
   double plane_y = 0;      //!< centre height at contact: top_y + r
+  //! The centre's height touching the bar's underside (bottom − r) when another bar of the
+  //! scene is lower; −∞ (holds at any depth) otherwise.
+  double floor_y = -std::numeric_limits<double>::infinity();
 
   bool contains(double x) const { return x >= lo && (hi_open ? x < hi : x <= hi); }
+  //! The centre at `c` is on or in this bar: inside its zone, below its plane, not under it.
+  bool holds(Vec2 c) const { return contains(c.x) && c.y <= plane_y && c.y >= floor_y; }
+  //! Where the sphere rests for a centre it holds: on the top, or under the underside when
+  //! the centre is in the lower half of the bar (reached from below).
+  double rest_y(double y) const { return std::isfinite(floor_y) && y < 0.5 * (plane_y + floor_y) ? floor_y : plane_y; }
 };
+
+//! The zone that a sphere centred at `c` is over or on: of the zones containing c.x whose
+//! floor is not above c.y, the highest; nullptr if none.
+const ContactZone* zone_at(const std::vector<ContactZone>& zones, Vec2 c);
 
 class Mallet {
  public:
@@ -69,8 +90,8 @@ class Mallet {
   //! is below a contact plane, free otherwise. A pure function of the hand.
   Vec2 displayed_centre(Vec2 hand) const;
 
-  //! The zone under a centre x, the highest if zones of different heights overlap.
-  const ContactZone* zone_at(double x) const;
+  //! The zone a centre is over or on (the free function zone_at).
+  const ContactZone* zone_at(Vec2 c) const { return mallet::zone_at(zones_, c); }
 
   const std::vector<ContactZone>& zones() const { return zones_; }
   const Counters& counters() const { return counters_; }
@@ -107,6 +128,7 @@ class Mallet {
   std::optional<Last> last_;
   bool armed_ = true;
   double rearm_y_ = 0;
+  double rearm_floor_y_ = -std::numeric_limits<double>::infinity();  //!< passing under re-arms
   Counters counters_;
 };
 

@@ -68,6 +68,13 @@ inline constexpr EnumNames<SceneKind, 3> kSceneKindNames{
     {{SceneKind::percussion, "percussion"}, {SceneKind::texture, "texture"}, {SceneKind::wall, "wall"}}};
 inline const char* to_string(SceneKind kind) { return name_in(kSceneKindNames, kind, "percussion"); }
 
+//! How a scene is laid out on the screen (core/scene_layout.hpp): as its file says, or,
+//! on a screen taller than wide, its instruments stacked and its content narrowed.
+enum class SceneLayout { landscape, portrait };
+inline constexpr EnumNames<SceneLayout, 2> kSceneLayoutNames{
+    {{SceneLayout::landscape, "landscape"}, {SceneLayout::portrait, "portrait"}}};
+inline const char* to_string(SceneLayout layout) { return name_in(kSceneLayoutNames, layout, "landscape"); }
+
 //! The texture scene's stimulus: the relief under the disc, the Speed technique's law and
 //! the stripes on the actuator channel.
 struct TextureStimulus {
@@ -78,6 +85,7 @@ struct TextureStimulus {
 
 struct Scene {
   SceneKind kind = SceneKind::percussion;
+  SceneLayout layout = SceneLayout::landscape;  //!< as loaded: landscape
   std::string name;
   std::string file;                  //!< where it was loaded from (for messages)
   std::string instruments_file;      //!< acoustic presets, resolved against the scene's folder

@@ -15,8 +15,8 @@ void StrikeDetector::reset() {
 void StrikeDetector::confirm(Vec2 hand) {
   if (!pending_zone_) return;
   const ContactZone& predicted = mallet_.zones()[*pending_zone_];
-  const ContactZone* under = mallet_.zone_at(hand.x);
-  if (under && hand.y <= under->plane_y) {
+  const ContactZone* under = mallet_.zone_at(hand);
+  if (under && under->holds(hand)) {
     ++(under == &predicted ? prediction_counters_.confirmed : prediction_counters_.unconfirmed);
     pending_zone_.reset();
   } else if (mallet_.armed()) {

@@ -123,13 +123,6 @@ class Path {
   Tremor tremor_;
 };
 
-const ContactZone* zone_at(const std::vector<ContactZone>& zones, double x) {
-  const ContactZone* best = nullptr;
-  for (const ContactZone& z : zones)
-    if (z.contains(x) && (!best || z.plane_y > best->plane_y)) best = &z;
-  return best;
-}
-
 Nanos to_ns(double seconds) { return static_cast<Nanos>(std::llround(seconds * 1e9)); }
 
 //! The noise-free path's contacts under the contact model (a downward crossing of a
@@ -140,7 +133,7 @@ void find_truth(const Path& path, const std::vector<ContactZone>& zones, Nanos o
   bool armed = true;
   double rearm_y = 0;
   Vec2 prev = path.at(0);
-  if (const ContactZone* z = zone_at(zones, prev.x); z && prev.y <= z->plane_y) {
+  if (const ContactZone* z = zone_at(zones, prev); z && prev.y <= z->plane_y) {
     armed = false;
     rearm_y = z->plane_y + kRearmHeightM;
   }
@@ -149,7 +142,7 @@ void find_truth(const Path& path, const std::vector<ContactZone>& zones, Nanos o
     const double t1 = std::min(path.duration(), i * kTruthStepS);
     const double t0 = (i - 1) * kTruthStepS;
     const Vec2 p = path.at(t1);
-    const ContactZone* z = zone_at(zones, p.x);
+    const ContactZone* z = zone_at(zones, p);
     if (z && p.y <= z->plane_y) {
       if (armed && prev.y > z->plane_y) {
         double lo = t0, hi = t1;  // bisection: y(lo) > plane >= y(hi)

@@ -411,7 +411,7 @@ void expect_every_x_names_the_nearest_bar(const Scene& scene) {
       std::vector<int> containing;
       for (const ContactZone& z : mallet.zones())
         if (z.contains(x)) containing.push_back(z.target);
-      const ContactZone* z = mallet.zone_at(x);
+      const ContactZone* z = mallet.zone_at({x, 0.0});
       const std::optional<int> struck = struck_target(x, scene);
       const bool ok = containing == std::vector<int>{nearest} && z && z->target == nearest && struck == nearest;
       if (!ok) ++failures;
@@ -479,7 +479,7 @@ TEST(MalletEdges, EnteringABarSidewaysFromBelowIsNoStrikeAndTheSphereIsHeldOnTop
     EXPECT_FALSE(mallet.armed()) << ctx << ": a sideways entry is a contact";
     int held = 0;
     for (const HandSample& s : path) {
-      const ContactZone* z = mallet.zone_at(s.hand.x);
+      const ContactZone* z = mallet.zone_at(s.hand);
       if (!z) continue;
       EXPECT_EQ(z->target, into) << ctx;
       EXPECT_EQ(mallet.displayed_centre(s.hand), (Vec2{s.hand.x, plane})) << ctx << " x " << s.hand.x;
@@ -522,7 +522,7 @@ TEST(MalletRearm, AStrikeThatEndsOffTheBarStillDisarms) {
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->target, 7);
   EXPECT_NEAR(hit->x_m, zone_end - 0.005, 1e-12);
-  EXPECT_EQ(mallet.zone_at(zone_end + 0.015), nullptr) << "the premise: the hand ends off every zone";
+  EXPECT_EQ(mallet.zone_at({zone_end + 0.015, plane - 0.005}), nullptr) << "the premise: the hand ends off every zone";
   EXPECT_FALSE(mallet.armed());
   // Up 1 mm above the plane in the gap, back over the bar, and down again.
   EXPECT_FALSE(mallet.update(t0 + 2 * period, {zone_end + 0.015, plane + 0.001}));
