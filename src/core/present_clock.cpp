@@ -29,12 +29,14 @@ void PresentClock::set_pacing(PresentPacing pacing) {
   if (pacing_.exchange(static_cast<int>(pacing), std::memory_order_relaxed) == static_cast<int>(pacing)) return;
   judged_.store(0, std::memory_order_relaxed);
   fast_.store(0, std::memory_order_relaxed);
+  unvoted_.store(0, std::memory_order_relaxed);
 }
 
 void PresentClock::set_refresh_hz(double hz) {
   if (refresh_ns_.load(std::memory_order_relaxed) != period_of(hz)) {
     judged_.store(0, std::memory_order_relaxed);
     fast_.store(0, std::memory_order_relaxed);
+    unvoted_.store(0, std::memory_order_relaxed);
   }
   period_ns_.store(period_of(hz), std::memory_order_relaxed);
   refresh_ns_.store(period_of(hz), std::memory_order_relaxed);
@@ -53,10 +55,15 @@ bool PresentClock::judged() const {
 bool PresentClock::unpaced() const {
   if (pacing() != PresentPacing::fifo) return false;
   if (judged()) return fast_.load(std::memory_order_relaxed) > kFastAllowed;
+  // Before the verdict: the votes so far; with none, frames slow by their own work that no
+  // display held are shown when done, as an unpaced display shows them; else the pace.
+  const int votes = judged_.load(std::memory_order_relaxed), fast = fast_.load(std::memory_order_relaxed);
+  if (votes > 0) return fast * 2 > votes;
+  if (unvoted_.load(std::memory_order_relaxed) > 0) return true;
   return faster_than_refresh(unheld_ns_.load(std::memory_order_relaxed), refresh_ns_.load(std::memory_order_relaxed));
 }
 
-void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn) {
+void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn, Nanos display_wait_ns) {
   const Nanos last = last_start_.exchange(t, std::memory_order_relaxed);
   if (!learn || last < 0 || t <= last) return;
   // The period follows the measured frame interval slowly (a display that does not pace
@@ -70,9 +77,15 @@ void PresentClock::frame_started(Nanos t, Nanos held_ns, bool learn) {
   const Nanos own = std::max<Nanos>(0, interval - held_ns);
   if (own > 3 * unheld) return;
   if (pacing() == PresentPacing::fifo && judged_.load(std::memory_order_relaxed) < kJudgedFrames) {
-    if (faster_than_refresh(own, refresh_ns_.load(std::memory_order_relaxed)))
+    const Nanos refresh = refresh_ns_.load(std::memory_order_relaxed);
+    if (faster_than_refresh(own, refresh)) {
       fast_.fetch_add(1, std::memory_order_relaxed);
-    judged_.fetch_add(1, std::memory_order_relaxed);
+      judged_.fetch_add(1, std::memory_order_relaxed);
+    } else if (display_wait_ns < 0 || faster_than_refresh(own - display_wait_ns, refresh)) {
+      judged_.fetch_add(1, std::memory_order_relaxed);  // the display held it to its refresh
+    } else {
+      unvoted_.fetch_add(1, std::memory_order_relaxed);  // slow by its own work: says nothing
+    }
   }
   period_ns_.store(std::max<Nanos>(500'000, period + (interval - period) / 16), std::memory_order_relaxed);
   unheld_ns_.store(std::max<Nanos>(500'000, unheld + (own - unheld) / 16), std::memory_order_relaxed);

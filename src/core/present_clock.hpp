@@ -16,11 +16,15 @@
 // it (a virtual X server: no vblank at all): its frames are shown as soon as they are done,
 // one frame's work after they start (measured with bench latency: 2–7 ms, not two
 // refreshes). Whether the display paces is judged once, from the first kJudgedFrames frames
-// drawn back to back, by their own pace: the interval between frame starts less the time
-// the window's frame budget (core/frame_pacer.hpp) held the frame back (the window holds
+// drawn back to back that tell, by their own pace: the interval between frame starts less the
+// time the window's frame budget (core/frame_pacer.hpp) held the frame back (the window holds
 // none back until the verdict). A display that paces FIFO shows no frame sooner than its
 // refresh, but for the few a new swapchain's free images take at once; a display that does
-// not shows most of them sooner. The verdict then stands until the pacing or the refresh
+// not shows most of them sooner. A frame as long as the refresh votes "paced" only when
+// waiting on the display (the swapchain's acquire and present) made it so: one that was slow
+// by its own work (a CPU rasteriser's first frames, a full redraw at 1080p) says nothing of
+// the display and does not vote, so a slow start can no longer make a virtual display look
+// paced one run and not the next. The verdict then stands until the pacing or the refresh
 // changes, so that the frame budget it engages can never make the display look paced (nor
 // the frames it holds back make it look unpaced), and one display gets one verdict, run
 // after run. Before it, a running estimate of the frames' own pace stands in.
@@ -53,7 +57,10 @@ class PresentClock {
   //! less the wait, whether the display paces the frames.
   //! `learn` false: the previous start drew nothing (a still scene: no acquire, no present
   //! held it back), so the interval says nothing of the display; the grid is only anchored.
-  void frame_started(Nanos t, Nanos held_ns = 0, bool learn = true);
+  //! `display_wait_ns`: how long the previous frame waited in the swapchain's acquire and
+  //! present (WindowTarget::display_wait_ns); a frame as long as the refresh votes "paced"
+  //! only if that wait made it so. Negative: not known, and such a frame votes "paced".
+  void frame_started(Nanos t, Nanos held_ns = 0, bool learn = true, Nanos display_wait_ns = -1);
   //! Another pacing or refresh than before: the display is judged again.
   void set_pacing(PresentPacing pacing);
   void set_refresh_hz(double hz);
@@ -76,8 +83,10 @@ class PresentClock {
   //! more than kFastAllowed coming sooner than 85 % of the refresh period: not paced.
   static constexpr int kJudgedFrames = 48;
   static constexpr int kFastAllowed = kJudgedFrames / 4;
-  //! Whether the display has been judged (always, but for FIFO before kJudgedFrames).
+  //! Whether the display has been judged (always, but for FIFO before kJudgedFrames votes).
   bool judged() const;
+  //! Of the FIFO frames seen before the verdict, those slow by their own work: no vote.
+  int unvoted_frames() const { return unvoted_.load(std::memory_order_relaxed); }
   //! Of the judged frames, how many came sooner than 85 % of the refresh period (for the log).
   int fast_frames() const { return fast_.load(std::memory_order_relaxed); }
   PresentPacing pacing() const { return static_cast<PresentPacing>(pacing_.load(std::memory_order_relaxed)); }
@@ -93,6 +102,7 @@ class PresentClock {
   std::atomic<Nanos> unheld_ns_;  //!< the frame interval without the frame budget's wait, smoothed
   std::atomic<int> judged_{0};    //!< frames judged so far (kJudgedFrames: the verdict is in)
   std::atomic<int> fast_{0};      //!< of them, those sooner than 85 % of the refresh period
+  std::atomic<int> unvoted_{0};   //!< frames slow by their own work before the verdict
   const Nanos cost_ns_;  //!< one frame's work (mailbox, immediate)
   static_assert(std::atomic<Nanos>::is_always_lock_free);
 };

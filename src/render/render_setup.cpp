@@ -165,8 +165,11 @@ void ProductWindow::pace() {
 
 void ProductWindow::say_pace_choice(const PaceChoice& c) {
   const bool fifo = clock.pacing() == PresentPacing::fifo;
-  const std::string judged = fmt::format("{} of its first {} frames came sooner than its {:.0f} Hz refresh",
-                                         c.fast_frames, PresentClock::kJudgedFrames, c.refresh);
+  const int unvoted = clock.unvoted_frames();
+  const std::string judged =
+      fmt::format("{} of its first {} frames came sooner than its {:.0f} Hz refresh{}", c.fast_frames,
+                  PresentClock::kJudgedFrames, c.refresh,
+                  unvoted > 0 ? fmt::format("; {} slower by their own work left out", unvoted) : std::string());
   if (!c.pace)
     say_pace(fmt::format("render: frames paced by the display ({}: {})", window->presentation(), judged));
   else if (c.display_paces)

@@ -287,12 +287,16 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   // A frame that would change nothing is not drawn: the screen shows it already.
   still_ = options_.skip_unchanged && !capture && !show_again_ && !renderer.changes(state, extent_);
   if (still_) return false;
-  if (put_) return draw_and_put(renderer, state, capture);
+  if (put_) {
+    display_wait_ns_ = 0;  // its own put: no swapchain to wait on
+    return draw_and_put(renderer, state, capture);
+  }
   FrameSync& f = frames_[frame_];
   VkFence fence = f.done.get();
   check(vkWaitForFences(dev, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for a frame");
 
   std::uint32_t index = 0;
+  const Nanos acquire_from = monotonic_now();
   for (int attempt = 0;; ++attempt) {
     const VkResult r = vkAcquireNextImageKHR(dev, swapchain_.get(), UINT64_MAX, f.acquired.get(), VK_NULL_HANDLE,
                                              &index);
@@ -304,6 +308,7 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
     }
     check(r, "acquiring a swapchain image");
   }
+  display_wait_ns_ = monotonic_now() - acquire_from;
   check(vkResetFences(dev, 1, &fence), "resetting a fence");
 
   check(vkResetCommandBuffer(f.cmd, 0), "resetting a command buffer");
@@ -360,7 +365,9 @@ bool WindowTarget::draw(SceneRenderer& renderer, const FrameState& state, Image*
   pi.swapchainCount = 1;
   pi.pSwapchains = &sc;
   pi.pImageIndices = &index;
+  const Nanos present_from = monotonic_now();
   const VkResult pr = vkQueuePresentKHR(ctx_.queue(), &pi);
+  display_wait_ns_ += monotonic_now() - present_from;
   // The image keeps this frame for the next time it comes round (the presentation engine
   // only reads it); the window shows a whole picture again.
   kept_[index] = true;

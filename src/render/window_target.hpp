@@ -111,6 +111,9 @@ class WindowTarget {
   bool draw(SceneRenderer& renderer, const FrameState& state, Image* capture = nullptr);
   //! The last draw() drew nothing because nothing had changed (not because the window was minimised).
   bool still() const { return still_; }
+  //! How long the last frame drawn waited in the swapchain's acquire and present (0 where
+  //! it put its image itself): PresentClock::frame_started's display_wait_ns.
+  Nanos display_wait_ns() const { return display_wait_ns_; }
   //! The next frame is drawn and shown even if it changes nothing (the window was exposed).
   void show_again() { show_again_ = true; }
 
@@ -142,6 +145,7 @@ class WindowTarget {
   std::vector<vk::Semaphore> rendered_;  //!< one per swapchain image
   std::vector<bool> kept_;  //!< per swapchain image: it holds a frame the renderer drew (was presented)
   bool still_ = false, show_again_ = true;
+  Nanos display_wait_ns_ = 0;
   std::vector<FrameSync> frames_;
   std::uint32_t frame_ = 0;
   std::uint64_t recreations_ = 0;

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/cli/commands.hpp"
+#include "core/scene_layout.hpp"
 #include "core/data_paths.hpp"
 #include "render/render_setup.hpp"
 #include "app/strike/replay.hpp"
@@ -28,6 +29,7 @@ struct RenderCliOptions {
   std::optional<std::filesystem::path> config_dir;
   std::string input_space = "screen";
   std::string size = "1280x720";
+  std::string layout = "auto";  //!< auto: as the kiosk lays the scene out for --size's shape
   std::optional<double> at_s;
   std::filesystem::path out;
   std::optional<double> fps;
@@ -105,12 +107,16 @@ void run_window(const RenderCliOptions& o, const Scene& scene, const Replay& rep
 void run_render(const RenderCliOptions& o) {
   // Everything that can be wrong with the input is found before the GPU is touched.
   const AppConfig config = command_settings(o.config, o.config_dir, "render");
-  const Scene scene = config::load_scene(o.scene);
+  render::HeadlessOptions ho;
+  ho.size = render::parse_size(o.size, "--size");
+  const Scene file_scene = config::load_scene(o.scene);
+  const SceneLayout layout =
+      o.layout == "auto" ? layout_for(file_scene, static_cast<double>(ho.size.width) / static_cast<double>(ho.size.height))
+                         : *value_named(kSceneLayoutNames, o.layout);
+  const Scene scene = laid_out(file_scene, layout);
   const input::Trajectory trajectory = input::read_trajectory_csv(o.input);
   const Replay replay(scene, config, trajectory,
                       o.input_space == "world" ? InputSpace::world : InputSpace::screen, o.input.string());
-  render::HeadlessOptions ho;
-  ho.size = render::parse_size(o.size, "--size");
   if (o.msaa == "auto")
     ho.auto_samples = true;
   else
@@ -180,6 +186,11 @@ Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).)")
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
   cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str()->check(pixel_size());
+  cmd->add_option("--layout", o->layout,
+                  "auto (as the kiosk lays the scene out for --size: portrait, instruments stacked, on a "
+                  "portrait image where that shows them larger), landscape or portrait")
+      ->check(CLI::IsMember({"auto", "landscape", "portrait"}))
+      ->capture_default_str();
   auto* at = cmd->add_option("--at", o->at_s, "One frame at this time (s)")->check(seconds());
   auto* out = cmd->add_option("--out", o->out, "PNG file for --at");
   auto* fps = cmd->add_option("--fps", o->fps, "A sequence at this frame rate")

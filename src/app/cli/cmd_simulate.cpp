@@ -80,6 +80,8 @@ SIGINT or SIGTERM while writing removes the partial files (DIR/*.partial) and ex
       ->capture_default_str();
   add_choice(*cmd, "--present-mode", options->present_mode, kPresentPacingNames,
              "With --causal: fifo, mailbox or immediate");
+  add_choice(*cmd, "--layout", options->layout, kSceneLayoutNames,
+             "The scene as a landscape or a portrait screen lays it out (portrait: instruments stacked)");
   cmd->callback([options, rate, space, delay] {
     if (*rate != 0) options->sample_rate_hz = *rate;
     options->input_delay_given = delay->count() > 0;

@@ -9,6 +9,8 @@
 #include "core/config/scene_config.hpp"
 #include "core/file_error.hpp"
 #include "core/ghost_player.hpp"
+#include "core/scene_layout.hpp"
+#include "app/common/command_support.hpp"
 
 namespace mallet::app {
 
@@ -22,6 +24,7 @@ void register_trajectory(CLI::App& app) {
     double rate_hz = 100;
     std::string space = "screen";
     std::filesystem::path out;
+    SceneLayout layout = SceneLayout::landscape;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("trajectory", "Script a trajectory that strikes bars at exact times and speeds");
@@ -45,8 +48,10 @@ start + k·interval seconds, crossing the bar's surface at exactly that time wit
       ->check(CLI::IsMember({"screen", "world"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output CSV")->required();
+  add_choice(*cmd, "--layout", o->layout, kSceneLayoutNames,
+             "The scene as a landscape or a portrait screen lays it out (portrait: instruments stacked)");
   cmd->callback([o] {
-    const Scene scene = config::load_scene(o->scene);
+    const Scene scene = laid_out(config::load_scene(o->scene), o->layout);
     std::vector<ScriptedStrike> strikes;
     for (std::size_t k = 0; k < o->targets.size(); ++k) {
       const int id = o->targets[k];

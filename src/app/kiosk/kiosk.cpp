@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/scene_layout.hpp"
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
 #include "render/render_setup.hpp"
@@ -42,8 +43,12 @@ fs::path new_out_dir() {
 }
 
 int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::string& why) {
-  const Scene& scene = setup.scene;
   const AppConfig& config = setup.config;
+  const render::HeadlessOptions ho =
+      render::kiosk_headless_options(config.render, render::parse_size(o.size, "--size"), o.device);
+  // Laid out for the image's shape as the kiosk lays it out for its screen's.
+  const Scene scene = laid_out(
+      setup.scene, layout_for(setup.scene, static_cast<double>(ho.size.width) / static_cast<double>(ho.size.height)));
   const fs::path out = o.out_dir.empty() ? new_out_dir() : o.out_dir;
   fs::create_directories(out);
   std::ofstream log(out / "log.txt");
@@ -51,7 +56,7 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
   say("mallet run (headless: " + why + ")");
   say(setup.settings_line);
   for (const std::string& p : setup.problems) say("warning: " + p);
-  say("scene: " + scene.file);
+  say("scene: " + scene.file + (scene.layout == SceneLayout::landscape ? "" : std::string(", laid out ") + to_string(scene.layout)));
   say("language: " + visitor_language() + " (the invitation: \"" +
       std::string(hint_text(KioskHint::invitation, scene.kind)) + "\")");
 
@@ -76,8 +81,6 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     count_strike(scene, s.impact, metrics.strikes);
   };
 
-  const render::HeadlessOptions ho =
-      render::kiosk_headless_options(config.render, render::parse_size(o.size, "--size"), o.device);
   render::HeadlessRenderer renderer(scene, ho);
   say("render: " + renderer.context().device_name() + ", " + o.size);
   const std::unique_ptr<render::FontAtlas> font = render::overlay_font(ho.size);

@@ -32,7 +32,13 @@ namespace mallet::app {
 //! Everything that depends on the scene and the settings, rebuilt on a reload.
 struct KioskStage {
   AppConfig config;
+  //! The scene as its file lays it out (landscape): the visitor study's base, and what a
+  //! new layout starts from.
+  Scene file_scene;
+  //! The scene as the screen shows it: file_scene laid out for the screen's shape
+  //! (core/scene_layout.hpp), what the routes, the renderer and the ghost play.
   Scene scene;
+  double laid_out_for_aspect = 0;  //!< the screen's width over height when it was laid out
   //! Strikes by target and material, recorded by every route of this stage (any thread).
   std::unique_ptr<StrikeTally> tally;
   std::string settings_line;                          //!< where the settings came from

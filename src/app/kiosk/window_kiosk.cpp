@@ -42,6 +42,7 @@
 #include "core/bar_lights.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/config/scene_config.hpp"
+#include "core/scene_layout.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/language_choice.hpp"
 #include "core/operator_knobs.hpp"
@@ -86,6 +87,9 @@ class WindowKiosk {
   void on_key(int key, int mods, bool repeat);
   void handle_keys(Nanos now);
   void reload();
+  //! The screen's shape changed (a rotated screen, a resized window): the stage built anew
+  //! on the same settings and scene, laid out for it, when its layout changes.
+  void follow_screen_shape();
   //! Keeps `text` as the last good settings in the state folder (kiosk_setup.hpp), unless it
   //! is kept already; a failed write is the state folder's to say.
   void keep_last_good(const std::string& text);
@@ -236,7 +240,7 @@ void WindowKiosk::run_visitor_session() {
     const std::uint64_t id = (static_cast<std::uint64_t>(random()) << 32) ^ random();
     // The study's frames are the kiosk's life meanwhile: they feed its watchdog.
     const study::VisitorSessionResult r = options_.visitor_sessions.run(
-        win_, stage_->config, stage_->scene, *stage_->visitor, study::visitor_session_id(id),
+        win_, stage_->config, stage_->file_scene, *stage_->visitor, study::visitor_session_id(id),
         study::utc_date(std::time(nullptr)), pointer, [this] {
           health_.feed_watchdog(monotonic_now());
           return !g_stop.load();
@@ -268,7 +272,9 @@ void WindowKiosk::build(KioskSetup setup) {
   const std::string last_good = last_good_text(setup);
   stage->refused = std::move(setup.refused);
   stage->config = std::move(setup.config);
-  stage->scene = std::move(setup.scene);
+  stage->file_scene = std::move(setup.scene);
+  stage->laid_out_for_aspect = win_.aspect.get();
+  stage->scene = laid_out(stage->file_scene, layout_for(stage->file_scene, stage->laid_out_for_aspect));
   stage->tally = std::make_unique<StrikeTally>(stage->scene);
   stage->settings_line = std::move(setup.settings_line);
   stage->scene_choices = std::move(setup.scene_choices);
@@ -284,7 +290,7 @@ void WindowKiosk::build(KioskSetup setup) {
   if (!c.study.visitor_protocol.empty() && stage->scene.kind == SceneKind::percussion) {
     try {  // a protocol that does not load: one line, and no offer
       if (!options_.visitor_sessions) throw std::runtime_error("this kiosk was started without the study");
-      stage->visitor = options_.visitor_sessions.load(c.study, stage->scene);
+      stage->visitor = options_.visitor_sessions.load(c.study, stage->file_scene);
     } catch (const std::exception& e) {
       stage->problems.push_back(std::string("visitor study off: ") + e.what());
       journal::warning("visitor study off: {}", e.what());
@@ -340,6 +346,9 @@ void WindowKiosk::build(KioskSetup setup) {
   }
   journal::info("{}", input_line(*stage_).c_str());
   journal::info("{}", timing_line().c_str());
+  if (stage_->scene.layout != SceneLayout::landscape)
+    journal::info("scene: laid out {} for the screen's {:.2f}:1", to_string(stage_->scene.layout),
+                  stage_->laid_out_for_aspect);
   apply_volume();
 }
 
@@ -587,6 +596,30 @@ void WindowKiosk::reload() {
   }
 }
 
+void WindowKiosk::follow_screen_shape() {
+  const double aspect = win_.aspect.get();
+  if (aspect == stage_->laid_out_for_aspect) return;
+  stage_->laid_out_for_aspect = aspect;
+  const SceneLayout layout = layout_for(stage_->file_scene, aspect);
+  if (layout == stage_->scene.layout) return;
+  KioskSetup setup;
+  setup.config = stage_->config;
+  setup.scene = stage_->file_scene;
+  setup.settings_line = stage_->settings_line;
+  setup.scene_choices = stage_->scene_choices;
+  setup.problems = stage_->problems;  // less what the build says again
+  std::erase_if(setup.problems, [](const std::string& p) { return p.rfind("visitor study off: ", 0) == 0; });
+  setup.refused = stage_->refused;
+  try {
+    vkDeviceWaitIdle(win_.ctx->device());
+    build(std::move(setup));
+    journal::notice("the screen is now {:.2f}:1: the scene laid out {}", aspect, to_string(layout));
+  } catch (const std::exception& e) {  // whatever the build throws: the running stage stays
+    journal::warning("the screen is now {:.2f}:1, the scene stays laid out {}: {}", aspect,
+                     to_string(stage_->scene.layout), e.what());
+  }
+}
+
 void WindowKiosk::refused_reload(const std::string& why) {
   // On the operator page too, in place of an earlier refusal, until a reload loads.
   std::vector<std::string>& problems = stage_->problems;
@@ -718,7 +751,7 @@ int WindowKiosk::run() {
     const Nanos now = monotonic_now();
     // This frame begins now: strikes this frame decides (the window system's mouse, the ghost)
     // are shown by it, so the present model's grid is anchored here before they are fed.
-    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still());
+    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still(), win_.window->display_wait_ns());
     frame_ms = 0.9 * frame_ms + 0.1 * to_seconds(now - last_frame) * 1e3;
     last_frame = now;
     health_.polled();
@@ -727,6 +760,7 @@ int WindowKiosk::run() {
       reload();
       health_.notifier().ready();
     }
+    follow_screen_shape();
     handle_keys(now);
     if (win_.window->close_requested()) {
       glfwSetWindowShouldClose(win_.window->window(), GLFW_FALSE);

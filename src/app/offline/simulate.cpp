@@ -15,6 +15,7 @@
 #include "audio/audio_setup.hpp"
 #include "app/common/settings_source.hpp"
 #include "audio/wav_file.hpp"
+#include "core/scene_layout.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/camera_prediction.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -151,7 +152,7 @@ SimulateResult run_simulate(const SimulateOptions& options) {
   // --- everything that can be wrong with the input is found before anything is written
   AppConfig config = command_settings(options.config, options.config_dir, "simulate");
   SimulateResult result;
-  result.scene = config::load_scene(options.scene);
+  result.scene = laid_out(config::load_scene(options.scene), options.layout);
   const Scene& scene = result.scene;
   double input_delay_ms = options.input_delay_ms;
   if (options.causal && options.camera) {  // the kiosk's camera route, from the same settings

@@ -50,6 +50,8 @@ struct SimulateOptions {
   std::optional<std::filesystem::path> config;  //!< mallet.toml; built-in defaults if absent
   std::optional<std::filesystem::path> config_dir;  //!< its drop-ins (none: FILE.d)
   InputSpace input_space = InputSpace::screen;
+  //! The scene as a screen of that shape lays it out (core/scene_layout.hpp).
+  SceneLayout layout = SceneLayout::landscape;
   std::optional<int> sample_rate_hz;             //!< overrides [audio].sample_rate_hz
   double trace_rate_hz = 1000.0;
   double tail_s = 1.0;                           //!< rendered after the last sample

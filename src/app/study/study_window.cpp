@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -86,6 +87,15 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
       });
     }
     for (const AnswerBar& b : bars_) labels_.push_back({b.target, b.answer});
+    // The stimulus bar, which the program taps and no answer strikes, says what it is: among
+    // the answer bars it was an unlabelled bar of another kind that a visitor could not place.
+    if (!bars_.empty())
+      for (const Target& t : scene_.targets)
+        if (!t.hand_strikes) {
+          stimulus_label_ = render::BarLabel{t.id, tr("Taps")};
+          labels_.push_back(*stimulus_label_);
+          break;
+        }
     make_renderer();
     rig_ = audio::make_audio_rig(scene_, c, c.audio.sample_rate_hz);  // the speaker per instrument (study_stimuli.hpp)
     route_ = std::make_unique<StrikeRoute>(scene_, c, rig_.engine.get(), &win_.window->present_clock());
@@ -217,6 +227,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     banner_ = visitor.consent;
     const std::vector<render::BarLabel> answers = labels_;
     labels_ = {{bars_.at(0).target, tr("Yes")}, {bars_.at(1).target, tr("No")}};
+    if (stimulus_label_) labels_.push_back(*stimulus_label_);
     journal::info("mallet study: a visitor's consent screen");
     const std::optional<std::size_t> k = struck_bar(opens, 2);
     labels_ = answers;
@@ -256,7 +267,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     win_.pace();  // the frame budget: [render] max_fps
     glfwPollEvents();
     const Nanos now = monotonic_now();
-    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still());  // before this frame's stimuli
+    win_.window->present_clock().frame_started(now, win_.held_ns(), !win_.window->still(), win_.window->display_wait_ns());  // before this frame's stimuli
     for (const Press& p : pressed_)
       if (run_.quit_keys && (p.key == GLFW_KEY_ESCAPE || p.key == GLFW_KEY_Q)) quit_ = true;
     if (win_.window->close_requested() || (quit_at_ > 0 && now >= quit_at_)) quit_ = true;
@@ -341,6 +352,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
   std::vector<AnswerKey> keys_;
   std::vector<AnswerBar> bars_;  //!< response = strike
   std::vector<render::BarLabel> labels_;
+  std::optional<render::BarLabel> stimulus_label_;  //!< "Taps" on the bar the program taps
   std::vector<PointerSample> cursor_;  //!< the window's cursor events since the last frame (no run_.pointer)
   std::vector<Strike> struck_;         //!< the participant's strikes not yet looked at
   std::string prompt_;
