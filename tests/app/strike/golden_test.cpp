@@ -19,6 +19,7 @@
 #include "app/strike/replay.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "core/kiosk_states.hpp"
+#include "core/scene_layout.hpp"
 #include "core/visitor_language.hpp"
 #include "render/font_atlas.hpp"
 #include "render/image.hpp"
@@ -55,12 +56,14 @@ render::HeadlessRenderer& renderer() {
   return r;
 }
 
-//! A replay of world-space samples (t in seconds, sphere centre in metres).
-Replay replay_of(std::initializer_list<std::array<double, 3>> samples) {
+//! A replay in `scene` of world-space samples (t in seconds, sphere centre in metres).
+Replay replay_in(const Scene& scene, std::initializer_list<std::array<double, 3>> samples) {
   input::Trajectory t;
   for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
-  return Replay(percussion(), AppConfig{}, t, InputSpace::world, "test");
+  return Replay(scene, AppConfig{}, t, InputSpace::world, "test");
 }
+
+Replay replay_of(std::initializer_list<std::array<double, 3>> samples) { return replay_in(percussion(), samples); }
 
 void expect_matches_golden(const render::Image& actual, const std::string& name,
                            render::HeadlessRenderer& used = renderer()) {
@@ -154,13 +157,17 @@ class GoldenScreenShape : public ::testing::TestWithParam<ScreenShape> {};
 
 TEST_P(GoldenScreenShape, MalletRestingOnAWoodenBarFramedUnstretched) {
   // The sphere a circle, both instruments whole, the extra room filled with more of the
-  // room around them (compare mallet_resting_on_wood, at 16:9).
+  // room around them (compare mallet_resting_on_wood, at 16:9); laid out as the kiosk lays
+  // the scene out for the shape: on the portrait screen the instruments stacked.
   const ScreenShape shape = GetParam();
   render::HeadlessOptions o = golden_options();
   o.size = {shape.width, shape.height};
-  render::HeadlessRenderer r(percussion(), o);
-  const Target& bar = percussion().targets.at(2);
-  const Replay replay = replay_of({{0.0, (bar.x_min + bar.x_max) / 2, -0.01}});
+  const double aspect = static_cast<double>(shape.width) / shape.height;
+  const Scene scene = laid_out(percussion(), layout_for(percussion(), aspect));
+  ASSERT_EQ(scene.layout, aspect < 1 ? SceneLayout::portrait : SceneLayout::landscape);
+  render::HeadlessRenderer r(scene, o);
+  const Target& bar = scene.targets.at(2);
+  const Replay replay = replay_in(scene, {{0.0, (bar.x_min + bar.x_max) / 2, -0.01}});
   render::FrameState state;
   state.mallet_centre = replay.cursor_at(0).shown;
   expect_matches_golden(r.render(state), std::string("mallet_resting_on_wood_") + shape.name, r);
@@ -205,10 +212,19 @@ namespace {
 
 // ---- the second paper's scenes ----
 
-Replay replay_in(const Scene& scene, std::initializer_list<std::array<double, 3>> samples) {
-  input::Trajectory t;
-  for (const auto& s : samples) t.samples.push_back({static_cast<Nanos>(std::llround(s[0] * 1e9)), s[1], s[2]});
-  return Replay(scene, AppConfig{}, t, InputSpace::world, "test");
+TEST(Golden, PortraitTextureAndWallShownLarger) {
+  // The portrait layout of the second paper's scenes: the disc and the wall fill the width.
+  render::HeadlessOptions o = golden_options();
+  o.size = {360, 640};
+  const Scene texture = portrait_layout(test::texture());
+  render::HeadlessRenderer rt(texture, o);
+  render::FrameState state;
+  state.mallet_centre = replay_in(texture, {{0.0, -0.05, 0.01}}).cursor_at(0).shown;
+  expect_matches_golden(rt.render(state), "portrait_texture", rt);
+  const Scene wall = portrait_layout(test::wall());
+  render::HeadlessRenderer rw(wall, o);
+  state.mallet_centre = replay_in(wall, {{0.0, 0.03, 0.05}}).cursor_at(0).shown;
+  expect_matches_golden(rw.render(state), "portrait_wall", rw);
 }
 
 TEST(Golden, TextureBumpWithTheCursorClimbingIt) {
