@@ -19,10 +19,7 @@ for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1
 read -r w h < <(xdotool getdisplaygeometry)
 shot() { sleep "${2:-1}"; import -window root "$out/walk-$name-$lang-$1.png"; }
 shot 1-attract 4
-x=$(( w / 2 - (h * 16 / 9 < w ? h * 16 / 9 : w) * 36 / 100 ))
-for y in $(seq $(( h * 35 / 100 )) $(( h / 40 )) $(( h * 62 / 100 ))) $(seq $(( h * 62 / 100 )) -$(( h / 25 )) $(( h * 52 / 100 ))); do
-  xdotool mousemove "$x" "$y"; sleep 0.05
-done
+. "$(dirname "$0")/sweep-third-bar.sh"
 shot 2-play 0.3
 xdotool key ctrl+alt+o; shot 3-operator 1.5
 xdotool key d; shot 4-doctor 2

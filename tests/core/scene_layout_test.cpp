@@ -105,10 +105,12 @@ struct Stacked {
   const Target& lower() const {
     const Target& some = scene.targets.at(static_cast<std::size_t>(scene.instruments[1].targets[0]));
     const std::vector<ContactZone> zones = contact_zones(scene);
-    const ContactZone* z = zone_at(zones, {0.5 * (upper().x_min + upper().x_max), some.top_y + scene.mallet_radius_m});
+    const ContactZone* z = zone_at(zones, {x(), some.top_y + r()});
     if (!z) throw std::runtime_error("no glockenspiel bar under the xylophone's fourth");
     return scene.targets.at(static_cast<std::size_t>(z->target));
   }
+  double r() const { return scene.mallet_radius_m; }
+  double x() const { return 0.5 * (upper().x_min + upper().x_max); }  //!< over both bars
 };
 
 TEST(StackedRows, OnlyTheBarsOfTheUpperRowHaveAFloor) {
@@ -123,9 +125,8 @@ TEST(StackedRows, OnlyTheBarsOfTheUpperRowHaveAFloor) {
 
 TEST(StackedRows, TheLowerRowIsStruckFromBetweenTheRowsAndTheSphereIsFreeThere) {
   const Stacked st;
-  const Target& upper = st.upper();
   const Target& lower = st.lower();
-  const double r = st.scene.mallet_radius_m, x = 0.5 * (upper.x_min + upper.x_max);
+  const double r = st.r(), x = st.x();
   Mallet m(st.scene, ContactConfig{});
   // Between the rows: free, not held on the xylophone above.
   const Vec2 between{x, lower.top_y + r + 0.10};
@@ -141,7 +142,7 @@ TEST(StackedRows, TheLowerRowIsStruckFromBetweenTheRowsAndTheSphereIsFreeThere) 
 TEST(StackedRows, FromBelowTheSphereStopsUnderTheBarAndPopsOnTopPastItsMiddle) {
   const Stacked st;
   const Target& upper = st.upper();
-  const double r = st.scene.mallet_radius_m, x = 0.5 * (upper.x_min + upper.x_max);
+  const double r = st.r(), x = st.x();
   const double top = upper.top_y + r, under = upper.top_y - upper.thickness_m - r;
   Mallet m(st.scene, ContactConfig{});
   EXPECT_EQ(m.displayed_centre({x, under - 0.001}), (Vec2{x, under - 0.001}));  // below: free
@@ -159,7 +160,7 @@ TEST(StackedRows, PushingThroughTheUpperBarStrikesItOnceThenTheLowerBarSounds) {
   const Stacked st;
   const Target& upper = st.upper();
   const Target& lower = st.lower();
-  const double r = st.scene.mallet_radius_m, x = 0.5 * (upper.x_min + upper.x_max);
+  const double r = st.r(), x = st.x();
   Mallet m(st.scene, ContactConfig{});
   std::vector<int> struck;
   // Down at 1 m/s from above the xylophone to below the glockenspiel's plane, 1 kHz.

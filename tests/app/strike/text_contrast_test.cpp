@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/scene_layout.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "core/visitor_language.hpp"
@@ -95,10 +96,11 @@ bool overlap(const render::NoteBox& a, float x0, float y0, float x1, float y1) {
   return a.x < x1 && x0 < a.x + a.width && a.y < y1 && y0 < a.y + a.height;
 }
 
-TEST(TextOnScreen, TheCornerNotesNeverOverlapAnInstrumentAtAnyShapeInAnyLanguage) {
+TEST(TextOnScreen, TheCornerNotesAndTheInvitationNeverOverlapAnInstrumentAtAnyShapeInAnyLanguage) {
   // Each bar's and the wall's box as the view shows them (its top face's corners and its
-  // front's foot), against the notes' bands in the longest wording of each language (the
-  // walkthrough found the Japanese note touching the wall).
+  // front's foot), the scene laid out for the shape as the kiosk lays it out (portrait:
+  // stacked), against the notes' bands and the invitation's in the longest wording of each
+  // language (the walkthrough found the Japanese note touching the wall).
   for (const std::string& language : visitor_languages()) {
     std::vector<std::string> problems;
     start_visitor_language(language, problems);
@@ -112,8 +114,13 @@ TEST(TextOnScreen, TheCornerNotesNeverOverlapAnInstrumentAtAnyShapeInAnyLanguage
           render::draw_corner_note(overlay, tr("Mouse (no Wii Remote)"), render::Corner::bottom_left, w, h);
       const render::NoteBox silent =
           render::draw_corner_note(overlay, tr("No sound"), render::Corner::bottom_right, w, h);
-      for (const Scene* scene : {&test::percussion(), &test::wall()}) {
+      for (const Scene* file_scene : {&test::percussion(), &test::wall()}) {
+        const Scene laid = laid_out(*file_scene, layout_for(*file_scene, w / h));
+        const Scene* scene = &laid;
         const glm::mat4 vp = render::view_projection(*scene, w / h);
+        std::vector<render::NoteBox> invitations;
+        for (const bool with_mouse : {false, true})
+          invitations.push_back(render::draw_banner(overlay, hint_text(KioskHint::invitation, scene->kind, with_mouse), w, h));
         for (const Target& t : scene->targets) {
           float x0 = w, y0 = h, x1 = 0, y1 = 0;
           for (const double x : {t.x_min, t.x_max})
@@ -127,6 +134,8 @@ TEST(TextOnScreen, TheCornerNotesNeverOverlapAnInstrumentAtAnyShapeInAnyLanguage
                                    scene->name + " target " + std::to_string(t.id);
           EXPECT_FALSE(overlap(mouse, x0, y0, x1, y1)) << what << ": the mouse note";
           EXPECT_FALSE(overlap(silent, x0, y0, x1, y1)) << what << ": the no-sound note";
+          for (const render::NoteBox& invitation : invitations)
+            EXPECT_FALSE(overlap(invitation, x0, y0, x1, y1)) << what << ": the invitation";
         }
       }
     }
