@@ -1,5 +1,7 @@
 // `mallet render` as a researcher's script runs it.
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -86,6 +88,48 @@ TEST(RenderCli, AMissingModelNamesTheFileAndDrawsNothing) {
   EXPECT_EQ(WEXITSTATUS(status), 2) << out;
   EXPECT_NE(out.find(".glb"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+}
+
+//! The events.csv rows' target ids.
+std::vector<int> struck_targets(const std::filesystem::path& events) {
+  std::ifstream in(events);
+  std::string line;
+  std::getline(in, line);  // the header
+  std::vector<int> out;
+  while (std::getline(in, line))
+    if (const std::size_t a = line.find(','); a != std::string::npos) out.push_back(std::stoi(line.substr(a + 1)));
+  return out;
+}
+
+TEST(LayoutCli, APortraitScriptStrikesItsBarsWhenSimulatedInThePortraitLayoutAndRendersStacked) {
+  // A researcher reproducing a portrait kiosk: `mallet trajectory --layout portrait` aims at
+  // the stacked bars, and `mallet simulate --layout portrait` strikes exactly them; the same
+  // script in the landscape layout (where the bars are elsewhere) does not.
+  const auto dir = test::scratch_dir();
+  test::CliResult r = test::run_mallet("trajectory --layout portrait --targets 10,2,13 --space world --interval 0.8 --out " +
+                                       (dir / "p.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = test::run_mallet("simulate --layout portrait --input-space world --input " + (dir / "p.csv").string() +
+                       " --out " + (dir / "portrait").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(struck_targets(dir / "portrait" / "events.csv"), (std::vector<int>{10, 2, 13}));
+  r = test::run_mallet("simulate --input-space world --input " + (dir / "p.csv").string() + " --out " +
+                       (dir / "landscape").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(struck_targets(dir / "landscape" / "events.csv"), (std::vector<int>{10, 2, 13}));
+  // `render` lays the scene out for its --size as the kiosk does (auto): a portrait image
+  // differs from the landscape layout framed on the same image.
+  for (const char* layout : {"auto", "landscape"}) {
+    r = test::run_mallet("render --input-space world --input " + (dir / "p.csv").string() +
+                         " --at 0.5 --size 90x160 --msaa 1 --layout " + layout + " --out " +
+                         (dir / (std::string(layout) + ".png")).string());
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  EXPECT_NE(render::read_png(dir / "auto.png").rgba, render::read_png(dir / "landscape.png").rgba);
+  r = test::run_mallet("simulate --layout sideways --input " + (dir / "p.csv").string() + " --out " +
+                       (dir / "x").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--layout"), std::string::npos) << r.output;
 }
 
 }  // namespace
