@@ -56,6 +56,23 @@
 namespace mallet::app {
 namespace {
 
+//! Up to eight of the letters in `text` that `font` cannot draw, as they are written; "" if none.
+std::string missing_glyphs(const render::FontAtlas& font, std::string_view text) {
+  std::string out;
+  int n = 0;
+  for (std::size_t i = 0; i < text.size() && n < 8;) {
+    std::size_t len = 1;  // the letter's bytes: its lead byte and the continuation bytes after it
+    while (i + len < text.size() && (static_cast<unsigned char>(text[i + len]) & 0xC0) == 0x80) ++len;
+    const std::string_view letter = text.substr(i, len);
+    const std::u32string code = render::decode_utf8(letter);
+    if (!code.empty() && !font.has(code[0]) && out.find(letter) == std::string::npos) {
+      out += (n++ ? " " : "") + std::string(letter);
+    }
+    i += len;
+  }
+  return out;
+}
+
 std::atomic<bool> g_reload{false};
 void on_sighup(int) { g_reload.store(true); }
 std::atomic<bool> g_stop{false};
@@ -235,12 +252,24 @@ void WindowKiosk::run_visitor_session() {
   } else if (stage_->mouse) {
     pointer = [m = stage_->mouse.get()] { return m->take(); };
   }
+  // The study in one language: the kiosk's where the protocol has its words, else wholly in
+  // the protocol's own (the kiosk's texts too: prompts, Yes/No, thanks); the kiosk's back after.
+  const std::string kiosk_language = visitor_language();
+  const std::string shown = stage_->visitor->visitor->language_for(kiosk_language);
+  study::StudyProtocol protocol = *stage_->visitor;
+  const study::VisitorTexts words = protocol.visitor->text_in(shown);
+  protocol.visitor->offer = words.offer;
+  protocol.visitor->consent = words.consent;
+  if (shown != kiosk_language) {
+    journal::info("visitor study: in {} (the protocol has no words in {})", shown.c_str(), kiosk_language.c_str());
+    use_visitor_language(shown);
+  }
   try {
     std::random_device random;
     const std::uint64_t id = (static_cast<std::uint64_t>(random()) << 32) ^ random();
     // The study's frames are the kiosk's life meanwhile: they feed its watchdog.
     const study::VisitorSessionResult r = options_.visitor_sessions.run(
-        win_, stage_->config, stage_->file_scene, *stage_->visitor, study::visitor_session_id(id),
+        win_, stage_->config, stage_->file_scene, protocol, study::visitor_session_id(id),
         study::utc_date(std::time(nullptr)), pointer, [this] {
           health_.feed_watchdog(monotonic_now());
           return !g_stop.load();
@@ -257,6 +286,7 @@ void WindowKiosk::run_visitor_session() {
     if (const std::string what = e.what(); what.find(health_.state().dir().string()) != std::string::npos)
       health_.state().wrote("visitor study results", refused(what));
   }
+  if (shown != kiosk_language) use_visitor_language(kiosk_language);
   install_callbacks();
   cursor_.clear();
   // The swapchain's images hold the study's frames: a new renderer draws them whole.
@@ -295,6 +325,21 @@ void WindowKiosk::build(KioskSetup setup) {
       stage->problems.push_back(std::string("visitor study off: ") + e.what());
       journal::warning("visitor study off: {}", e.what());
     }
+  }
+  if (stage->visitor && stage->visitor->visitor) {
+    // Words the kiosk's font cannot draw are not shown: that language's visitors see the
+    // study in the protocol's own language, and the page says why.
+    study::VisitorProtocol& v = *stage->visitor->visitor;
+    std::erase_if(v.texts, [&](const std::pair<std::string, study::VisitorTexts>& t) {
+      const std::string missing = missing_glyphs(*win_.font, t.second.offer + t.second.consent);
+      if (missing.empty()) return false;
+      const std::string line = fmt::format("visitor study: its {} words need letters the kiosk's font lacks ({}); "
+                                           "{} visitors are shown it in {}",
+                                           t.first, missing, t.first, v.language);
+      stage->problems.push_back(line);
+      journal::warning("{}", line.c_str());
+      return true;
+    });
   }
   // The old output must stop before the new one opens the device; so must the old remote.
   if (stage_ && stage_->output) stage_->output->stop();
@@ -659,9 +704,16 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
   // hint that something needs doing, a lost remote, comes first).
   if ((hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now)) {
-    render::draw_banner(o, stage_->visitor->visitor->offer + " " + tr("(strike Yes)"), w, h);
+    // Wholly in the language the study will be shown in: the kiosk's where the protocol has
+    // its words, else the protocol's own (never its words beside another language's).
+    const study::VisitorProtocol& v = *stage_->visitor->visitor;
+    const std::string kiosk_language = visitor_language();
+    const std::string shown = v.language_for(kiosk_language);
+    if (shown != kiosk_language) use_visitor_language(shown);
+    render::draw_banner(o, v.text_in(shown).offer + " " + tr("(strike Yes)"), w, h);
     render::draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
                     {{visitor_yes_bar(), tr("Yes")}});
+    if (shown != kiosk_language) use_visitor_language(kiosk_language);
   } else if (hint != KioskHint::none)
     render::draw_banner(o, hint_text(hint, stage_->scene.kind, stage_->source == InputSource::mouse), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) render::draw_banner(o, notice_, w, h);

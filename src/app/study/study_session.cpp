@@ -255,6 +255,7 @@ std::optional<ResultRow> run_trial(const StudyPlan& plan, const Scene& scene, co
   row.session = session;
   row.visual_peak_m = visual_peak;
   row.actuator_peak = actuator_peak;
+  row.language = visitor_language();  // the language the trial's words were shown in
   if (tapped) {  // a crossing is no strike: no onsets
     row.actuator_onset_ms = static_cast<double>(actuator_onset) / 1e6;
     row.picture_onset_ms = static_cast<double>(picture_onset) / 1e6;

@@ -10,6 +10,7 @@
 
 #include "core/config/toml_reader.hpp"
 #include "core/named.hpp"
+#include "core/visitor_language.hpp"
 
 namespace mallet::study {
 
@@ -134,13 +135,41 @@ AnswerStrike read_answer_strike(TableReader t, const std::vector<Material>& mate
   return a;
 }
 
+//! The offer and the consent of one language, checked as the attract screen and the consent
+//! screen need them.
+VisitorTexts read_visitor_texts(TableReader& t, const VisitorTexts& fallback) {
+  VisitorTexts w;
+  w.offer = t.string_or("offer", fallback.offer);
+  if (w.offer.empty() || w.offer.size() > 120) t.fail("offer", "must be 1-120 characters (one line on the attract screen)");
+  w.consent = t.string("consent");
+  if (w.consent.empty() || w.consent.size() > 1200)
+    t.fail("consent", "must be 1-1200 characters (it is shown on one screen)");
+  return w;
+}
+
+//! A language the kiosk can show (a catalogue of its own, or English).
+std::string visitor_language_key(TableReader& t, std::string_view key, std::string value) {
+  if (!is_visitor_language(value))
+    t.fail(key, "\"" + value + "\": not a language the kiosk has (" + visitor_languages_text() + ")");
+  return value;
+}
+
 VisitorProtocol read_visitor(TableReader t) {
   VisitorProtocol v;
-  v.offer = t.string_or("offer", v.offer);
-  if (v.offer.empty() || v.offer.size() > 120) t.fail("offer", "must be 1-120 characters (one line on the attract screen)");
-  v.consent = t.string("consent");
-  if (v.consent.empty() || v.consent.size() > 1200)
-    t.fail("consent", "must be 1-1200 characters (it is shown on one screen)");
+  const VisitorTexts own = read_visitor_texts(t, {v.offer, ""});
+  v.offer = own.offer;
+  v.consent = own.consent;
+  v.language = visitor_language_key(t, "language", t.string_or("language", v.language));
+  if (auto text = t.optional_table("text")) {
+    for (const std::string& lang : text->keys()) {
+      TableReader words = text->table(lang);
+      visitor_language_key(*text, lang, lang);
+      if (lang == v.language) text->fail(lang, "is the protocol's own language ([visitor] language): its words are [visitor]'s");
+      v.texts.emplace_back(lang, read_visitor_texts(words, {"", ""}));
+      words.finish();
+    }
+    text->finish();
+  }
   t.read("trials", v.trials, 1, 50);
   v.answer_timeout = seconds_key(t, "answer_timeout_s", to_seconds(v.answer_timeout), 3, 600);
   t.finish();

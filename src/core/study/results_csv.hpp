@@ -8,6 +8,7 @@
 //   ,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct            (adaptive)
 //   ,planned_trials                                                          (sessions)
 //   ,estimate_mode_pct                                                       (QUEST's mode; QUEST+: its joint mode's threshold)
+//   ,language                                                                (the words shown: en, de, fr, ja)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
@@ -23,7 +24,9 @@
 // (the schedule's, an adaptive protocol's bound, a visitor's few): a participant with fewer
 // rows stopped early (a visitor who walked away). `estimate_mode_pct` is QUEST's posterior
 // mode after the answer (the grid's most probable threshold; QUEST+: the threshold of its
-// joint mode; in full; empty for the other procedures): columns are only ever added at the end. A file begun before some of these
+// joint mode; in full; empty for the other procedures). `language` is the language the
+// trial's words were shown in (the prompts, the answer labels; a visitor study's consent):
+// columns are only ever added at the end. A file begun before some of these
 // columns keeps its header: its rows are appended with the columns it has.
 #include <cstdint>
 #include <filesystem>
@@ -41,9 +44,9 @@ inline constexpr const char* kResultsHeader =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
     "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct,"
-    "planned_trials,estimate_mode_pct";
+    "planned_trials,estimate_mode_pct,language";
 //! The columns this version writes.
-inline constexpr std::size_t kResultsColumns = 23;
+inline constexpr std::size_t kResultsColumns = 24;
 //! How many of kResultsHeader's columns a file's header has: kResultsHeaderWithoutTiming
 //! or longer, up to all of them, in this order; 0 for any other header (not resumable).
 std::size_t results_columns(std::string_view header);
@@ -72,6 +75,7 @@ struct ResultRow {
   double estimate_sd_pct = std::numeric_limits<double>::quiet_NaN();
   int planned_trials = 0;  //!< 0: not recorded
   double estimate_mode_pct = std::numeric_limits<double>::quiet_NaN();  //!< QUEST: posterior mode; NaN: none
+  std::string language;  //!< the words' language; empty in an older file
 };
 
 //! The row as written, ending in '\n': its first `columns` columns (kResultsHeader's order).

@@ -29,4 +29,16 @@ std::string_view procedure_name(StudyProcedure procedure) {
   return name_in(kStudyProcedureNames, procedure, "constant");
 }
 
+std::string VisitorProtocol::language_for(std::string_view kiosk_language) const {
+  for (const auto& [lang, words] : texts)
+    if (lang == kiosk_language) return lang;
+  return language;
+}
+
+VisitorTexts VisitorProtocol::text_in(std::string_view lang) const {
+  for (const auto& [l, words] : texts)
+    if (l == lang) return words;
+  return {offer, consent};
+}
+
 }  // namespace mallet::study

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/file_error.hpp"
@@ -108,14 +109,31 @@ struct AnswerStrike {
   std::optional<Material> feel;  //!< Eq. 1's actuator signal and bounce of an answer strike; none: neither
 };
 
+//! A visitor study's own words, in one language.
+struct VisitorTexts {
+  std::string offer;
+  std::string consent;
+};
+
 //! A visitor micro-study (the kiosk's [study] visitor_protocol): the attract screen's offer,
 //! the one-screen consent text a visitor agrees to by striking, how many trials a visitor
 //! does, and how long the kiosk waits for a strike before the session counts as abandoned.
+//! Its words are written in `language` ([visitor] language, "en" unless set) and may be
+//! given in others ([visitor.text.LANG]): a visitor is shown the study in the kiosk's
+//! language where the protocol has its words, else wholly in the protocol's own language
+//! (the kiosk's texts around them too: never a mix on one screen).
 struct VisitorProtocol {
   std::string offer = "Help science: 60 seconds, 6 taps";
   std::string consent;
+  std::string language = "en";
+  std::vector<std::pair<std::string, VisitorTexts>> texts;  //!< [visitor.text.LANG], file order
   int trials = 6;
   Nanos answer_timeout = 20'000'000'000;
+
+  //! The language a visitor whose kiosk speaks `kiosk_language` is shown the study in.
+  std::string language_for(std::string_view kiosk_language) const;
+  //! The words in `language` (the protocol's own for its language or one it lacks).
+  VisitorTexts text_in(std::string_view language) const;
 };
 
 //! The grid an adaptive track's differences are rounded to: each is one generated stimulus,

@@ -34,10 +34,11 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 //! `mallet run` in a window under its own Xvfb for 2.5 s, its state in `state`; the
 //! exit status, its stderr and stdout in `log`.
-int run_window_kiosk(const fs::path& settings, const fs::path& state, const fs::path& log) {
+int run_window_kiosk(const fs::path& settings, const fs::path& state, const fs::path& log,
+                     const std::string& size = "320x180") {
   const std::string cmd = child_preload() + "MALLET_STATE_DIR='" + state.string() +
                           "' xvfb-run -a -s '-screen 0 1024x768x24' " + MALLET_TEST_BINARY +
-                          " run --windowed --size 320x180 --idle-after 1 --quit-after 2.5 --device llvmpipe --config " +
+                          " run --windowed --size " + size + " --idle-after 1 --quit-after 2.5 --device llvmpipe --config " +
                           settings.string() + " > " + log.string() + " 2>&1";
   const int raw = std::system(cmd.c_str());
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -83,6 +84,32 @@ TEST(KioskFaults, ABrokenSettingsFileAtStartRunsTheLastGoodSettingsAndSaysSoInOn
   ASSERT_EQ(run_window_kiosk(settings, state, dir / "defaults.txt"), 0) << slurp(dir / "defaults.txt");
   EXPECT_NE(slurp(dir / "defaults.txt").find("; the kiosk runs on the shipped defaults ("), std::string::npos)
       << slurp(dir / "defaults.txt");
+}
+
+TEST(KioskLayout, APortraitWindowLaysTheInstrumentsOutStackedAndTheGhostStrikesThem) {
+  ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian package xvfb)";
+  const fs::path dir = test::scratch_dir();
+  const fs::path settings = dir / "etc" / "mallet.toml";
+  write_text(settings, "[input]\nsource = \"mouse\"\nmouse = \"window\"\n");
+  ASSERT_EQ(run_window_kiosk(settings, dir / "state", dir / "portrait.txt", "180x320"), 0) << slurp(dir / "portrait.txt");
+  const std::string portrait = slurp(dir / "portrait.txt");
+  EXPECT_NE(portrait.find("scene: laid out portrait for the screen's 0.56:1"), std::string::npos) << portrait;
+  EXPECT_NE(portrait.find("strike t="), std::string::npos) << "the ghost plays:\n" << portrait;
+  std::istringstream lines(portrait);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("strike t=") != std::string::npos) {  // the phrase opens on the upper row, struck from above
+      EXPECT_NE(line.find("xylophone"), std::string::npos) << line;
+    }
+  }
+  ASSERT_EQ(run_window_kiosk(settings, dir / "state", dir / "landscape.txt"), 0) << slurp(dir / "landscape.txt");
+  EXPECT_EQ(slurp(dir / "landscape.txt").find("laid out portrait"), std::string::npos) << slurp(dir / "landscape.txt");
+  // The headless run lays its image out as the window does.
+  const test::CliResult headless = test::run_command(std::string(MALLET_TEST_BINARY) +
+                                                     " run --headless --seconds 0.1 --size 36x64 --config " +
+                                                     settings.string() + " --out " + (dir / "headless").string());
+  ASSERT_EQ(headless.status, 0) << headless.output;
+  EXPECT_NE(slurp(dir / "headless" / "log.txt").find("percussion.toml, laid out portrait"), std::string::npos)
+      << slurp(dir / "headless" / "log.txt");
 }
 
 TEST(KioskFaults, HeadlessAndTheOtherCommandsStillRefuseABrokenSettingsFileWithExitTwo) {

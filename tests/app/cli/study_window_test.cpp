@@ -109,6 +109,8 @@ TEST(StudyWindow, TheMouseStrikesAnAnswerBar) {
   ASSERT_EQ(rows.size(), 1u) << log;
   EXPECT_EQ(rows[0].answer, "2");
   EXPECT_EQ(rows[0].source, "strike");
+  EXPECT_EQ(rows[0].language, "en");
+  EXPECT_NE(log.find("visitor study: in en (the protocol has no words in ja)"), std::string::npos) << log;
   EXPECT_GT(rows[0].response_time_ms, 0.0);
 }
 
@@ -171,7 +173,9 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
   visual.replace(visual.find("[\"both\", \"none\"]"), 16, "[\"visual_only\", \"none\"]");
   std::ofstream(dir / "v.toml") << visual
                                 << "[visitor]\nconsent = \"Strike Yes to take part.\"\ntrials = 1\nanswer_timeout_s = 60\n";
-  std::ofstream(dir / "mallet.toml") << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n"
+  // A Japanese kiosk, and a protocol with English words only: the study is shown wholly in
+  // English (its prompt below, the row's language), never English words beside Japanese ones.
+  std::ofstream(dir / "mallet.toml") << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n[kiosk]\nlanguage = \"ja\"\n"
                                      << "[study]\nvisitor_protocol = \"v.toml\"\noffer_every_s = 10\noffer_for_s = 60\n"
                                      << "results_dir = \"visitors\"\n[metrics]\ntextfile = \"m.prom\"\n";
   Screen screen;
@@ -207,6 +211,8 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
   EXPECT_EQ(rows[0].session, study::utc_date(std::time(nullptr)));
   EXPECT_EQ(rows[0].answer, "1");
   EXPECT_EQ(rows[0].source, "strike");
+  EXPECT_EQ(rows[0].language, "en");
+  EXPECT_NE(log.find("visitor study: in en (the protocol has no words in ja)"), std::string::npos) << log;
   // The operators' count of it (written at the stop).
   const std::string prom = test::slurp(dir / "m.prom");
   EXPECT_NE(prom.find("mallet_visitor_study_sessions_total{outcome=\"completed\"} 1\n"), std::string::npos) << prom;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/study/protocol_loader.hpp"
+#include "core/visitor_language.hpp"
 #include "core/study/study_fixture.hpp"
 
 namespace mallet::study {
@@ -373,6 +374,36 @@ TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
   EXPECT_NE(error_of(one_material).find("visitor: a visitor's consent is struck on the first two answer bars"),
             std::string::npos)
       << error_of(one_material);
+}
+
+TEST(StudyProtocol, AVisitorProtocolGivesItsWordsPerLanguageAndAnyOtherLanguageGetsItsOwnWhole) {
+  // Issue 30: the shipped visitor study in English, German and French; a Japanese kiosk,
+  // whose words it lacks, shows it wholly in English (the protocol's own language).
+  const StudyProtocol v = load_shipped("visitor.toml");
+  ASSERT_TRUE(v.visitor);
+  EXPECT_EQ(v.visitor->language, "en");
+  EXPECT_EQ(v.visitor->language_for("de"), "de");
+  EXPECT_EQ(v.visitor->language_for("fr"), "fr");
+  EXPECT_EQ(v.visitor->language_for("ja"), "en");
+  EXPECT_EQ(v.visitor->language_for("en"), "en");
+  EXPECT_NE(v.visitor->text_in("de").consent.find("Schlag auf Ja"), std::string::npos);
+  EXPECT_NE(v.visitor->text_in("fr").offer.find("Aide la science"), std::string::npos);
+  EXPECT_EQ(v.visitor->text_in("en").offer, v.visitor->offer);
+  EXPECT_EQ(v.visitor->text_in("ja").consent, v.visitor->consent);
+  // Each language's words are checked as the protocol's own; an unknown language, or the
+  // protocol's own given twice, is refused at its line.
+  const std::string strike =
+      replaced(std::string(test::kTwoAfcProtocol), "seed = 42", "seed = 42\nresponse = \"strike\"") +
+      "[visitor]\nconsent = \"ok\"\n";
+  EXPECT_EQ(error_of(strike + "[visitor.text.de]\noffer = \"Hilf\"\n"),
+            "bad.toml:26:1: visitor.text.de.consent: missing (required)");
+  EXPECT_EQ(error_of(strike + "[visitor.text.xx]\noffer = \"a\"\nconsent = \"b\"\n"),
+            "bad.toml:26:1: visitor.text.xx: \"xx\": not a language the kiosk has (" + visitor_languages_text() + ")");
+  EXPECT_EQ(error_of(strike + "[visitor.text.en]\noffer = \"a\"\nconsent = \"b\"\n"),
+            "bad.toml:26:1: visitor.text.en: is the protocol's own language ([visitor] language): its words are "
+            "[visitor]'s");
+  EXPECT_EQ(error_of(replaced(strike, "consent = \"ok\"", "consent = \"ok\"\nlanguage = \"xx\"")),
+            "bad.toml:26:12: visitor.language: \"xx\": not a language the kiosk has (" + visitor_languages_text() + ")");
 }
 
 }  // namespace

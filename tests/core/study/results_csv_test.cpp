@@ -46,7 +46,7 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
-            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,,\n");
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,,,\n");
   EXPECT_EQ(format_row(row(3, true), 14),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
@@ -220,7 +220,9 @@ TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
 TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
   // The estimates are written as the shortest decimal that reads back as the same double (4
   // significant digits before), and QUEST's posterior mode is a column of its own, the last.
-  EXPECT_EQ(std::string(kResultsHeader).substr(std::string(kResultsHeader).rfind(',') + 1), "estimate_mode_pct");
+  const std::string header = kResultsHeader;
+  const std::string before_language = header.substr(0, header.rfind(','));
+  EXPECT_EQ(before_language.substr(before_language.rfind(',') + 1), "estimate_mode_pct");
   const fs::path dir = test::scratch_dir();
   ResultRow r = row(4, true);
   r.procedure = "quest";
@@ -229,7 +231,7 @@ TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
   r.estimate_sd_pct = std::nextafter(14.0, 15.0);  // 14.000000000000002: one ulp above 14
   r.estimate_mode_pct = 1.0 / 3.0;
   const std::string line = format_row(r);
-  EXPECT_NE(line.find(",quest,2,,0.30000000000000004,14.000000000000002,,0.3333333333333333\n"), std::string::npos)
+  EXPECT_NE(line.find(",quest,2,,0.30000000000000004,14.000000000000002,,0.3333333333333333,"), std::string::npos)
       << line;
   ResultRow whole = r;
   whole.estimate_pct = 20;
@@ -247,7 +249,7 @@ TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
   EXPECT_TRUE(std::isnan(back.rows[1].estimate_mode_pct));
   // A file from before the mode (22 columns) reads, its rows without a mode, and a session
   // resumed in it appends rows of its own 22 columns.
-  const std::string before_mode = std::string(kResultsHeader).substr(0, std::string(kResultsHeader).rfind(','));
+  const std::string before_mode = before_language.substr(0, before_language.rfind(','));
   EXPECT_EQ(results_columns(before_mode), 22u);
   { std::ofstream(dir / "v22.csv") << before_mode << "\n" << format_row(r, 22); }
   {
@@ -275,13 +277,42 @@ TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
 
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,,\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,,,\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":1: missing column \"condition\" (expected a header starting "
                            "participant,trial,condition,stimuli,answer,correct,response_time_ms)");
+}
+
+TEST(ResultsCsv, TheLanguageTheWordsWereShownInIsTheLastColumnAndAnOlderFileResumesWithoutIt) {
+  // A visitor shown the study in German (issue 30): the row says so; a file begun before the
+  // column reads, its rows without a language, and a session resumed in it keeps its columns.
+  const std::string header = kResultsHeader;
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "language");
+  const std::string before_language = header.substr(0, header.rfind(','));
+  EXPECT_EQ(results_columns(before_language), kResultsColumns - 1);
+  const fs::path dir = test::scratch_dir();
+  ResultRow r = row(1, true);
+  r.language = "de";
+  EXPECT_TRUE(format_row(r).ends_with(",de\n")) << format_row(r);
+  {
+    ResultsWriter w(dir / "r.csv", read_results(dir / "r.csv"));
+    w.append(r);
+  }
+  const ResultsFile back = read_results(dir / "r.csv");
+  ASSERT_EQ(back.rows.size(), 1u);
+  EXPECT_EQ(back.rows[0].language, "de");
+  { std::ofstream(dir / "v23.csv") << before_language << "\n" << format_row(r, kResultsColumns - 1); }
+  {
+    ResultsWriter w(dir / "v23.csv", read_results(dir / "v23.csv"));
+    w.append(r);
+  }
+  const ResultsFile old = read_results(dir / "v23.csv");
+  ASSERT_EQ(old.rows.size(), 2u);
+  for (const ResultRow& o : old.rows) EXPECT_EQ(o.language, "") << "not in that file's columns";
+  EXPECT_EQ(slurp(dir / "v23.csv"), before_language + "\n" + format_row(r, 23) + format_row(r, 23));
 }
 
 }  // namespace
