@@ -109,8 +109,6 @@ TEST(StudyWindow, TheMouseStrikesAnAnswerBar) {
   ASSERT_EQ(rows.size(), 1u) << log;
   EXPECT_EQ(rows[0].answer, "2");
   EXPECT_EQ(rows[0].source, "strike");
-  EXPECT_EQ(rows[0].language, "en");
-  EXPECT_NE(log.find("visitor study: in en (the protocol has no words in ja)"), std::string::npos) << log;
   EXPECT_GT(rows[0].response_time_ms, 0.0);
 }
 
