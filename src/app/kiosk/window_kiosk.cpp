@@ -702,18 +702,18 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   }
   const KioskHint hint = states_->hint();
   // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
-  // hint that something needs doing, a lost remote, comes first).
-  if ((hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now)) {
-    // Wholly in the language the study will be shown in: the kiosk's where the protocol has
-    // its words, else the protocol's own (never its words beside another language's).
-    const study::VisitorProtocol& v = *stage_->visitor->visitor;
-    const std::string kiosk_language = visitor_language();
-    const std::string shown = v.language_for(kiosk_language);
-    if (shown != kiosk_language) use_visitor_language(shown);
-    render::draw_banner(o, v.text_in(shown).offer + " " + tr("(strike Yes)"), w, h);
+  // hint that something needs doing, a lost remote, comes first). While it shows, the screen
+  // is wholly in the language the study will be shown in: the kiosk's where the protocol has
+  // its words, else the protocol's own (never its words beside another language's).
+  const bool offering = (hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now);
+  const std::string kiosk_language = visitor_language();
+  const std::string screen_language =
+      offering ? stage_->visitor->visitor->language_for(kiosk_language) : kiosk_language;
+  if (screen_language != kiosk_language) use_visitor_language(screen_language);
+  if (offering) {
+    render::draw_banner(o, stage_->visitor->visitor->text_in(screen_language).offer + " " + tr("(strike Yes)"), w, h);
     render::draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
                     {{visitor_yes_bar(), tr("Yes")}});
-    if (shown != kiosk_language) use_visitor_language(kiosk_language);
   } else if (hint != KioskHint::none)
     render::draw_banner(o, hint_text(hint, stage_->scene.kind, stage_->source == InputSource::mouse), w, h);
   else if (now < notice_until_ && states_->state() != KioskState::calibration) render::draw_banner(o, notice_, w, h);
@@ -725,6 +725,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                              render::Corner::bottom_left, w, h);
   if (!stage_->output && (states_->state() == KioskState::attract || states_->state() == KioskState::play))
     render::draw_corner_note(o, tr("No sound"), render::Corner::bottom_right, w, h);
+  if (screen_language != kiosk_language) use_visitor_language(kiosk_language);
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();
     return;

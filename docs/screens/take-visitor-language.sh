@@ -1,0 +1,23 @@
+#!/bin/bash
+# The kiosk's visitor-study offer and consent with the kiosk set to LANG (a visual-only copy
+# of the shipped visitor protocol: a machine without a sound card is offered no study whose
+# actuator cues it cannot deliver): OUT/visitor-offer-LANG.png, OUT/visitor-consent-LANG.png.
+#   xvfb-run -a -s "-screen 0 1280x720x24" docs/screens/take-visitor-language.sh build/release/mallet docs/screens de
+#   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
+set -eu
+mallet=$1; out=$2; lang=$3
+work=$(mktemp -d); export XDG_RUNTIME_DIR=$work/xdg MALLET_STATE_DIR=$work/state; mkdir -m 700 "$XDG_RUNTIME_DIR"
+sed 's/^conditions = .*/conditions = ["visual_only", "none"]/' "$(dirname "$0")/../../config/study/visitor.toml" > $work/v.toml
+grep -q 'conditions = \["visual_only"' $work/v.toml
+printf '[input]\nsource = "mouse"\nmouse = "window"\n[kiosk]\nlanguage = "%s"\n[study]\nvisitor_protocol = "%s"\noffer_every_s = 10\noffer_for_s = 60\nresults_dir = "%s"\n' "$lang" "$work/v.toml" "$work/r" > $work/mallet.toml
+"$mallet" run --config $work/mallet.toml >"$work/log" 2>&1 & pid=$!
+trap 'kill $pid 2>/dev/null || true; rm -rf "$work"' EXIT
+for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
+read -r w h < <(xdotool getdisplaygeometry)
+for _ in $(seq 60); do grep -q "visitor study: offered" $work/log && break; sleep 0.5; done
+sleep 1; import -window root "$out/visitor-offer-$lang.png"
+x=$(( w * 918 / 1000 ))
+for y in $(seq $(( h * 40 / 100 )) $(( h / 60 )) $(( h * 66 / 100 ))); do xdotool mousemove "$x" "$y"; sleep 0.03; done
+for _ in $(seq 20); do grep -q "consent screen" $work/log && break; sleep 0.5; done
+sleep 1.5; import -window root "$out/visitor-consent-$lang.png"
+grep -E "visitor study|consent|refused" $work/log >&2 || true
