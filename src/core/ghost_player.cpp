@@ -37,8 +37,8 @@ bool meets_box(Vec2 a, Vec2 b, double x0, double x1, double y0, double y1) {
 }
 
 //! The travel from `from` to `to` around the rows of bars it would pass through (stacked
-//! instruments: a row with another below it has a finite floor): the waypoints before `to`,
-//! beside the end of each such row that is nearer the way.
+//! instruments: the bars of an upper row have a finite floor, core/mallet.hpp): the waypoints
+//! before `to`, beside the end of each such row that is nearer the way.
 std::vector<Vec2> around_rows(const std::vector<ContactZone>& zones, Vec2 from, Vec2 to, double clearance) {
   std::vector<Vec2> via;
   Vec2 at = from;
