@@ -86,28 +86,42 @@ FakePointer::FakePointer(const std::string& display) : display_(open_display(dis
     throw std::runtime_error("the X server " + display + " has no XTEST extension");
 }
 
-std::optional<PixelBox> FakePointer::find_window(int width, int height) {
+unsigned long FakePointer::window_of_size(int width, int height) {
   const Window root = DefaultRootWindow(display_.get());
   Window root_ret = 0, parent = 0, *children = nullptr;
   unsigned int n = 0;
-  if (!XQueryTree(display_.get(), root, &root_ret, &parent, &children, &n)) return std::nullopt;
-  std::optional<PixelBox> found;
+  if (!XQueryTree(display_.get(), root, &root_ret, &parent, &children, &n)) return 0;
+  Window found = 0;
   for (unsigned int i = 0; i < n && !found; ++i) {
     XWindowAttributes a;
     if (!XGetWindowAttributes(display_.get(), children[i], &a)) continue;
-    if (a.map_state != IsViewable || a.width != width || a.height != height) continue;
-    int x = 0, y = 0;
-    Window child = 0;
-    XTranslateCoordinates(display_.get(), children[i], root, 0, 0, &x, &y, &child);
-    if (x != 0 || y != 0) {  // no window manager here: we may place it ourselves
-      XMoveWindow(display_.get(), children[i], 0, 0);
-      XSync(display_.get(), False);
-      XTranslateCoordinates(display_.get(), children[i], root, 0, 0, &x, &y, &child);
-    }
-    found = PixelBox{x, y, a.width, a.height};
+    if (a.map_state == IsViewable && a.width == width && a.height == height) found = children[i];
   }
   if (children) XFree(children);
   return found;
+}
+
+std::optional<PixelBox> FakePointer::find_window(int width, int height) {
+  const Window window = window_of_size(width, height);
+  if (!window) return std::nullopt;
+  const Window root = DefaultRootWindow(display_.get());
+  int x = 0, y = 0;
+  Window child = 0;
+  XTranslateCoordinates(display_.get(), window, root, 0, 0, &x, &y, &child);
+  if (x != 0 || y != 0) {  // no window manager here: we may place it ourselves
+    XMoveWindow(display_.get(), window, 0, 0);
+    XSync(display_.get(), False);
+    XTranslateCoordinates(display_.get(), window, root, 0, 0, &x, &y, &child);
+  }
+  return PixelBox{x, y, width, height};
+}
+
+bool FakePointer::resize_window(int width, int height, int to_width, int to_height) {
+  const Window window = window_of_size(width, height);
+  if (!window) return false;
+  XResizeWindow(display_.get(), window, static_cast<unsigned>(to_width), static_cast<unsigned>(to_height));
+  XSync(display_.get(), False);
+  return true;
 }
 
 Nanos FakePointer::move_to(int x, int y) {

@@ -57,8 +57,13 @@ class FakePointer {
   std::optional<PixelBox> find_window(int width, int height);
   //! The pointer to (x, y) screen pixels; returns when the request was flushed to the server.
   Nanos move_to(int x, int y);
+  //! The viewable top-level window of width × height resized to to_width × to_height, as a
+  //! screen turned to portrait or an operator's drag would; false when there is none.
+  bool resize_window(int width, int height, int to_width, int to_height);
 
  private:
+  //! The viewable top-level window of this size; 0 when there is none.
+  unsigned long window_of_size(int width, int height);
   DisplayConnection display_;
 };
 

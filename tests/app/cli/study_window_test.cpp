@@ -217,5 +217,33 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
   EXPECT_NE(prom.find("mallet_visitor_study_sessions_total{outcome=\"declined\"} 0\n"), std::string::npos) << prom;
 }
 
+TEST(KioskWindow, AWindowTurnedToPortraitLaysTheSceneOutStackedAndPlaysOn) {
+  // A screen turned (here: the kiosk's window resized) from 16:9 to 9:16: the stage is built
+  // again on the same settings, laid out for portrait, and the attract mode plays on in it.
+  const fs::path dir = test::scratch_dir();
+  std::ofstream(dir / "mallet.toml") << "[input]\nsource = \"mouse\"\nmouse = \"window\"\n";
+  Screen screen;
+  screen.launch("run --windowed --size 640x360 --idle-after 1 --quit-after 60 --device llvmpipe --config " +
+                    (dir / "mallet.toml").string(),
+                dir / "log.txt", "MALLET_STATE_DIR=" + (dir / "state").string());
+  ASSERT_TRUE(test::wait_for(dir / "log.txt", "strike t=")) << test::slurp(dir / "log.txt");
+  ASSERT_TRUE(screen.find_window());
+  EXPECT_EQ(test::slurp(dir / "log.txt").find("laid out portrait"), std::string::npos);
+  ASSERT_TRUE(screen.pointer->resize_window(kW, kH, 198, 352));
+  ASSERT_TRUE(test::wait_for(dir / "log.txt", "the screen is now 0.56:1: the scene laid out portrait"))
+      << test::slurp(dir / "log.txt");
+  // The ghost strikes again, now on the stacked bars: the phrase opens on the upper row.
+  const std::size_t turned = test::slurp(dir / "log.txt").find("the scene laid out portrait");
+  std::size_t strike = std::string::npos;
+  for (int i = 0; i < 600 && strike == std::string::npos; ++i, std::system("sleep 0.1"))
+    strike = test::slurp(dir / "log.txt").find("strike t=", turned);
+  ASSERT_NE(strike, std::string::npos) << "it plays on:\n" << test::slurp(dir / "log.txt");
+  const std::string log = test::slurp(dir / "log.txt");
+  EXPECT_NE(log.substr(strike, log.find('\n', strike) - strike).find("xylophone"), std::string::npos) << log;
+  EXPECT_EQ(std::system(stop_command("run .*" + (dir / "mallet.toml").string()).c_str()), 0);
+  ASSERT_TRUE(test::wait_for(dir / "log.txt", "exit=")) << test::slurp(dir / "log.txt");
+  EXPECT_NE(test::slurp(dir / "log.txt").find("exit=0"), std::string::npos) << test::slurp(dir / "log.txt");
+}
+
 }  // namespace
 }  // namespace mallet::app
