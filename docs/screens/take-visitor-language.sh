@@ -3,6 +3,7 @@
 # of the shipped visitor protocol: a machine without a sound card is offered no study whose
 # actuator cues it cannot deliver): OUT/visitor-offer-LANG.png, OUT/visitor-consent-LANG.png.
 #   xvfb-run -a -s "-screen 0 1280x720x24" docs/screens/take-visitor-language.sh build/release/mallet docs/screens de
+# (any shape: 16:9 or 9:16 by the screen's; the files are named by LANG only)
 #   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
 set -eu
 mallet=$1; out=$2; lang=$3
@@ -16,8 +17,10 @@ for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1
 read -r w h < <(xdotool getdisplaygeometry)
 for _ in $(seq 60); do grep -q "visitor study: offered" $work/log && break; sleep 0.5; done
 sleep 1; import -window root "$out/visitor-offer-$lang.png"
-x=$(( w * 918 / 1000 ))
-for y in $(seq $(( h * 40 / 100 )) $(( h / 60 )) $(( h * 66 / 100 ))); do xdotool mousemove "$x" "$y"; sleep 0.03; done
+# Down onto "Yes", the last glockenspiel bar: at 92 % of a 16:9 screen's width and 59 % of its
+# height; on a portrait screen (instruments stacked) at 72 % and 80 %.
+if [ "$h" -gt "$w" ]; then x=$(( w * 72 / 100 )); from=62; to=84; else x=$(( w * 918 / 1000 )); from=40; to=66; fi
+for y in $(seq $(( h * from / 100 )) $(( h / 60 )) $(( h * to / 100 ))); do xdotool mousemove "$x" "$y"; sleep 0.03; done
 for _ in $(seq 20); do grep -q "consent screen" $work/log && break; sleep 0.5; done
 sleep 1.5; import -window root "$out/visitor-consent-$lang.png"
 grep -E "visitor study|consent|refused" $work/log >&2 || true
