@@ -25,11 +25,13 @@ double shown_scale(const ScreenToWorld& content, double aspect) {
   return std::min(aspect / content.width_m(), 1.0 / content.height_m());
 }
 
-//! The content narrowed to `span` plus `margin` each side, never wider than it was.
-void narrow_to(ScreenToWorld& content, Span span, double margin) {
-  if (span.empty() || span.width() + 2 * margin >= content.width_m()) return;
+//! The content narrowed to `span` plus `margin` each side, never wider than it was; false
+//! when it stays as it was.
+bool narrow_to(ScreenToWorld& content, Span span, double margin) {
+  if (span.empty() || span.width() + 2 * margin >= content.width_m()) return false;
   content.left_m = span.lo - margin;
   content.right_m = span.hi + margin;
+  return true;
 }
 
 }  // namespace
@@ -41,11 +43,12 @@ Scene portrait_layout(const Scene& scene) {
   const double rows_apart = content.height_m();
   const double margin = rows_apart / 8;
   const double centre_x = 0.5 * (content.left_m + content.right_m);
+  bool narrowed = false;
   if (scene.kind == SceneKind::texture && scene.texture) {
     const TextureRelief& relief = scene.texture->relief;
     Span disc;
     disc.add(relief.center.x - relief.radius_m, relief.center.x + relief.radius_m);
-    narrow_to(out.screen_to_world, disc, margin);
+    narrowed = narrow_to(out.screen_to_world, disc, margin);
   } else if (scene.kind == SceneKind::percussion && scene.instruments.size() >= 2) {
     double widest = 0;
     int row = 0;
@@ -67,16 +70,16 @@ Scene portrait_layout(const Scene& scene) {
     }
     Span all;
     all.add(centre_x - widest / 2, centre_x + widest / 2);
-    narrow_to(out.screen_to_world, all, margin);
+    narrowed = narrow_to(out.screen_to_world, all, margin);
     out.screen_to_world.bottom_m = content.bottom_m - rows_apart * std::max(row - 1, 0);
     out.camera.eye_y_m = scene.camera.eye_y_m - rows_apart * std::max(row - 1, 0) / 2;
   } else {
     Span bars;
     for (const Target& t : scene.targets) bars.add(t.x_min, t.x_max);
-    narrow_to(out.screen_to_world, bars, margin);
+    narrowed = narrow_to(out.screen_to_world, bars, margin);
   }
-  out.camera.eye_x_m = 0.5 * (out.screen_to_world.left_m + out.screen_to_world.right_m);
-  if (out.screen_to_world.width_m() == content.width_m()) out.camera.eye_x_m = scene.camera.eye_x_m;
+  // The eye faces the narrowed content's middle (the rows are centred on it).
+  if (narrowed) out.camera.eye_x_m = 0.5 * (out.screen_to_world.left_m + out.screen_to_world.right_m);
   return out;
 }
 

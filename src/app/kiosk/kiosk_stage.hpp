@@ -44,6 +44,9 @@ struct KioskStage {
   std::string settings_line;                          //!< where the settings came from
   std::vector<std::filesystem::path> scene_choices;  //!< the usable [scenes] choices (S)
   std::vector<std::string> problems;                  //!< drop-ins and scene choices refused
+  //! What this stage's build found of the visitor study: why it is off, or which of its
+  //! languages it cannot show. Kept apart from `problems`, which a new layout builds on.
+  std::vector<std::string> visitor_problems;
   //! The start's settings were refused and this stage runs on a fallback: the line that says
   //! so (kiosk_setup.hpp); empty once a reload loads the operator's settings.
   std::string refused;

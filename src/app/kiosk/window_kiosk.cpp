@@ -73,6 +73,23 @@ std::string missing_glyphs(const render::FontAtlas& font, std::string_view text)
   return out;
 }
 
+//! The texts drawn while it lives are in `language`; the one in use before comes back after.
+//! A visitor study is shown wholly in one language, which may not be the kiosk's.
+class ShownLanguage {
+ public:
+  explicit ShownLanguage(std::string_view language) : before_(visitor_language()) {
+    if (language != before_) use_visitor_language(language);
+  }
+  ~ShownLanguage() {
+    if (visitor_language() != before_) use_visitor_language(before_);
+  }
+  ShownLanguage(const ShownLanguage&) = delete;
+  ShownLanguage& operator=(const ShownLanguage&) = delete;
+
+ private:
+  std::string before_;
+};
+
 std::atomic<bool> g_reload{false};
 void on_sighup(int) { g_reload.store(true); }
 std::atomic<bool> g_stop{false};
@@ -254,16 +271,14 @@ void WindowKiosk::run_visitor_session() {
   }
   // The study in one language: the kiosk's where the protocol has its words, else wholly in
   // the protocol's own (the kiosk's texts too: prompts, Yes/No, thanks); the kiosk's back after.
-  const std::string kiosk_language = visitor_language();
-  const std::string shown = stage_->visitor->visitor->language_for(kiosk_language);
+  const std::string shown = stage_->visitor->visitor->language_for(visitor_language());
+  if (shown != visitor_language())
+    journal::info("visitor study: in {} (the protocol has no words in {})", shown.c_str(), visitor_language().c_str());
+  const ShownLanguage language(shown);
   study::StudyProtocol protocol = *stage_->visitor;
   const study::VisitorTexts words = protocol.visitor->text_in(shown);
   protocol.visitor->offer = words.offer;
   protocol.visitor->consent = words.consent;
-  if (shown != kiosk_language) {
-    journal::info("visitor study: in {} (the protocol has no words in {})", shown.c_str(), kiosk_language.c_str());
-    use_visitor_language(shown);
-  }
   try {
     std::random_device random;
     const std::uint64_t id = (static_cast<std::uint64_t>(random()) << 32) ^ random();
@@ -286,7 +301,6 @@ void WindowKiosk::run_visitor_session() {
     if (const std::string what = e.what(); what.find(health_.state().dir().string()) != std::string::npos)
       health_.state().wrote("visitor study results", refused(what));
   }
-  if (shown != kiosk_language) use_visitor_language(kiosk_language);
   install_callbacks();
   cursor_.clear();
   // The swapchain's images hold the study's frames: a new renderer draws them whole.
@@ -322,7 +336,7 @@ void WindowKiosk::build(KioskSetup setup) {
       if (!options_.visitor_sessions) throw std::runtime_error("this kiosk was started without the study");
       stage->visitor = options_.visitor_sessions.load(c.study, stage->file_scene);
     } catch (const std::exception& e) {
-      stage->problems.push_back(std::string("visitor study off: ") + e.what());
+      stage->visitor_problems.push_back(std::string("visitor study off: ") + e.what());
       journal::warning("visitor study off: {}", e.what());
     }
   }
@@ -336,7 +350,7 @@ void WindowKiosk::build(KioskSetup setup) {
       const std::string line = fmt::format("visitor study: its {} words need letters the kiosk's font lacks ({}); "
                                            "{} visitors are shown it in {}",
                                            t.first, missing, t.first, v.language);
-      stage->problems.push_back(line);
+      stage->visitor_problems.push_back(line);
       journal::warning("{}", line.c_str());
       return true;
     });
@@ -349,7 +363,7 @@ void WindowKiosk::build(KioskSetup setup) {
   stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);
   if (stage->visitor)
     if (const std::string why = study::undeliverable_cues(*stage->visitor, stage->output != nullptr); !why.empty()) {
-      stage->problems.push_back("visitor study off: " + why);
+      stage->visitor_problems.push_back("visitor study off: " + why);
       journal::warning("visitor study off: {}", why);
       stage->visitor.reset();
     }
@@ -652,8 +666,7 @@ void WindowKiosk::follow_screen_shape() {
   setup.scene = stage_->file_scene;
   setup.settings_line = stage_->settings_line;
   setup.scene_choices = stage_->scene_choices;
-  setup.problems = stage_->problems;  // less what the build says again
-  std::erase_if(setup.problems, [](const std::string& p) { return p.rfind("visitor study off: ", 0) == 0; });
+  setup.problems = stage_->problems;
   setup.refused = stage_->refused;
   try {
     vkDeviceWaitIdle(win_.ctx->device());
@@ -706,12 +719,12 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // is wholly in the language the study will be shown in: the kiosk's where the protocol has
   // its words, else the protocol's own (never its words beside another language's).
   const bool offering = (hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now);
-  const std::string kiosk_language = visitor_language();
-  const std::string screen_language =
-      offering ? stage_->visitor->visitor->language_for(kiosk_language) : kiosk_language;
-  if (screen_language != kiosk_language) use_visitor_language(screen_language);
+  std::optional<ShownLanguage> shown;  // the study's language, until the corner notes are drawn
   if (offering) {
-    render::draw_banner(o, stage_->visitor->visitor->text_in(screen_language).offer + " " + tr("(strike Yes)"), w, h);
+    const study::VisitorProtocol& visitor = *stage_->visitor->visitor;
+    const std::string language = visitor.language_for(visitor_language());
+    shown.emplace(language);
+    render::draw_banner(o, visitor.text_in(language).offer + " " + tr("(strike Yes)"), w, h);
     render::draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
                     {{visitor_yes_bar(), tr("Yes")}});
   } else if (hint != KioskHint::none)
@@ -725,7 +738,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
                              render::Corner::bottom_left, w, h);
   if (!stage_->output && (states_->state() == KioskState::attract || states_->state() == KioskState::play))
     render::draw_corner_note(o, tr("No sound"), render::Corner::bottom_right, w, h);
-  if (screen_language != kiosk_language) use_visitor_language(kiosk_language);
+  shown.reset();  // the operator page is in the kiosk's language
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();
     return;
@@ -755,6 +768,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->quit_asked()) lines.push_back({PageTone::warning, tr("Q again quits the kiosk (any other key: stay)")});
   if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back({PageTone::status, test});
   for (const std::string& p : stage_->problems) lines.push_back({PageTone::warning, p});
+  for (const std::string& p : stage_->visitor_problems) lines.push_back({PageTone::warning, p});
   if (health_.state().failing()) lines.push_back({PageTone::warning, health_.state().problem()});
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
