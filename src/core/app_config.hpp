@@ -1,6 +1,7 @@
 #pragma once
 // The kiosk's settings (config/mallet.toml). The defaults here are the shipped file's
 // values; a test keeps the two equal.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,9 @@ struct RenderConfig {
   //! never above it.
   double max_fps = 0;
   SoftwarePresent software_present = SoftwarePresent::changes;
+  //! [fonts]: language → the font family its text is set in, where fontconfig's choice is
+  //! wrong ("am" = "Noto Sans Ethiopic"); a language not named: the Noto family of its script.
+  std::map<std::string, std::string> fonts;
 };
 
 //! [scenes]: which scene the kiosk shows, and which the operator page can switch to. File

@@ -5,7 +5,6 @@
 #include <system_error>
 
 #include "core/data_paths.hpp"
-#include "core/journal.hpp"
 #include "core/visitor_language.hpp"
 
 #ifndef MALLET_BUILD_LOCALE_DIR
@@ -25,37 +24,13 @@ std::filesystem::path locale_dir() {
   return "/usr/share/locale";
 }
 
-namespace {
-
-struct Texts {
-  std::string texts;
-  std::vector<std::string> problems;
-};
-
-const Texts& texts() {
-  static const Texts t = [] {
-    Texts read;
-    read.texts = catalogue_texts(locale_dir(), read.problems);
-    return read;
-  }();
-  return t;
-}
-
-}  // namespace
-
 void start_visitor_language(const std::string& language, std::vector<std::string>& problems) {
   if (std::string why = bind_visitor_catalogues(locale_dir()); !why.empty()) problems.push_back(std::move(why));
-  for (const std::string& p : texts().problems) problems.push_back("language: " + p);
+  std::vector<std::string> shipped;
+  catalogue_texts(locale_dir(), shipped);
+  for (const std::string& p : shipped) problems.push_back("language: " + p);
+  for (const std::string& p : load_dropin_catalogues()) problems.push_back("language: " + p);
   use_visitor_language(language);
-}
-
-const std::string& visitor_texts() {
-  static const bool said = [] {
-    for (const std::string& p : texts().problems) journal::warning("language: {}", p.c_str());
-    return true;
-  }();
-  (void)said;
-  return texts().texts;
 }
 
 }  // namespace mallet

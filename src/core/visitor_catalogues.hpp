@@ -13,13 +13,9 @@ namespace mallet {
 
 std::filesystem::path locale_dir();
 
-//! gettext bound to locale_dir(), showing `language` (the settings checked it is shipped).
-//! A catalogue that is missing or unreadable, or a missing locale, adds a line to `problems`:
-//! its texts show in English, and the kiosk goes on.
+//! gettext bound to locale_dir(), the drop-in folder read, showing `language` (the settings
+//! checked it is offered). A catalogue that is missing or unreadable, or a missing locale,
+//! adds a line to `problems`: its texts show in English, and the kiosk goes on.
 void start_visitor_language(const std::string& language, std::vector<std::string>& problems);
-
-//! Every translation of the shipped catalogues (UTF-8), for the font to bake their glyphs;
-//! read once. Problems go to the journal, once.
-const std::string& visitor_texts();
 
 }  // namespace mallet

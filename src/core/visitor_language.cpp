@@ -7,7 +7,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <memory>
 #include <sstream>
+#include <utility>
+
+#include "core/catalogue_file.hpp"
 
 // glibc's libintl: bumping it makes every cached lookup stale, so that a changed LANGUAGE
 // takes effect at the next gettext call (the GNU gettext manual, "Being a gettext grok").
@@ -27,54 +32,114 @@ std::string& current() {
   return language;
 }
 
-std::uint32_t word(const std::string& b, std::size_t at, bool swapped) {
-  const auto u = [&](std::size_t i) { return std::uint32_t{static_cast<unsigned char>(b[at + i])}; };
-  return swapped ? (u(0) << 24) | (u(1) << 16) | (u(2) << 8) | u(3) : (u(3) << 24) | (u(2) << 16) | (u(1) << 8) | u(0);
+//! A language an operator dropped in: its texts, read from its file.
+struct Dropped {
+  std::string language;
+  std::filesystem::path file;
+  Catalogue catalogue;
+};
+
+//! The drop-in folder's languages as last read. A catalogue read before is kept (never
+//! freed) when the folder is read again: tr() hands out pointers into it for the process.
+struct DropIns {
+  std::vector<std::shared_ptr<const Dropped>> now;
+  std::vector<std::shared_ptr<const Dropped>> kept;
+  std::vector<std::string> problems;
+  std::vector<std::string> languages{"en"};  //!< shipped, then dropped in
+  bool read = false;
+};
+
+DropIns& drop_ins() {
+  static DropIns d;
+  return d;
 }
 
-//! The translated strings of one .mo file (the GNU gettext manual, "The Format of GNU MO
-//! Files"): a header of 32-bit words in the writer's byte order, then tables of
-//! (length, offset) pairs. Every length and offset is checked against the file.
-std::string mo_translations(const std::filesystem::path& file, std::vector<std::string>& problems) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    problems.push_back(file.string() + ": cannot open the catalogue (build it: cmake --build)");
-    return {};
+std::vector<std::string> shipped_languages() {
+  std::vector<std::string> v{"en"};
+  std::istringstream in(MALLET_CATALOGUE_LANGUAGES);
+  for (std::string l; in >> l;) v.push_back(l);
+  return v;
+}
+
+//! The drop-in file of a language in `dir`: xx/LC_MESSAGES/mallet.mo, xx.mo or xx.po, in that
+//! order of preference (a compiled catalogue over its source).
+std::vector<std::pair<std::string, std::filesystem::path>> dropped_files(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::map<std::string, fs::path> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path p = it->path();
+    const std::string stem = p.stem().string();
+    std::error_code e2;
+    if (it->is_directory(e2) && is_language_code(p.filename().string()) &&
+        fs::is_regular_file(p / "LC_MESSAGES" / "mallet.mo", e2))
+      found[p.filename().string()] = p / "LC_MESSAGES" / "mallet.mo";
+    else if (p.extension() == ".mo" && is_language_code(stem) && !found.count(stem))
+      found[stem] = p;
+    else if (p.extension() == ".po" && is_language_code(stem) && !found.count(stem))
+      found[stem] = p;
   }
-  const std::string b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  const auto fail = [&](std::size_t at, const std::string& why) {
-    problems.push_back(file.string() + ": byte " + std::to_string(at) + ": " + why);
-    return std::string{};
-  };
-  if (b.size() < 28) return fail(0, "too short for a gettext catalogue's header");
-  const std::uint32_t magic = word(b, 0, false);
-  const bool swapped = magic == 0xde120495u;
-  if (magic != 0x950412deu && !swapped) return fail(0, "not a gettext catalogue (.mo): wrong magic number");
-  const std::uint64_t count = word(b, 8, swapped), originals = word(b, 12, swapped), table = word(b, 16, swapped);
-  if (originals + count * 8 > b.size()) return fail(12, "its table of texts runs past the end of the file");
-  if (table + count * 8 > b.size()) return fail(16, "its translation table runs past the end of the file");
-  std::string out;
-  for (std::uint64_t i = 0; i < count; ++i) {
-    const std::size_t entry = static_cast<std::size_t>(table + i * 8);
-    const std::uint64_t length = word(b, entry, swapped), offset = word(b, entry + 4, swapped);
-    if (offset + length > b.size()) return fail(entry, "a translation runs past the end of the file");
-    if (word(b, static_cast<std::size_t>(originals + i * 8), swapped) == 0) continue;  // msgid "": the header
-    out.append(b, offset, length);
-    out.push_back('\n');
-  }
-  return out;
+  for (auto& [language, file] : found)  // a compiled catalogue wins over its .po beside it
+    if (file.extension() == ".po") {
+      if (fs::is_regular_file(dir / (language + ".mo"), ec)) file = dir / (language + ".mo");
+    }
+  return {found.begin(), found.end()};
+}
+
+const Dropped* dropped(std::string_view language) {
+  for (const auto& d : drop_ins().now)
+    if (d->language == language) return d.get();
+  return nullptr;
 }
 
 }  // namespace
 
+bool is_language_code(std::string_view code) {
+  if (code.size() < 2 || code.size() > 3) return false;
+  for (const char c : code)
+    if (c < 'a' || c > 'z') return false;
+  return true;
+}
+
+std::filesystem::path dropin_locale_dir() {
+  if (const char* env = std::getenv("MALLET_LOCALE_DROPIN"); env && *env) return env;
+  return "/etc/mallet/locale";
+}
+
+const std::vector<std::string>& load_dropin_catalogues() {
+  DropIns& d = drop_ins();
+  d.read = true;
+  d.problems.clear();
+  for (auto& old : d.now) d.kept.push_back(std::move(old));
+  d.now.clear();
+  d.languages = shipped_languages();
+  for (const auto& [language, file] : dropped_files(dropin_locale_dir())) {
+    auto one = std::make_shared<Dropped>();
+    one->language = language;
+    one->file = file;
+    const std::size_t before = d.problems.size();
+    one->catalogue = read_catalogue(file, d.problems);
+    if (one->catalogue.msgids.empty() && d.problems.size() > before) continue;  // it did not read: not offered
+    if (!is_visitor_language(language)) d.languages.push_back(language);
+    d.now.push_back(std::move(one));
+  }
+  return d.problems;
+}
+
+const std::vector<std::string>& dropin_problems() {
+  if (!drop_ins().read) load_dropin_catalogues();
+  return drop_ins().problems;
+}
+
+std::filesystem::path dropin_catalogue(std::string_view language) {
+  if (!drop_ins().read) load_dropin_catalogues();
+  const Dropped* d = dropped(language);
+  return d ? d->file : std::filesystem::path{};
+}
+
 const std::vector<std::string>& visitor_languages() {
-  static const std::vector<std::string> languages = [] {
-    std::vector<std::string> v{"en"};
-    std::istringstream in(MALLET_CATALOGUE_LANGUAGES);
-    for (std::string l; in >> l;) v.push_back(l);
-    return v;
-  }();
-  return languages;
+  if (!drop_ins().read) load_dropin_catalogues();
+  return drop_ins().languages;
 }
 
 bool is_visitor_language(std::string_view language) {
@@ -107,12 +172,24 @@ void use_visitor_language(std::string_view language) {
 
 const std::string& visitor_language() { return current(); }
 
-const char* tr(const char* msgid) { return dgettext(kDomain, msgid); }
+const char* tr(const char* msgid) {
+  if (const Dropped* d = dropped(current())) {
+    const auto it = d->catalogue.texts.find(std::string_view(msgid));
+    if (it != d->catalogue.texts.end()) return it->second.c_str();
+  }
+  return dgettext(kDomain, msgid);
+}
 
 std::string catalogue_texts(const std::filesystem::path& locale_dir, std::vector<std::string>& problems) {
   std::string texts;
-  for (const std::string& l : visitor_languages())
-    if (l != "en") texts += mo_translations(locale_dir / l / "LC_MESSAGES" / "mallet.mo", problems);
+  for (const std::string& l : shipped_languages()) {
+    if (l == "en") continue;
+    const std::size_t before = problems.size();
+    const Catalogue c = read_catalogue(locale_dir / l / "LC_MESSAGES" / "mallet.mo", problems);
+    if (problems.size() > before && c.msgids.empty() && problems.back().find("cannot open") != std::string::npos)
+      problems.back() += " (build it: cmake --build)";
+    for (const auto& [id, text] : c.texts) texts += text + '\n';
+  }
   return texts;
 }
 

@@ -1,78 +1,113 @@
 #pragma once
-// Glyphs of one TrueType font (DejaVu Sans from Debian's fonts-dejavu-core by default)
-// baked with stb_truetype into a single-channel coverage atlas at one pixel size; the glyphs
-// of other scripts a text needs (Japanese) from a second font (IPAGothic, Debian's
-// fonts-ipafont-gothic) in the same atlas.
+// The overlay's letters: text in any language set by FreeType, HarfBuzz, fontconfig and ICU
+// (render/font_fallback.hpp, render/text_shaping.hpp), and its glyphs drawn on demand into
+// one single-channel coverage atlas that the overlay samples. No text needs to be known
+// before it is shown: a string is set the first time it is drawn and kept (never set twice
+// while unchanged), a glyph drawn into the atlas the first time it is needed.
+//
+// Text is set in the visitor's language (core/visitor_language.hpp) at the time it is drawn:
+// its fonts, its direction, its line breaking.
 #include <cstdint>
-#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
+
+#include "render/font_fallback.hpp"
+#include "render/text_shaping.hpp"
 
 namespace mallet::render {
 
 struct GlyphQuad {
-  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;  //!< pixels relative to the pen on the baseline, y down
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;  //!< pixels relative to the glyph's origin on the baseline, y down
   float u0 = 0, v0 = 0, u1 = 0, v1 = 0;  //!< atlas coordinates
-  float advance = 0;                     //!< pen advance in pixels
 };
 
 //! Decodes UTF-8; every malformed sequence (stray or missing continuation bytes, overlong
 //! forms, surrogates, beyond U+10FFFF) becomes one U+FFFD and decoding goes on after it.
 std::u32string decode_utf8(std::string_view utf8);
 
-//! Copyable and cheap to copy: copies share the (immutable) font file and its parsed tables.
+//! A cache: its const functions set text and draw glyphs as they are asked for. One thread
+//! (the one that draws) uses it.
 class FontAtlas {
  public:
-  //! Bakes code points U+0020..U+00FF (ASCII and Latin-1: the museum's languages) at
-  //! `pixel_height`. Throws FileError naming the font file if it is missing or unusable,
-  //! std::invalid_argument for a pixel_height outside (0, 256]. Code points the font lacks
-  //! (DejaVu: the C1 controls U+007F..U+009F) draw as '?'.
-  FontAtlas(const std::filesystem::path& ttf, float pixel_height);
-  //! Also bakes every code point of `also` (UTF-8: the visitor languages' translations)
-  //! beyond Latin-1: from `ttf` where it has the glyph, else from `also_font` (the same checks
-  //! and errors as `ttf`; empty: none), else it draws as '?'.
-  FontAtlas(const std::filesystem::path& ttf, float pixel_height, std::string_view also,
-            const std::filesystem::path& also_font);
-
-  static std::filesystem::path default_font();  //!< /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
-  //! /usr/share/fonts/opentype/ipafont-gothic/ipag.ttf: kana and kanji (Japanese's glyph forms).
-  static std::filesystem::path default_cjk_font();
-  //! Whether `code_point` draws as itself (false: it draws as '?').
-  bool has(char32_t code_point) const;
+  //! Letters `pixel_height` tall from capital to descender, in the fonts `choice` names or
+  //! else Noto's. Throws std::invalid_argument for a pixel_height outside (0, 256], FileError
+  //! if fontconfig finds no font at all.
+  explicit FontAtlas(float pixel_height, FontChoice choice = {});
+  ~FontAtlas();
+  FontAtlas(const FontAtlas&) = delete;
+  FontAtlas& operator=(const FontAtlas&) = delete;
 
   int width() const { return width_; }
   int height() const { return height_; }
   const std::vector<std::uint8_t>& coverage() const { return coverage_; }  //!< width·height bytes
+  //! Counts every change to coverage(): the GPU's copy is up to date while it is unchanged.
+  std::uint64_t generation() const { return generation_; }
   float pixel_height() const { return pixel_height_; }
-  float ascent() const { return ascent_; }    //!< pixels above the baseline
+  float ascent() const { return ascent_; }    //!< pixels above the baseline (Latin's font)
   float descent() const { return descent_; }  //!< pixels below the baseline (positive)
   float line_gap() const { return line_gap_; }
   //! Atlas coordinates of a fully-covered texel (shapes sample it).
   float solid_u() const { return solid_u_; }
   float solid_v() const { return solid_v_; }
-  //! The quad of a code point; code points outside the baked range draw as '?'.
-  GlyphQuad glyph(char32_t code_point) const;
-  //! Width in pixels of a UTF-8 string at this size (kerning included).
-  float measure(std::string_view utf8) const;
-  float kerning(char32_t left, char32_t right) const;  //!< pixels
 
-  //! A font file and its stbtt_fontinfo (defined in font_atlas.cpp). stbtt_fontinfo points
-  //! into the file's bytes, so the two live together behind one pointer that copies share.
-  struct Face;
+  //! `utf8` set in the visitor's language (the one in use now), kept for the next time.
+  const ShapedText& shape(std::string_view utf8) const;
+  const ShapedText& shape_in(std::string_view language, std::string_view utf8) const;
+  //! Width in pixels of `utf8` set in the visitor's language.
+  float measure(std::string_view utf8) const { return shape(utf8).width; }
+  //! A glyph's quad, drawn into the atlas if it is not yet; nullopt for one with no ink (a
+  //! space). An atlas too full for it starts again empty (generation() tells the GPU).
+  std::optional<GlyphQuad> quad(const PlacedGlyph& glyph) const;
+
+  //! Whether a font of `language` has `code_point` (false: it draws as the font's box).
+  bool has_in(std::string_view language, char32_t code_point) const;
+  bool has(char32_t code_point) const;  //!< in the visitor's language
+  //! Up to `most` of the letters of `utf8` (as written, each once) that no font of `language`
+  //! has; spaces, joiners and controls are not letters.
+  std::vector<std::string> missing_letters(std::string_view language, std::string_view utf8, std::size_t most) const;
+  //! `language`'s fonts, found the first time they are needed.
+  const FontFallback& fonts(std::string_view language) const;
+
+  //! Texts set and kept, glyphs in the atlas: what the cache holds (the benchmark reports it).
+  std::size_t texts_set() const { return shaped_.size(); }
+  std::size_t glyphs_drawn() const { return slots_.size(); }
+  std::uint64_t shapings() const { return shapings_; }  //!< times any text was set, ever
 
  private:
-  int width_ = 0, height_ = 0;
+  struct Slot {
+    bool ink = false;
+    GlyphQuad quad;
+  };
+  struct GlyphKey {
+    const Face* face;
+    std::uint32_t glyph;
+    bool operator==(const GlyphKey&) const = default;
+  };
+  struct GlyphKeyHash {
+    std::size_t operator()(const GlyphKey& k) const {
+      return std::hash<const void*>()(k.face) ^ (std::hash<std::uint32_t>()(k.glyph) * 0x9E3779B97F4A7C15ull);
+    }
+  };
+  void start_empty() const;  //!< the atlas cleared but for its solid block
+  std::optional<Slot> draw_glyph(const PlacedGlyph& glyph) const;
+
   float pixel_height_ = 0, ascent_ = 0, descent_ = 0, line_gap_ = 0;
   float solid_u_ = 0, solid_v_ = 0;
-  std::vector<std::uint8_t> coverage_;
-  std::vector<GlyphQuad> glyphs_;   //!< U+0020..U+00FF
-  std::vector<std::pair<char32_t, GlyphQuad>> beyond_;  //!< baked code points past U+00FF, sorted
-  const GlyphQuad* beyond(char32_t code_point) const;  //!< its quad in beyond_, or null
-  float scale_ = 0;                 //!< stb_truetype's scale for pixel_height
-  std::shared_ptr<const Face> face_;  //!< the main font, kept for kerning
+  int width_ = 0, height_ = 0;
+  FontChoice choice_;
+  std::unique_ptr<FaceLibrary> library_;
+  mutable std::vector<std::uint8_t> coverage_;
+  mutable std::uint64_t generation_ = 0;
+  mutable std::uint64_t shapings_ = 0;
+  mutable std::unordered_map<std::string, std::unique_ptr<FontFallback>> fallbacks_;
+  mutable std::unordered_map<std::string, ShapedText> shaped_;  //!< key: language, '\x1f', text
+  mutable std::unordered_map<GlyphKey, Slot, GlyphKeyHash> slots_;
+  mutable int shelf_x_ = 0, shelf_y_ = 0, shelf_height_ = 0;  //!< the packer's open row
 };
 
 }  // namespace mallet::render

@@ -59,7 +59,8 @@ PixelRect changed_between(const FrameLook& before, const FrameLook& after) {
       if (l.target >= 0 && glow_of(before, l.target) != glow_of(after, l.target))
         changed = bounding(changed, bounding(rect_of(before, l.target), rect_of(after, l.target)));
   static_assert(sizeof(OverlayVertex) == 8 * sizeof(float), "compared byte for byte: no padding");
-  if (before.overlay_atlas != after.overlay_atlas || !same_bytes(before.overlay_vertices, after.overlay_vertices) ||
+  if (before.overlay_atlas != after.overlay_atlas || before.overlay_atlas_generation != after.overlay_atlas_generation ||
+      !same_bytes(before.overlay_vertices, after.overlay_vertices) ||
       !same_bytes(before.overlay_indices, after.overlay_indices))
     changed = bounding(changed, bounding(overlay_rect(before.overlay_vertices, after.width, after.height),
                                          overlay_rect(after.overlay_vertices, after.width, after.height)));

@@ -47,6 +47,7 @@ struct FrameLook {
   std::vector<OverlayVertex> overlay_vertices;
   std::vector<std::uint32_t> overlay_indices;
   const FontAtlas* overlay_atlas = nullptr;
+  std::uint64_t overlay_atlas_generation = 0;  //!< the atlas's glyphs change as text is first shown
 };
 
 //! The pixels an overlay's shapes cover: their vertices' box, a pixel of margin, clamped.

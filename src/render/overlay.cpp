@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 // Conventions of the geometry built here:
@@ -136,27 +137,27 @@ void Overlay::progress_ring(float cx, float cy, float radius, float line_width, 
 
 float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4> color, TextAlign align,
                     float scale) {
-  const float width = atlas_->measure(utf8) * scale;
+  const ShapedText& shaped = atlas_->shape(utf8);
+  const float width = shaped.width * scale;
   if (!std::isfinite(x) || !std::isfinite(y) || !(scale > 0)) return width;
   float pen = x;
   if (align == TextAlign::center) pen -= width / 2;
   if (align == TextAlign::right) pen -= width;
-  // The baseline is used as given: glyphs are baked without vertical oversampling, so a
-  // whole-pixel y keeps them crisp; x may be fractional (2× horizontal oversampling).
-  const std::u32string text = decode_utf8(utf8);
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const GlyphQuad q = atlas_->glyph(text[i]);
-    if (q.x1 > q.x0 && q.y1 > q.y0) {  // a space has no quad, only an advance
-      const auto first = static_cast<std::uint32_t>(vertices_.size());
-      const float x0 = pen + q.x0 * scale, x1 = pen + q.x1 * scale, y0 = y + q.y0 * scale, y1 = y + q.y1 * scale;
-      vertices_.push_back({x0, y0, q.u0, q.v0, color});
-      vertices_.push_back({x1, y0, q.u1, q.v0, color});
-      vertices_.push_back({x1, y1, q.u1, q.v1, color});
-      vertices_.push_back({x0, y1, q.u0, q.v1, color});
-      quad(first, first + 1, first + 2, first + 3);
+  for (const PlacedGlyph& g : shaped.glyphs) {
+    const std::optional<GlyphQuad> q = atlas_->quad(g);
+    if (!q) continue;  // a space has no quad, only an advance
+    float gx = pen + g.x * scale, gy = y + g.y * scale;
+    if (scale == 1.0f) {  // glyphs drawn at their size land on whole pixels: crisp
+      gx = std::round(gx);
+      gy = std::round(gy);
     }
-    pen += q.advance * scale;
-    if (i + 1 < text.size()) pen += atlas_->kerning(text[i], text[i + 1]) * scale;
+    const auto first = static_cast<std::uint32_t>(vertices_.size());
+    const float x0 = gx + q->x0 * scale, x1 = gx + q->x1 * scale, y0 = gy + q->y0 * scale, y1 = gy + q->y1 * scale;
+    vertices_.push_back({x0, y0, q->u0, q->v0, color});
+    vertices_.push_back({x1, y0, q->u1, q->v0, color});
+    vertices_.push_back({x1, y1, q->u1, q->v1, color});
+    vertices_.push_back({x0, y1, q->u0, q->v1, color});
+    quad(first, first + 1, first + 2, first + 3);
   }
   return width;
 }

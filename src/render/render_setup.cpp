@@ -14,7 +14,6 @@
 #include "core/data_paths.hpp"
 #include "core/journal.hpp"
 #include "core/pixel_size.hpp"
-#include "core/visitor_catalogues.hpp"
 #include "core/file_error.hpp"
 #include "render/vk_error.hpp"
 
@@ -72,18 +71,12 @@ render::RenderSettings render_settings(const render::Context& ctx, const RenderC
   return rs;
 }
 
-std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent) {
+std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent, const std::map<std::string, std::string>& fonts) {
   const float shorter = static_cast<float>(std::min(extent.width, extent.height));
   const float px = std::max(14.0f, shorter / 24.0f);
-  try {  // every visitor language's glyphs, Japanese's from the CJK font
-    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
-                                               render::FontAtlas::default_cjk_font());
-  } catch (const FileError& e) {
-    if (e.file() == render::FontAtlas::default_font().string()) throw;
-    journal::warning("font: {}: Japanese shows as '?'", e.what());
-    return std::make_unique<render::FontAtlas>(render::FontAtlas::default_font(), px, visitor_texts(),
-                                               std::filesystem::path{});
-  }
+  render::FontChoice choice;
+  for (const auto& [language, family] : fonts) choice.families.emplace(language, family);
+  return std::make_unique<render::FontAtlas>(px, std::move(choice));
 }
 
 ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, const std::string& size, bool windowed,
@@ -96,7 +89,7 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
   max_fps_ = r.max_fps;
   window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
   aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
-  font = overlay_font(window->extent());
+  font = overlay_font(window->extent(), r.fonts);
   overlay = std::make_unique<render::Overlay>(*font);
   if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
     std::stringstream in(lose);

@@ -6,6 +6,7 @@
 // [render] settings.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -83,8 +84,9 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
 render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r);
 
 //! The overlay's font, sized for a window of this size: a 24th of its shorter side (the height
-//! of a landscape screen, the width of a portrait one), at least 14 px.
-std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent);
+//! of a landscape screen, the width of a portrait one), at least 14 px; each language in the
+//! family [fonts] names for it, else Noto's (render/font_fallback.hpp).
+std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent, const std::map<std::string, std::string>& fonts = {});
 
 //! A window of the product (the kiosk's, the study's), made from the [render] settings in
 //! the order its parts need and unmade in reverse: GLFW, a Vulkan context that presents

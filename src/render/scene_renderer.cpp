@@ -545,13 +545,16 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
 }
 
 void SceneRenderer::ensure_atlas(const FontAtlas& atlas) {
-  if (atlas_source_ == &atlas) return;
+  // The atlas fills as text is first shown (render/font_atlas.hpp): a new copy for the GPU
+  // whenever it changed, which after the first frames of a language is seldom.
+  if (atlas_source_ == &atlas && atlas_generation_ == atlas.generation()) return;
   vkDeviceWaitIdle(ctx_.device());
   atlas_ = make_texture(ctx_, {static_cast<std::uint32_t>(atlas.width()), static_cast<std::uint32_t>(atlas.height())},
                         VK_FORMAT_R8_UNORM, atlas.coverage(), 1);
   if (atlas_set_ == VK_NULL_HANDLE) atlas_set_ = allocate_set(image_layout_.get());
   write_image_set(atlas_set_, atlas_.view.get());
   atlas_source_ = &atlas;
+  atlas_generation_ = atlas.generation();
 }
 
 std::uint32_t SceneRenderer::triangles_of(const Instance& instance) const {
@@ -599,6 +602,7 @@ FrameLook SceneRenderer::look_of(const FrameState& state, VkExtent2D extent) con
     look.overlay_vertices = state.overlay->vertices();
     look.overlay_indices = state.overlay->indices();
     look.overlay_atlas = &state.overlay->atlas();
+    look.overlay_atlas_generation = state.overlay->atlas().generation();
   }
   return look;
 }

@@ -232,6 +232,7 @@ class SceneRenderer {
   std::uint64_t frames_recorded_ = 0;
   PixelRect drawn_area_;
   const FontAtlas* atlas_source_ = nullptr;
+  std::uint64_t atlas_generation_ = 0;
   GpuImage atlas_;
   VkDescriptorSet atlas_set_ = VK_NULL_HANDLE;
 };

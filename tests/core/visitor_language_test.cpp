@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/config/app_config_loader.hpp"
+#include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
 #include "core/visitor_language.hpp"
 #include "test_paths.hpp"
@@ -37,7 +38,7 @@ TEST(VisitorLanguages, AreEnglishAndEachCatalogueInPoLinguas) {
   for (std::string line; std::getline(in, line);)
     if (!line.empty() && line[0] != '#') expected.push_back(line);
   EXPECT_EQ(visitor_languages(), expected);
-  EXPECT_EQ(visitor_languages_text(), "en, de, fr, ja");
+  EXPECT_EQ(visitor_languages_text(), "en, de, fr, ja, zh, ko, ar, he, hi");
   EXPECT_TRUE(is_visitor_language("ja"));
   EXPECT_FALSE(is_visitor_language("JA"));
   EXPECT_FALSE(is_visitor_language(""));
@@ -104,6 +105,7 @@ TEST(CatalogueTexts, HoldEveryTranslationForTheFont) {
   EXPECT_NE(texts.find("Schlägel"), std::string::npos);
   EXPECT_NE(texts.find("Étalonnage"), std::string::npos);
   EXPECT_NE(texts.find("鍵盤"), std::string::npos);
+  EXPECT_NE(texts.find("نعم"), std::string::npos);  // Arabic's Yes
   EXPECT_EQ(texts.find("Project-Id-Version"), std::string::npos);  // not the catalogues' headers
 }
 
@@ -118,7 +120,7 @@ TEST(CatalogueTexts, AMissingOrMalformedCatalogueIsOneLineNamingItsFileAndByte) 
   std::ofstream(dir / "fr" / "LC_MESSAGES" / "mallet.mo", std::ios::binary) << cut;
   std::vector<std::string> problems;
   EXPECT_EQ(catalogue_texts(dir, problems), "");
-  ASSERT_EQ(problems.size(), 3u);
+  ASSERT_EQ(problems.size(), visitor_languages().size() - 1);  // the others: no file at all
   EXPECT_EQ(problems[0], (dir / "de" / "LC_MESSAGES" / "mallet.mo").string() +
                              ": byte 0: not a gettext catalogue (.mo): wrong magic number");
   EXPECT_NE(problems[1].find("fr/LC_MESSAGES/mallet.mo: byte 12: its table of texts runs past the end"),
@@ -126,6 +128,78 @@ TEST(CatalogueTexts, AMissingOrMalformedCatalogueIsOneLineNamingItsFileAndByte) 
       << problems[1];
   EXPECT_NE(problems[2].find("ja/LC_MESSAGES/mallet.mo: cannot open the catalogue"), std::string::npos)
       << problems[2];
+}
+
+// A language added without rebuilding: an operator drops eo.po into the drop-in folder,
+// and the settings take [kiosk] language = "eo"; tr() answers from it, a text it lacks in
+// English; a broken file is one line naming its place and the language is not offered.
+class DroppedInLanguage : public VisitorLanguage {
+ protected:
+  void SetUp() override {
+    VisitorLanguage::SetUp();
+    dir_ = test::scratch_dir();
+    setenv("MALLET_LOCALE_DROPIN", dir_.c_str(), 1);
+  }
+  void TearDown() override {
+    unsetenv("MALLET_LOCALE_DROPIN");
+    load_dropin_catalogues();
+    VisitorLanguage::TearDown();
+  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  static std::string po(const std::string& entries) {
+    return "msgid \"\"\nmsgstr \"\"\n\"Content-Type: text/plain; charset=UTF-8\\n\"\n\n" + entries;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(DroppedInLanguage, APoFileDroppedInIsALanguageTheSettingsTake) {
+  write("eo.po", po("msgid \"Yes\"\nmsgstr \"Jes\"\n\n#, c-format\nmsgid \"Tap %d\"\nmsgstr \"Frapeto %d\"\n"));
+  EXPECT_THROW(config::parse_app_config("[kiosk]\nlanguage = \"xx\"\n", "c.toml"), FileError);
+  const AppConfig c = config::parse_app_config("[kiosk]\nlanguage = \"eo\"\n", "c.toml");  // read on demand
+  EXPECT_EQ(c.language, "eo");
+  EXPECT_TRUE(is_visitor_language("eo"));
+  EXPECT_EQ(visitor_languages().back(), "eo");
+  EXPECT_EQ(dropin_catalogue("eo"), dir_ / "eo.po");
+  use_visitor_language("eo");
+  EXPECT_STREQ(tr("Yes"), "Jes");
+  EXPECT_STREQ(tr("Tap %d"), "Frapeto %d");
+  EXPECT_STREQ(tr("No"), "No");  // not translated: English
+}
+
+TEST_F(DroppedInLanguage, ACompiledCatalogueAndAShippedLanguagesReplacementWork) {
+  // de.mo compiled from a .po: it replaces the shipped German where it has a text.
+  write("de-src.po", po("msgid \"Yes\"\nmsgstr \"Jawohl\"\n"));
+  const std::string msgfmt = "msgfmt -o '" + (dir_ / "de.mo").string() + "' '" + (dir_ / "de-src.po").string() + "'";
+  ASSERT_EQ(std::system(msgfmt.c_str()), 0);
+  std::filesystem::remove(dir_ / "de-src.po");
+  EXPECT_TRUE(load_dropin_catalogues().empty());
+  use_visitor_language("de");
+  EXPECT_STREQ(tr("Yes"), "Jawohl");
+  EXPECT_STREQ(tr("No"), "Nein");  // the shipped catalogue's
+  EXPECT_EQ(visitor_languages().size(), 9u);  // no new language: de was shipped
+}
+
+TEST_F(DroppedInLanguage, ABrokenFileIsOneLineNamingItsPlaceAndIsNotOffered) {
+  write("eo.po", po("msgid \"Yes\"\nmsgstr \"Jes\n"));  // an unterminated string
+  write("xh.mo", "not a catalogue at all, but long enough");
+  const std::vector<std::string> problems = load_dropin_catalogues();
+  ASSERT_EQ(problems.size(), 2u) << problems.front();
+  EXPECT_EQ(problems[0].rfind((dir_ / "eo.po").string() + ":5:", 0), 0u) << problems[0];
+  EXPECT_EQ(problems[1], (dir_ / "xh.mo").string() + ": byte 0: not a gettext catalogue (.mo): wrong magic number");
+  EXPECT_FALSE(is_visitor_language("eo"));
+  EXPECT_FALSE(is_visitor_language("xh"));
+  for (const std::string& p : problems) EXPECT_EQ(p.find('\n'), std::string::npos) << p;
+}
+
+TEST_F(DroppedInLanguage, ATranslationWithOtherPrintfDirectivesIsShownInEnglish) {
+  // "%s" where the text prints a number would print garbage or crash: that entry is left out.
+  write("eo.po", po("msgid \"Yes\"\nmsgstr \"Jes\"\n\nmsgid \"Tap %d\"\nmsgstr \"Frapeto %s\"\n"));
+  const std::vector<std::string> problems = load_dropin_catalogues();
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("\"Tap %d\" has other printf directives"), std::string::npos) << problems[0];
+  use_visitor_language("eo");
+  EXPECT_STREQ(tr("Tap %d"), "Tap %d");
+  EXPECT_STREQ(tr("Yes"), "Jes");
 }
 
 }  // namespace

@@ -227,7 +227,7 @@ TEST(BackgroundCache, KeptFramesDrawOnlyWhatChangedAndAreTheWholeFramesPixels) {
   auto kept = renderer(scene, true);
   kept->target().keep_frames(true);
   auto whole = renderer(scene, true);
-  const FontAtlas font(FontAtlas::default_font(), 16.0f);
+  const FontAtlas font(16.0f);
   Overlay overlay(font);
   const std::vector<Vec2> at = places(scene);
   const int pixels = 480 * 270;

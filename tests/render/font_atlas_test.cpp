@@ -1,16 +1,18 @@
-// The font atlas: DejaVu Sans baked at one size holds every Latin-1 glyph in a power-of-two
-// atlas, with real coverage, real metrics and the font's kerning; a solid texel for shapes;
-// broken UTF-8 and unknown code points draw as '?'; a bad font file is reported by name; the
-// glyphs of a text in another script (Japanese) come from a second font into the same atlas.
+// The font atlas: text set by HarfBuzz in fonts fontconfig finds per language, its glyphs
+// drawn by FreeType into one atlas on demand and once: real coverage where the glyphs are, no
+// two overlapping, a solid texel for shapes; each text set once; a full atlas starts again;
+// a letter no font has is named; a bad font file is reported by name.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -23,145 +25,183 @@ namespace {
 
 constexpr float kPixelHeight = 32.0f;
 
-const FontAtlas& atlas() {
-  static const FontAtlas baked(FontAtlas::default_font(), kPixelHeight);
-  return baked;
-}
-
 bool power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+struct Texels {
+  int x0, y0, x1, y1;
+};
+Texels texels(const FontAtlas& a, const GlyphQuad& q) {
+  return {static_cast<int>(std::lround(q.u0 * static_cast<float>(a.width()))),
+          static_cast<int>(std::lround(q.v0 * static_cast<float>(a.height()))),
+          static_cast<int>(std::lround(q.u1 * static_cast<float>(a.width()))),
+          static_cast<int>(std::lround(q.v1 * static_cast<float>(a.height())))};
+}
 
 //! The sum of the coverage under a glyph's atlas rectangle.
 std::uint64_t ink(const FontAtlas& a, const GlyphQuad& q) {
-  const int x0 = static_cast<int>(std::lround(q.u0 * static_cast<float>(a.width())));
-  const int x1 = static_cast<int>(std::lround(q.u1 * static_cast<float>(a.width())));
-  const int y0 = static_cast<int>(std::lround(q.v0 * static_cast<float>(a.height())));
-  const int y1 = static_cast<int>(std::lround(q.v1 * static_cast<float>(a.height())));
+  const Texels t = texels(a, q);
   std::uint64_t sum = 0;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) sum += a.coverage()[static_cast<std::size_t>(y) * a.width() + x];
+  for (int y = t.y0; y < t.y1; ++y)
+    for (int x = t.x0; x < t.x1; ++x) sum += a.coverage()[static_cast<std::size_t>(y) * a.width() + x];
   return sum;
 }
 
-bool same_quad(const GlyphQuad& a, const GlyphQuad& b) {
-  return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1 && a.u0 == b.u0 && a.v0 == b.v0 &&
-         a.u1 == b.u1 && a.v1 == b.v1 && a.advance == b.advance;
+//! Every inked glyph of `text` in `language`, drawn.
+std::vector<GlyphQuad> quads(const FontAtlas& a, std::string_view language, std::string_view text) {
+  std::vector<GlyphQuad> out;
+  for (const PlacedGlyph& g : a.shape_in(language, text).glyphs)
+    if (const std::optional<GlyphQuad> q = a.quad(g)) out.push_back(*q);
+  return out;
 }
 
-TEST(FontAtlas, IsAPowerOfTwoSquareOrTwoToOne) {
-  const FontAtlas& a = atlas();
-  EXPECT_TRUE(power_of_two(a.width())) << a.width();
-  EXPECT_TRUE(power_of_two(a.height())) << a.height();
-  EXPECT_TRUE(a.width() == a.height() || a.width() == 2 * a.height()) << a.width() << "x" << a.height();
-  EXPECT_EQ(a.coverage().size(), static_cast<std::size_t>(a.width()) * a.height());
-  EXPECT_EQ(a.pixel_height(), kPixelHeight);
+TEST(FontAtlas, IsASquarePowerOfTwoThatGrowsWithTheLetters) {
+  const FontAtlas small(14.0f), big(90.0f);
+  EXPECT_TRUE(power_of_two(small.width()));
+  EXPECT_EQ(small.width(), small.height());
+  EXPECT_GT(big.width(), small.width());
+  EXPECT_EQ(small.coverage().size(), static_cast<std::size_t>(small.width()) * small.height());
+}
+
+TEST(FontAtlas, GlyphsAreDrawnWhenFirstNeededAndOnlyOnce) {
+  const FontAtlas a(kPixelHeight);
+  EXPECT_EQ(a.glyphs_drawn(), 0u);
+  const std::uint64_t before = a.generation();
+  EXPECT_EQ(quads(a, "en", "Mallet").size(), 6u);
+  EXPECT_EQ(a.glyphs_drawn(), 5u);  // M a l e t: the second l is the first's
+  const std::uint64_t drawn = a.generation();
+  EXPECT_GT(drawn, before);
+  quads(a, "en", "Mallet tell");
+  EXPECT_EQ(a.glyphs_drawn(), 5u);  // nothing new to draw (the space has no ink)
+  EXPECT_EQ(a.generation(), drawn);  // the GPU's copy stays good
+}
+
+TEST(FontAtlas, ATextIsSetOnceWhileUnchanged) {
+  const FontAtlas a(kPixelHeight);
+  a.measure("Pick up the mallet");
+  const std::uint64_t once = a.shapings();
+  a.measure("Pick up the mallet");
+  a.shape_in("en", "Pick up the mallet");
+  EXPECT_EQ(a.shapings(), once);
+  a.shape_in("de", "Pick up the mallet");  // another language sets it anew (its fonts, its rules)
+  EXPECT_EQ(a.shapings(), once + 1);
 }
 
 TEST(FontAtlas, EveryGlyphLiesInsideTheAtlasAndNoTwoOverlap) {
-  const FontAtlas& a = atlas();
-  const float w = static_cast<float>(a.width()), h = static_cast<float>(a.height());
-  for (char32_t cp = 0x20; cp <= 0xFF; ++cp) {
-    const GlyphQuad q = a.glyph(cp);
-    SCOPED_TRACE(testing::Message() << "U+" << std::hex << static_cast<unsigned>(cp));
-    EXPECT_GE(q.u0, 0.0f);
-    EXPECT_LE(q.u1, 1.0f);
-    EXPECT_GE(q.v0 * h, 4.0f);  // below the solid block's rows
-    EXPECT_LE(q.v1, 1.0f);
-    EXPECT_LE(q.u0, q.u1);
-    EXPECT_LE(q.v0, q.v1);
-    // One screen pixel per atlas texel vertically, two horizontally (2× oversampling).
-    EXPECT_NEAR((q.v1 - q.v0) * h, q.y1 - q.y0, 1e-3);
-    EXPECT_NEAR((q.u1 - q.u0) * w, 2 * (q.x1 - q.x0), 1e-3);
-  }
-  for (char32_t a1 = U'A'; a1 <= U'Z'; ++a1)
-    for (char32_t b1 = a1 + 1; b1 <= U'Z'; ++b1) {
-      const GlyphQuad p = a.glyph(a1), q = a.glyph(b1);
-      const bool apart = p.u1 <= q.u0 || q.u1 <= p.u0 || p.v1 <= q.v0 || q.v1 <= p.v0;
-      EXPECT_TRUE(apart) << static_cast<char>(a1) << " and " << static_cast<char>(b1) << " overlap";
+  const FontAtlas a(kPixelHeight);
+  std::vector<Texels> all;
+  for (const auto& [language, text] : std::vector<std::pair<std::string, std::string>>{
+           {"en", "Pick up the mallet and strike a bar"}, {"ja", "マレットを持って、鍵盤をたたいてみよう"},
+           {"ar", "ارفع المطرقة واضرب أحد القضبان"}, {"hi", "हथौड़ी उठाएँ और किसी पट्टी पर मारें"},
+           {"ko", "채를 들고 건반을 쳐 보세요"}, {"he", "הרימו את המקוש"}}) {
+    for (const GlyphQuad& q : quads(a, language, text)) {
+      EXPECT_GE(q.u0, 0.0f);
+      EXPECT_LE(q.u1, 1.0f);
+      EXPECT_GE(q.v0, 0.0f);
+      EXPECT_LE(q.v1, 1.0f);
+      EXPECT_GT(ink(a, q), 0u) << language;  // real coverage where the glyph is
+      all.push_back(texels(a, q));
     }
-}
-
-TEST(FontAtlas, VerticalMetricsSpanThePixelHeight) {
-  const FontAtlas& a = atlas();
-  EXPECT_GT(a.ascent(), a.descent());
-  EXPECT_GT(a.descent(), 0.0f);
-  EXPECT_GE(a.line_gap(), 0.0f);
-  EXPECT_NEAR(a.ascent() + a.descent(), kPixelHeight, 1e-3);
-}
-
-TEST(FontAtlas, GlyphsSitOnTheBaseline) {
-  const FontAtlas& a = atlas();
-  const GlyphQuad cap = a.glyph(U'A');
-  EXPECT_LT(cap.y0, -0.5f * kPixelHeight);  // a capital rises well above the baseline...
-  EXPECT_GE(cap.y0, -a.ascent() - 1);        // ...but not above the ascent
-  EXPECT_NEAR(cap.y1, 0.0f, 1.0f);           // and stands on it
-  EXPECT_GT(a.glyph(U'g').y1, 2.0f);         // a descender goes below
-}
-
-TEST(FontAtlas, WideLettersAreWiderThanNarrowOnes) {
-  const FontAtlas& a = atlas();
-  EXPECT_GT(a.glyph(U'M').advance, 1.5f * a.glyph(U'i').advance);
-  EXPECT_GT(a.glyph(U'M').x1 - a.glyph(U'M').x0, 2 * (a.glyph(U'i').x1 - a.glyph(U'i').x0));
-  EXPECT_GT(a.measure("MMMM"), a.measure("iiii"));
-}
-
-TEST(FontAtlas, InkIsWhereTheGlyphsAre) {
-  const FontAtlas& a = atlas();
-  EXPECT_GT(ink(a, a.glyph(U'A')), 255u * 20);
-  const GlyphQuad space = a.glyph(U' ');
-  EXPECT_EQ(ink(a, space), 0u);
-  EXPECT_TRUE(space.x1 <= space.x0 || space.y1 <= space.y0);  // nothing to draw...
-  EXPECT_GT(space.advance, 0.0f);                              // ...but it moves the pen
+  }
+  std::sort(all.begin(), all.end(), [](const Texels& l, const Texels& r) { return std::tie(l.x0, l.y0) < std::tie(r.x0, r.y0); });
+  all.erase(std::unique(all.begin(), all.end(), [](const Texels& l, const Texels& r) {
+              return l.x0 == r.x0 && l.y0 == r.y0 && l.x1 == r.x1 && l.y1 == r.y1;
+            }), all.end());  // a glyph used twice is one rectangle
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    EXPECT_TRUE(all[i].y0 >= 4 || all[i].x0 >= 4) << "a glyph over the solid block";
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      const bool apart = all[i].x1 <= all[j].x0 || all[j].x1 <= all[i].x0 || all[i].y1 <= all[j].y0 ||
+                         all[j].y1 <= all[i].y0;
+      EXPECT_TRUE(apart) << "glyphs " << i << " and " << j << " overlap";
+    }
+  }
+  EXPECT_GT(all.size(), 60u);
 }
 
 TEST(FontAtlas, TheSolidTexelIsFullyCovered) {
-  const FontAtlas& a = atlas();
-  const float tx = a.solid_u() * static_cast<float>(a.width());
-  const float ty = a.solid_v() * static_cast<float>(a.height());
-  EXPECT_FLOAT_EQ(tx - std::floor(tx), 0.5f);  // a texel's centre: bilinear reads it alone
-  EXPECT_FLOAT_EQ(ty - std::floor(ty), 0.5f);
-  const int x = static_cast<int>(tx), y = static_cast<int>(ty);
-  for (int dy = -1; dy <= 1; ++dy)  // and its neighbours, for a uv a hair off
+  const FontAtlas a(kPixelHeight);
+  quads(a, "en", "Wood");
+  const int x = static_cast<int>(a.solid_u() * static_cast<float>(a.width()));
+  const int y = static_cast<int>(a.solid_v() * static_cast<float>(a.height()));
+  for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx)
       EXPECT_EQ(a.coverage()[static_cast<std::size_t>(y + dy) * a.width() + x + dx], 255);
 }
 
-TEST(FontAtlas, KerningTightensPairsLikeAV) {
-  const FontAtlas& a = atlas();
-  EXPECT_LT(a.kerning(U'A', U'V'), -0.5f);  // DejaVu Sans kerns A-V by about 2 px at 32 px
-  EXPECT_LT(a.measure("AV"), a.measure("A") + a.measure("V"));
-  EXPECT_NEAR(a.measure("AV"), a.measure("A") + a.measure("V") + a.kerning(U'A', U'V'), 1e-4);
-  EXPECT_EQ(a.kerning(U'H', U'H'), 0.0f);
+TEST(FontAtlas, CapitalsStandAsTheLayoutsExpect) {
+  const FontAtlas a(kPixelHeight);
+  const std::vector<GlyphQuad> h = quads(a, "en", "H");
+  ASSERT_EQ(h.size(), 1u);
+  const float capital = h[0].y1 - h[0].y0;
+  EXPECT_NEAR(capital / kPixelHeight, 0.625f, 0.04f);  // as the kiosk's text always stood
+  EXPECT_NEAR(h[0].y1, 0.0f, 1.0f);                   // on the baseline
+  EXPECT_GT(a.ascent(), capital);
+  EXPECT_GT(a.descent(), 0.0f);
 }
 
-TEST(FontAtlas, LatinOneLettersAreBaked) {
-  const FontAtlas& a = atlas();
-  const GlyphQuad e_acute = a.glyph(U'\u00E9');
-  EXPECT_FALSE(same_quad(e_acute, a.glyph(U'?')));
-  EXPECT_GT(ink(a, e_acute), 255u * 10);
-  EXPECT_LT(e_acute.y0, a.glyph(U'e').y0 - 2);  // the accent stands above the e
-  EXPECT_FLOAT_EQ(a.measure("\xC3\xA9"), e_acute.advance);  // "é" in UTF-8
-  EXPECT_FALSE(same_quad(a.glyph(U'\u00FF'), a.glyph(U'?')));  // ÿ, the last one
+TEST(FontAtlas, WideLettersAreWiderAndPairsKern) {
+  const FontAtlas a(kPixelHeight);
+  EXPECT_GT(a.measure("W"), a.measure("i"));
+  EXPECT_LT(a.measure("AV"), a.measure("A") + a.measure("V"));  // the font's kerning, by HarfBuzz
 }
 
-TEST(FontAtlas, CodePointsOutsideTheRangeDrawAsQuestionMarks) {
-  const FontAtlas& a = atlas();
-  const GlyphQuad question = a.glyph(U'?');
-  EXPECT_TRUE(same_quad(a.glyph(U'\u20AC'), question));  // €
-  EXPECT_TRUE(same_quad(a.glyph(U'\n'), question));
-  EXPECT_TRUE(same_quad(a.glyph(U'\U0001F600'), question));
-  EXPECT_TRUE(same_quad(a.glyph(0x110000), question));
-  EXPECT_FLOAT_EQ(a.measure("\xE2\x82\xAC"), a.measure("?"));
+TEST(FontAtlas, EachLanguageStartsWithItsScriptsNotoFamily) {
+  const FontAtlas a(kPixelHeight);
+  EXPECT_EQ(a.fonts("en").faces().front()->family(), "Noto Sans");
+  EXPECT_EQ(a.fonts("ja").faces().front()->family(), "Noto Sans CJK JP");
+  EXPECT_EQ(a.fonts("zh").faces().front()->family(), "Noto Sans CJK SC");
+  EXPECT_EQ(a.fonts("ko").faces().front()->family(), "Noto Sans CJK KR");
+  EXPECT_EQ(a.fonts("ar").faces().front()->family(), "Noto Sans Arabic");
+  EXPECT_EQ(a.fonts("he").faces().front()->family(), "Noto Sans Hebrew");
+  EXPECT_EQ(a.fonts("hi").faces().front()->family(), "Noto Sans Devanagari");
+  // Latin in a Devanagari line comes from the language's next font, found by fontconfig.
+  EXPECT_TRUE(a.has_in("hi", U'R'));
+  EXPECT_TRUE(a.has_in("ar", U'%'));
 }
 
-TEST(FontAtlas, InvalidUtf8MeasuresLikeQuestionMarks) {
-  const FontAtlas& a = atlas();
-  EXPECT_FLOAT_EQ(a.measure("\xFF"), a.measure("?"));
-  EXPECT_FLOAT_EQ(a.measure("a\xC3"), a.measure("a?"));          // cut short at the end
-  EXPECT_FLOAT_EQ(a.measure("\xC3" "a"), a.measure("?a"));       // cut short before a letter
-  EXPECT_FLOAT_EQ(a.measure("\xC0\xAF"), a.measure("??"));       // overlong '/'
-  EXPECT_FLOAT_EQ(a.measure("\xED\xA0\x80"), a.measure("???"));  // a UTF-16 surrogate
-  EXPECT_FLOAT_EQ(a.measure(std::string_view("\0", 1)), a.measure("?"));
+TEST(FontAtlas, AnOperatorsFamilyComesFirstAndAnUnknownOneFallsBack) {
+  FontChoice choice;
+  choice.families["en"] = "Noto Serif";
+  choice.families["de"] = "No Such Family Anywhere";
+  const FontAtlas a(kPixelHeight, choice);
+  EXPECT_EQ(a.fonts("en").faces().front()->family(), "Noto Serif");
+  EXPECT_TRUE(a.has_in("de", U'ß'));  // fontconfig's next best
+  EXPECT_GT(a.measure("Schlägel"), 0.0f);
+}
+
+TEST(FontAtlas, LettersNoFontHasAreNamedOnce) {
+  const FontAtlas a(kPixelHeight);
+  // U+E000 is private use: no font of Debian's has it.
+  EXPECT_EQ(a.missing_letters("en", "a\uE000b\uE000 \uE001", 8), (std::vector<std::string>{"\uE000", "\uE001"}));
+  EXPECT_TRUE(a.missing_letters("ja", "マレットを持って", 8).empty());
+  EXPECT_TRUE(a.missing_letters("ar", "ارفع المطرقة", 8).empty());
+  EXPECT_FALSE(a.shape_in("en", "\uE000").complete);
+  EXPECT_TRUE(a.shape_in("en", "Mallet").complete);
+}
+
+TEST(FontAtlas, MalformedUtf8IsSetAsReplacementCharacters) {
+  const FontAtlas a(kPixelHeight);
+  EXPECT_EQ(a.shape_in("en", "\xff\xfe").glyphs.size(), 2u);
+  EXPECT_FLOAT_EQ(a.measure("\xC3" "a"), a.measure("\uFFFD" "a"));  // cut short before a letter
   EXPECT_EQ(a.measure(""), 0.0f);
+}
+
+TEST(FontAtlas, AFullAtlasStartsAgainAndDrawsOn) {
+  const FontAtlas a(14.0f);
+  // Thousands of ideographs: more than a 14 px atlas holds.
+  std::string text;
+  for (char32_t c = 0x4E00; c < 0x4E00 + 4000; ++c) {
+    text += static_cast<char>(0xE0 | (c >> 12));
+    text += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    text += static_cast<char>(0x80 | (c & 0x3F));
+  }
+  const std::uint64_t before = a.generation();
+  const std::vector<GlyphQuad> drawn = quads(a, "zh", text);
+  EXPECT_GT(drawn.size(), 3900u);
+  EXPECT_LT(a.glyphs_drawn(), 4000u);  // it started again on the way
+  EXPECT_GT(a.generation(), before + a.glyphs_drawn());
+  const std::vector<GlyphQuad> after = quads(a, "en", "Mallet");  // and goes on drawing
+  ASSERT_EQ(after.size(), 6u);
+  for (const GlyphQuad& q : after) EXPECT_GT(ink(a, q), 0u);
 }
 
 TEST(FontAtlasUtf8, DecodesWellFormedText) {
@@ -181,95 +221,23 @@ TEST(FontAtlasUtf8, EachBrokenSequenceBecomesOneReplacementCharacter) {
   EXPECT_EQ(decode_utf8("a\xC3"), U"a\uFFFD");
 }
 
-TEST(FontAtlas, CopiesOutliveTheOriginal) {
-  auto original = std::make_unique<FontAtlas>(FontAtlas::default_font(), 18.0f);
-  const float av = original->measure("AVATAR");
-  const FontAtlas copy = *original;
-  original.reset();
-  EXPECT_EQ(copy.measure("AVATAR"), av);  // kerning reads the shared font file
-}
-
-TEST(FontAtlas, AMissingFontIsReportedByName) {
-  const auto file = test::scratch_dir() / "absent.ttf";
-  const FileError e = test::file_error_of([&] { FontAtlas(file, 20.0f); });
-  EXPECT_EQ(e.file(), file.string());
-  EXPECT_NE(std::string(e.what()).find("no such font file"), std::string::npos) << e.what();
-}
-
-TEST(FontAtlas, GarbageAndTruncatedFontsAreReportedByName) {
+TEST(FontFace, ABadFontFileIsReportedByName) {
   const auto dir = test::scratch_dir();
   {
-    std::ofstream out(dir / "garbage.ttf", std::ios::binary);
-    out << "definitely not a TrueType font, just some text long enough";
+    std::ofstream(dir / "garbage.ttf") << "this is not a font";
+    std::ofstream(dir / "empty.ttf");
   }
-  const FileError garbage = test::file_error_of([&] { FontAtlas(dir / "garbage.ttf", 20.0f); });
-  EXPECT_EQ(garbage.file(), (dir / "garbage.ttf").string());
-
-  // The real font's first kilobyte: a valid header whose tables run past the end.
-  std::ifstream in(FontAtlas::default_font(), std::ios::binary);
-  std::string head(1024, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  {
-    std::ofstream out(dir / "cut.ttf", std::ios::binary);
-    out << head;
+  for (const char* name : {"garbage.ttf", "empty.ttf", "absent.ttf"}) {
+    const FileError e = test::file_error_of([&] { Face(dir / name, 0, 20.0f); });
+    EXPECT_EQ(e.file(), (dir / name).string());
   }
-  const FileError cut = test::file_error_of([&] { FontAtlas(dir / "cut.ttf", 20.0f); });
-  EXPECT_EQ(cut.file(), (dir / "cut.ttf").string());
-  EXPECT_NE(std::string(cut.what()).find("not a usable TrueType font"), std::string::npos) << cut.what();
-
-  { std::ofstream out(dir / "empty.ttf"); }
-  EXPECT_EQ(test::file_error_of([&] { FontAtlas(dir / "empty.ttf", 20.0f); }).file(), (dir / "empty.ttf").string());
 }
 
 TEST(FontAtlas, AnUnusablePixelHeightIsRefused) {
-  EXPECT_THROW(FontAtlas(FontAtlas::default_font(), 0.0f), std::invalid_argument);
-  EXPECT_THROW(FontAtlas(FontAtlas::default_font(), -12.0f), std::invalid_argument);
-  EXPECT_THROW(FontAtlas(FontAtlas::default_font(), std::numeric_limits<float>::quiet_NaN()),
-               std::invalid_argument);
-}
-
-TEST(FontAtlas, BiggerTextNeedsABiggerAtlas) {
-  const FontAtlas small(FontAtlas::default_font(), 12.0f);
-  const FontAtlas big(FontAtlas::default_font(), 64.0f);
-  EXPECT_LT(static_cast<long>(small.width()) * small.height(), static_cast<long>(big.width()) * big.height());
-  EXPECT_NEAR(big.measure("Mallet") / small.measure("Mallet"), 64.0 / 12.0, 0.15);
-}
-
-// ---- the visitor languages' other scripts: extra code points, from a second font ----
-
-TEST(FontAtlas, TextBeyondLatinOneIsBakedFromTheMainFontOrTheSecond) {
-  // "€" is DejaVu's own; the kana and kanji are IPAGothic's (fonts-ipafont-gothic).
-  const FontAtlas a(FontAtlas::default_font(), kPixelHeight, "Tap €  マレット鍵盤", FontAtlas::default_cjk_font());
-  for (const char32_t cp : {U'\u20AC', U'マ', U'レ', U'ッ', U'ト', U'鍵', U'盤'}) {
-    EXPECT_TRUE(a.has(cp)) << static_cast<unsigned>(cp);
-    const GlyphQuad q = a.glyph(cp);
-    EXPECT_FALSE(same_quad(q, a.glyph(U'?'))) << static_cast<unsigned>(cp);
-    EXPECT_GT(ink(a, q), 0u) << static_cast<unsigned>(cp);
-    EXPECT_GE(q.u0, 0.0f);
-    EXPECT_LE(q.u1, 1.0f);
-    EXPECT_LE(q.v1, 1.0f);
-  }
-  EXPECT_FALSE(a.has(U'猫'));  // not in the text: not baked
-  EXPECT_TRUE(same_quad(a.glyph(U'猫'), a.glyph(U'?')));
-  // A full-width kanji is about a pixel height wide; Latin-1 is as before.
-  EXPECT_NEAR(a.glyph(U'鍵').advance, kPixelHeight, kPixelHeight * 0.2f);
-  EXPECT_FLOAT_EQ(a.measure("AV"), atlas().measure("AV"));  // kerning kept
-}
-
-TEST(FontAtlas, WithoutASecondFontTheOtherScriptsDrawAsQuestionMarks) {
-  const FontAtlas a(FontAtlas::default_font(), kPixelHeight, "マレット", {});
-  EXPECT_FALSE(a.has(U'マ'));
-  EXPECT_TRUE(same_quad(a.glyph(U'マ'), a.glyph(U'?')));
-  EXPECT_EQ(a.width(), atlas().width());
-}
-
-TEST(FontAtlas, AMissingSecondFontIsReportedByName) {
-  const FontAtlas latin(FontAtlas::default_font(), kPixelHeight, "only Latin-1: é", "/no/such/cjk.ttf");
-  EXPECT_TRUE(latin.has(U'é'));  // not needed, not opened
-  const FileError e =
-      test::file_error_of([] { FontAtlas(FontAtlas::default_font(), kPixelHeight, "マ", "/no/such/cjk.ttf"); });
-  EXPECT_EQ(e.file(), "/no/such/cjk.ttf");
-  EXPECT_NE(std::string(e.what()).find("fonts-ipafont-gothic"), std::string::npos) << e.what();
+  EXPECT_THROW(FontAtlas(0.0f), std::invalid_argument);
+  EXPECT_THROW(FontAtlas(-12.0f), std::invalid_argument);
+  EXPECT_THROW(FontAtlas(std::numeric_limits<float>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(FontAtlas(300.0f), std::invalid_argument);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "render/detailed_model.hpp"
 #include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_kiosk_cpu.hpp"
+#include "app/bench/bench_render_text.hpp"
 #include "app/bench/bench_report.hpp"
 #include "app/bench/bench_commands.hpp"
 #include "core/data_paths.hpp"
@@ -239,6 +240,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
     }
     std::printf("\n");
   }
+  print_text_costs(device, frames);
   if (kiosk_cpu_s > 0) {
     std::fflush(stdout);
     const std::vector<KioskCpuRow> cpu = measure_kiosk_cpu(1920, 1080, kiosk_cpu_s, device);
@@ -259,7 +261,10 @@ void add_bench_render(CLI::App& bench) {
 analytic shadow, the scene drawn whole every frame (without the cached background of the
 static instruments), and each antialiasing option (MSAA 1/2/4/8x) with its image error against
 a 4x-supersampled reference of the same frame (RMS in 1/255 units; share of pixels off by
-more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache.
+more than 3/255). Also start-up to the first frame with a cold and a warm pipeline cache, and
+the text's cost: a page of every text of the catalogue in en, ar and hi over the scene at
+1920x1080, the overlay built every frame (its first build, setting every text and drawing
+every glyph, and a later one), the frame with and without it.
 Then the real kiosk's CPU at 1920x1080, fullscreen on its own Xvfb with its sound on its own
 JACK server: % of one core in the attract mode with nobody there, during play (an XTest
 pointer sweeping over the bars) and still (the pointer at rest: no frame is drawn), with the

@@ -34,6 +34,7 @@
 #include "app/strike/remote_pointer.hpp"
 #include "app/common/settings_source.hpp"
 #include "core/visitor_catalogues.hpp"
+#include "app/kiosk/language_check.hpp"
 #include "render/render_setup.hpp"
 #include "audio/portaudio_output.hpp"
 #include "core/calibration_file.hpp"
@@ -312,7 +313,7 @@ DoctorCheck check_soundfont(const AppConfig& config) {
 }
 
 //! The visitor languages: every shipped catalogue readable (the page's L reaches them all),
-//! the ones the settings show, and the Japanese font its texts need.
+//! every dropped-in one too, and the ones the settings show (the language check looks into those).
 DoctorCheck check_languages(const AppConfig& config) {
   std::vector<std::string> problems;
   catalogue_texts(locale_dir(), problems);
@@ -322,19 +323,21 @@ DoctorCheck check_languages(const AppConfig& config) {
     for (const std::string& l : config.attract.languages) shown += " " + l;
     shown += ")";
   }
-  const std::size_t catalogues = visitor_languages().size() - 1;
-  std::string found = visitor_languages_text() + ": " + std::to_string(catalogues - problems.size()) + " of " +
-                      std::to_string(catalogues) + " catalogues in " + locale_dir().string() + "; shown: " + shown;
+  std::string dropped;
+  for (const std::string& l : visitor_languages())
+    if (!dropin_catalogue(l).empty()) dropped += (dropped.empty() ? "" : " ") + l;
+  std::string found = visitor_languages_text() + ": catalogues in " + locale_dir().string() +
+                      (problems.empty() ? "" : " (" + std::to_string(problems.size()) + " unreadable)") +
+                      (dropped.empty() ? "" : ", " + dropped + " from " + dropin_locale_dir().string()) +
+                      "; shown: " + shown;
   if (!problems.empty())
     return {"languages", CheckLevel::warn, found + "; " + problems.front(),
             "reinstall the package (its catalogues are /usr/share/locale/*/LC_MESSAGES/mallet.mo); meanwhile those "
             "languages show in English"};
-  std::error_code ec;
-  const fs::path cjk = render::FontAtlas::default_cjk_font();
-  if (!fs::is_regular_file(cjk, ec) || ::access(cjk.c_str(), R_OK) != 0)
-    return {"languages", CheckLevel::warn, found + "; no Japanese font (" + cjk.string() + "): Japanese shows as '?'",
-            "apt install fonts-ipafont-gothic"};
-  return {"languages", CheckLevel::ok, found + "; Japanese font " + cjk.string(), ""};
+  for (const std::string& p : dropin_problems())
+    return {"languages", CheckLevel::warn, found + "; " + p,
+            "fix the line named (`msgfmt --check` checks a .po), or remove the file: meanwhile that language is not offered"};
+  return {"languages", CheckLevel::ok, found, ""};
 }
 
 //! The user the service runs as (mallet), else whoever runs the doctor.
@@ -588,6 +591,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
     checks.push_back(check_models(scenes));
     checks.push_back(check_soundfont(setup.config));
     checks.push_back(check_languages(setup.config));
+    checks.push_back(check_language(setup.config));
   } catch (const std::exception& e) {
     // What the kiosk starts on meanwhile: the same route as its start (kiosk_setup.hpp).
     const Result<KioskSetup, std::string> fallback = start_setup(ko, state_dir() / kLastGoodSettings);

@@ -235,6 +235,9 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
 void draw_operator_page(render::Overlay& o, const PageLayout& layout) {
   o.fill_rect(layout.x, layout.y, layout.width, layout.height, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(layout.x, layout.y, layout.width, layout.height, 2, {1.0f, 1.0f, 1.0f, 0.5f});
+  // A right-to-left language reads the page from its right edge: each row aligned right, its
+  // columns (the marks, the checks' names) mirrored.
+  const bool rtl = render::right_to_left(visitor_language());
   for (const PageRow& r : layout.rows) {
     std::array<float, 4> color{1.0f, 1.0f, 1.0f, 0.85f};
     switch (r.tone) {
@@ -245,7 +248,10 @@ void draw_operator_page(render::Overlay& o, const PageLayout& layout) {
       case PageTone::fail: color = {1.0f, 0.45f, 0.42f, 1.0f}; break;
       case PageTone::ok: color = {0.45f, 0.86f, 0.5f, 1.0f}; break;
     }
-    o.text(r.x, r.y, r.text, color, render::TextAlign::left, layout.scale);
+    if (rtl)
+      o.text(layout.x + layout.width - (r.x - layout.x), r.y, r.text, color, render::TextAlign::right, layout.scale);
+    else
+      o.text(r.x, r.y, r.text, color, render::TextAlign::left, layout.scale);
   }
 }
 

@@ -56,23 +56,6 @@
 namespace mallet::app {
 namespace {
 
-//! Up to eight of the letters in `text` that `font` cannot draw, as they are written; "" if none.
-std::string missing_glyphs(const render::FontAtlas& font, std::string_view text) {
-  std::string out;
-  int n = 0;
-  for (std::size_t i = 0; i < text.size() && n < 8;) {
-    std::size_t len = 1;  // the letter's bytes: its lead byte and the continuation bytes after it
-    while (i + len < text.size() && (static_cast<unsigned char>(text[i + len]) & 0xC0) == 0x80) ++len;
-    const std::string_view letter = text.substr(i, len);
-    const std::u32string code = render::decode_utf8(letter);
-    if (!code.empty() && !font.has(code[0]) && out.find(letter) == std::string::npos) {
-      out += (n++ ? " " : "") + std::string(letter);
-    }
-    i += len;
-  }
-  return out;
-}
-
 //! The texts drawn while it lives are in `language`; the one in use before comes back after.
 //! A visitor study is shown wholly in one language, which may not be the kiosk's.
 class ShownLanguage {
@@ -345,7 +328,9 @@ void WindowKiosk::build(KioskSetup setup) {
     // study in the protocol's own language, and the page says why.
     study::VisitorProtocol& v = *stage->visitor->visitor;
     std::erase_if(v.texts, [&](const std::pair<std::string, study::VisitorTexts>& t) {
-      const std::string missing = missing_glyphs(*win_.font, t.second.offer + t.second.consent);
+      std::string missing;
+      for (const std::string& letter : win_.font->missing_letters(t.first, t.second.offer + t.second.consent, 8))
+        missing += (missing.empty() ? "" : " ") + letter;
       if (missing.empty()) return false;
       const std::string line = fmt::format("visitor study: its {} words need letters the kiosk's font lacks ({}); "
                                            "{} visitors are shown it in {}",

@@ -39,8 +39,19 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   }
   if (auto t = top.optional_table("kiosk")) {
     c.language = t->string_or("language", c.language);
+    if (!is_visitor_language(c.language)) load_dropin_catalogues();  // one dropped in since
     if (!is_visitor_language(c.language))
       t->fail("language", "\"" + c.language + "\" has no catalogue; expected one of " + visitor_languages_text());
+    t->finish();
+  }
+  if (auto t = top.optional_table("fonts")) {
+    for (const std::string& language : t->keys()) {
+      if (!is_language_code(language))
+        t->fail(language, "not a language code (two or three lowercase letters, as \"ar\" or \"yue\")");
+      const std::string family = t->string_or(language, "");
+      if (family.empty()) t->fail(language, "names no font family");
+      c.render.fonts[language] = family;
+    }
     t->finish();
   }
   if (auto t = top.optional_table("actuator")) {
@@ -173,7 +184,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     t->read("volume", a.volume, 0, 1);
     if (t->has("languages")) a.languages = t->strings("languages");
     for (const std::string& l : a.languages)
-      if (!is_visitor_language(l))
+      if (!is_visitor_language(l) && (load_dropin_catalogues(), !is_visitor_language(l)))
         t->fail("languages", "\"" + l + "\" has no catalogue; expected some of " + visitor_languages_text());
     t->read("language_every_s", a.language_every_s, 1, 3600);
     t->finish();

@@ -10,7 +10,11 @@
 #include <tuple>
 #include <vector>
 
+#include <fmt/printf.h>
+
 #include "app/kiosk/operator_page.hpp"
+#include "core/visitor_catalogues.hpp"
+#include "core/visitor_language.hpp"
 #include "golden_match.hpp"
 #include "render/render_setup.hpp"
 #include "test_paths.hpp"
@@ -220,6 +224,51 @@ TEST(OperatorPageGolden, WithThreeWarningsAt16x9And5x4) {
     state.draw_mallet = false;
     state.overlay = &overlay;
     test::expect_matches_golden(r.render(state), name, r);
+  }
+}
+
+// The page in Arabic (right to left: each row aligned right, the mark column on the right)
+// and Hindi (Devanagari's conjuncts), its texts from the built catalogues, a file's problem in
+// English inside it as the kiosk shows one.
+TEST(OperatorPageGolden, InArabicAndHindi) {
+  for (const std::string language : {"ar", "hi"}) {
+    std::vector<std::string> problems;
+    start_visitor_language(language, problems);
+    ASSERT_TRUE(problems.empty()) << problems.front();
+    const std::vector<PageLine> lines{
+        {PageTone::title, fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"), "balanced", language)},
+        {PageTone::warning, "drop-in /etc/mallet/mallet.d/50-room.toml skipped: /etc/mallet/mallet.d/50-room.toml:3:1: "
+                            "[audio] volum: unknown key"},
+        {PageTone::status, tr("Mouse (no Wii Remote)")},
+        {PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), 80.0)},
+        {PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), 0.2)},
+        {PageTone::status, tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close")},
+        {PageTone::status, fmt::sprintf(tr("scene: %s  (S next)"), "percussion.toml")},
+        {PageTone::status, tr("calibration: R runs the screen with the mouse (not saved)")},
+    };
+    render::HeadlessOptions o;
+    o.size = {960, 540};
+    o.validation = render::Validation::required;
+    o.cache_dir = "";
+    o.device = "llvmpipe";
+    if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+    render::HeadlessRenderer r(test::percussion(), o);
+    const auto font = render::overlay_font(o.size);
+    render::Overlay overlay(*font);
+    const PageLayout page = layout_operator_page(*font, lines, 960.0f, 540.0f);
+    ASSERT_EQ(page.pages, 1) << language;
+    draw_operator_page(overlay, page);
+    if (language == "ar") {  // every row ends a letter's width in from the panel's right edge
+      float right = 0;
+      for (const render::OverlayVertex& v : overlay.vertices())
+        if (v.u != font->solid_u() || v.v != font->solid_v()) right = std::max(right, v.x);
+      EXPECT_NEAR(right, page.x + page.width - font->pixel_height() * page.scale, font->pixel_height() * 0.5f);
+    }
+    use_visitor_language("en");
+    render::FrameState state;
+    state.draw_mallet = false;
+    state.overlay = &overlay;
+    test::expect_matches_golden(r.render(state), "operator_page_" + language, r);
   }
 }
 
