@@ -27,6 +27,7 @@ void read_mo(const std::string& name, const std::string& b, Catalogue& out, std:
   const auto fail = [&](std::size_t at, const std::string& why) {
     problems.push_back(name + ": byte " + std::to_string(at) + ": " + why);
     out = {};
+    out.read = false;
   };
   if (b.size() < 28) return fail(0, "too short for a gettext catalogue's header");
   if (!is_mo(b)) return fail(0, "not a gettext catalogue (.mo): wrong magic number");
@@ -57,6 +58,7 @@ void read_mo(const std::string& name, const std::string& b, Catalogue& out, std:
 thread_local std::jmp_buf* po_escape = nullptr;
 thread_local std::vector<std::string>* po_problems = nullptr;
 thread_local const std::string* po_name = nullptr;
+thread_local bool po_failed = false;
 
 void po_error(int severity, po_message_t, const char* filename, std::size_t line, std::size_t column, int,
               const char* text) {
@@ -69,7 +71,10 @@ void po_error(int severity, po_message_t, const char* filename, std::size_t line
   while (!message.empty() && message.back() == '\n') message.pop_back();
   for (char& c : message)
     if (c == '\n') c = ' ';
-  if (severity != PO_SEVERITY_WARNING) po_problems->push_back(where + ": " + message);
+  // The closing "found N fatal errors" repeats the errors said: not a problem of its own.
+  if (severity == PO_SEVERITY_ERROR || (severity == PO_SEVERITY_FATAL_ERROR && !po_failed))
+    po_problems->push_back(where + ": " + message);
+  if (severity != PO_SEVERITY_WARNING) po_failed = true;
   if (severity == PO_SEVERITY_FATAL_ERROR) std::longjmp(*po_escape, 1);
 }
 
@@ -84,9 +89,11 @@ void read_po(const std::string& name, Catalogue& out, std::vector<std::string>& 
   po_escape = &escape;
   po_problems = &problems;
   po_name = &name;
+  po_failed = false;
   po_file_t file = nullptr;
   if (setjmp(escape) != 0) {  // a fatal error: the file does not read
     out = {};
+    out.read = false;
     return;
   }
   file = po_file_read(name.c_str(), &handler);
@@ -102,13 +109,15 @@ void read_po(const std::string& name, Catalogue& out, std::vector<std::string>& 
   }
   po_message_iterator_free(it);
   po_file_free(file);
+  if (po_failed) out.read = false;
 }
 
 }  // namespace
 
+// What LeakSanitizer (the asan and fuzz builds) is told not to report, each known and bounded:
 // libgettextpo keeps what it parsed of a file whose fatal error ended the parse (read_po
-// jumps out of it): one file's worth, once per reading of a broken drop-in. Known and
-// bounded, so LeakSanitizer (the asan and fuzz builds) is told not to report it.
+// jumps out of it), one file's worth per reading of a broken drop-in; fontconfig's
+// configuration (render/font_fallback) lives as long as the process, as fontconfig intends.
 #if defined(__SANITIZE_ADDRESS__)
 #define MALLET_LSAN 1
 #elif defined(__has_feature)
@@ -117,7 +126,7 @@ void read_po(const std::string& name, Catalogue& out, std::vector<std::string>& 
 #endif
 #endif
 #ifdef MALLET_LSAN
-extern "C" const char* __lsan_default_suppressions() { return "leak:libgettextpo.so\n"; }
+extern "C" const char* __lsan_default_suppressions() { return "leak:libgettextpo.so\nleak:libfontconfig.so\n"; }
 #endif
 
 std::string printf_conversions(const std::string& text) {
@@ -143,6 +152,7 @@ Catalogue read_catalogue(const std::filesystem::path& file, std::vector<std::str
   std::ifstream in(file, std::ios::binary);
   if (!in) {
     problems.push_back(name + ": cannot open the catalogue");
+    out.read = false;
     return out;
   }
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -15,6 +15,7 @@ struct Catalogue {
   //! it (in English). The header (msgid "") is not an entry.
   std::map<std::string, std::string, std::less<>> texts;
   std::vector<std::string> msgids;  //!< every msgid the file has, translated or not, in file order
+  bool read = true;  //!< false: the file does not read (its problems say where); what was read is kept
 };
 
 //! Reads `file` (.mo by its name or its magic number, else .po). Each problem adds one line to `problems`

@@ -117,9 +117,8 @@ const std::vector<std::string>& load_dropin_catalogues() {
     auto one = std::make_shared<Dropped>();
     one->language = language;
     one->file = file;
-    const std::size_t before = d.problems.size();
     one->catalogue = read_catalogue(file, d.problems);
-    if (one->catalogue.msgids.empty() && d.problems.size() > before) continue;  // it did not read: not offered
+    if (!one->catalogue.read) continue;  // it does not read: not offered
     if (!is_visitor_language(language)) d.languages.push_back(language);
     d.now.push_back(std::move(one));
   }

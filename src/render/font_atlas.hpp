@@ -73,7 +73,8 @@ class FontAtlas {
   //! `language`'s fonts, found the first time they are needed.
   const FontFallback& fonts(std::string_view language) const;
 
-  //! Texts set and kept, glyphs in the atlas: what the cache holds (the benchmark reports it).
+  //! Texts set and kept, glyphs looked at (in the atlas, or known to have no ink: a space):
+  //! what the cache holds (the benchmark reports it).
   std::size_t texts_set() const { return shaped_.size(); }
   std::size_t glyphs_drawn() const { return slots_.size(); }
   std::uint64_t shapings() const { return shapings_; }  //!< times any text was set, ever

@@ -170,13 +170,13 @@ namespace {
 std::mutex iterators_mutex;
 
 //! Null only if ICU has no line rules at all (its data missing).
-icu::BreakIterator* line_iterator(std::string_view language) {
+icu::BreakIterator* line_iterator(std::string_view language, bool phrases) {
   static std::map<std::string, std::unique_ptr<icu::BreakIterator>, std::less<>> made;
-  auto it = made.find(language);
+  // Japanese breaks between phrases (ICU's "lw=phrase"), not between any two ideographs:
+  // a word such as 言語 is never split across lines.
+  const std::string locale = language == "ja" && phrases ? "ja@lw=phrase" : std::string(language);
+  auto it = made.find(locale);
   if (it == made.end()) {
-    // Japanese breaks between phrases (ICU's "lw=phrase"), not between any two ideographs:
-    // a word such as 言語 is never split across lines.
-    const std::string locale = language == "ja" ? "ja@lw=phrase" : std::string(language);
     UErrorCode status = U_ZERO_ERROR;
     std::unique_ptr<icu::BreakIterator> made_one(
         icu::BreakIterator::createLineInstance(icu::Locale::createCanonical(locale.c_str()), status));
@@ -184,19 +184,19 @@ icu::BreakIterator* line_iterator(std::string_view language) {
       status = U_ZERO_ERROR;
       made_one.reset(icu::BreakIterator::createLineInstance(icu::Locale::getRoot(), status));
     }
-    it = made.emplace(std::string(language), std::move(made_one)).first;
+    it = made.emplace(locale, std::move(made_one)).first;
   }
   return it->second.get();
 }
 
 }  // namespace
 
-std::vector<LineBreak> line_breaks(std::string_view utf8, std::string_view language) {
+std::vector<LineBreak> line_breaks(std::string_view utf8, std::string_view language, bool phrases) {
   std::vector<LineBreak> out;
   if (utf8.empty()) return out;
   const Utf16Text u = to_utf16(utf8);
   const std::lock_guard lock(iterators_mutex);
-  icu::BreakIterator* it = line_iterator(language);
+  icu::BreakIterator* it = line_iterator(language, phrases);
   if (!it) return {{utf8.size(), false}};
   it->setText(u.text);
   it->first();

@@ -43,8 +43,9 @@ struct LineBreak {
   bool hard = false;   //!< a line must end here (a newline)
 };
 //! Where lines of `utf8` may end, in `language`'s rules, in order; the text's end last. An
-//! empty text has none.
-std::vector<LineBreak> line_breaks(std::string_view utf8, std::string_view language);
+//! empty text has none. Japanese by phrases; `phrases` false: between any two characters
+//! UAX #14 allows (for a phrase wider than a line).
+std::vector<LineBreak> line_breaks(std::string_view utf8, std::string_view language, bool phrases = true);
 
 //! Byte offsets where each user-perceived character (grapheme cluster) ends, in order: the
 //! only places a word too long for a line may be cut.

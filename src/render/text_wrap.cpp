@@ -41,12 +41,20 @@ std::vector<std::string> wrap_text_in(const FontAtlas& font, std::string_view la
     }
     std::size_t end = breaks[chosen].at;
     if (width_of(start, end) > max_width) {
-      // A first piece wider than the line: cut it between characters where it stops fitting
-      // (at least one character a line, so that the text always ends).
+      // A first piece wider than the line (a Japanese phrase, a long word): cut it where UAX #14
+      // allows without phrases (between ideographs, never before 、), else between characters,
+      // as far as fits (at least one character a line, so that the text always ends).
+      const std::string_view piece = utf8.substr(start, end - start);
       std::size_t fit = 0;
-      for (const std::size_t g : grapheme_ends(utf8.substr(start, end - start))) {
-        if (fit != 0 && width_of(start, start + g) > max_width) break;
-        fit = g;
+      for (const LineBreak& b : line_breaks(piece, language, false)) {
+        if (width_of(start, start + b.at) > max_width) break;
+        fit = b.at;
+      }
+      if (fit == 0 || fit == piece.size()) {
+        for (const std::size_t g : grapheme_ends(piece)) {
+          if (fit != 0 && width_of(start, start + g) > max_width) break;
+          fit = g;
+        }
       }
       end = start + fit;
     }

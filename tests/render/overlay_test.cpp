@@ -276,9 +276,9 @@ TEST(OverlayText, AlignmentPlacesTheMeasuredWidth) {
   ASSERT_EQ(centre.vertices().size(), left.vertices().size());
   ASSERT_EQ(right.vertices().size(), left.vertices().size());
   for (std::size_t i = 0; i < left.vertices().size(); ++i) {
-    // Each glyph on a whole pixel: within half a pixel of where the pen put it.
-    EXPECT_NEAR(centre.vertices()[i].x, left.vertices()[i].x + 400 - width / 2, 0.5 + 1e-3);
-    EXPECT_NEAR(right.vertices()[i].x, left.vertices()[i].x + 400 - width, 0.5 + 1e-3);
+    // Each glyph on a whole pixel (both ways set): within a pixel of the one set at the left.
+    EXPECT_NEAR(centre.vertices()[i].x, left.vertices()[i].x + 400 - width / 2, 1.0);
+    EXPECT_NEAR(right.vertices()[i].x, left.vertices()[i].x + 400 - width, 1.0);
     EXPECT_EQ(centre.vertices()[i].y, left.vertices()[i].y);
     EXPECT_EQ(centre.vertices()[i].u, left.vertices()[i].u);
   }
