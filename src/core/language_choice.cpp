@@ -18,7 +18,7 @@ const std::string& LanguageChoice::at(KioskState state, Nanos since, Nanos now) 
 }
 
 const std::string& LanguageChoice::next() {
-  const std::vector<std::string>& all = visitor_languages();
+  const std::vector<std::string> all = visitor_languages();
   const auto it = std::find(all.begin(), all.end(), shown_);
   kiosk_ = it == all.end() || it + 1 == all.end() ? all.front() : *(it + 1);
   return shown_ = kiosk_;

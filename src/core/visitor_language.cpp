@@ -136,7 +136,7 @@ std::filesystem::path dropin_catalogue(std::string_view language) {
   return d ? d->file : std::filesystem::path{};
 }
 
-const std::vector<std::string>& visitor_languages() {
+std::vector<std::string> visitor_languages() {
   if (!drop_ins().read) load_dropin_catalogues();
   return drop_ins().languages;
 }

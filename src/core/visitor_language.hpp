@@ -20,8 +20,9 @@
 namespace mallet {
 
 //! "en" first, then each language with a catalogue (po/LINGUAS), in that file's order, then
-//! each one an operator dropped in (below), by name.
-const std::vector<std::string>& visitor_languages();
+//! each one an operator dropped in (below), by name. A copy: reading the drop-in folder again
+//! (a reload) changes the list while a caller may still be going through the last one.
+std::vector<std::string> visitor_languages();
 //! A language's code: two or three lowercase letters (ISO 639: "ar", "yue").
 bool is_language_code(std::string_view code);
 

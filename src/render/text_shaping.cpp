@@ -200,9 +200,21 @@ std::vector<LineBreak> line_breaks(std::string_view utf8, std::string_view langu
   if (!it) return {{utf8.size(), false}};
   it->setText(u.text);
   it->first();
+  // A script written without spaces: its letters' line-break classes (ideographs, kana,
+  // Thai and its neighbours' dictionary words).
+  auto spaceless = [](UChar32 c) {
+    const auto lb = static_cast<ULineBreak>(u_getIntPropertyValue(c, UCHAR_LINE_BREAK));
+    return lb == U_LB_IDEOGRAPHIC || lb == U_LB_CONDITIONAL_JAPANESE_STARTER || lb == U_LB_COMPLEX_CONTEXT;
+  };
+  const std::int32_t length = u.text.length();
   for (std::int32_t b = it->next(); b != icu::BreakIterator::DONE; b = it->next()) {
     const std::int32_t status = it->getRuleStatus();
-    out.push_back({u.byte_at[static_cast<std::size_t>(b)], status >= UBRK_LINE_HARD && status < UBRK_LINE_HARD_LIMIT});
+    LineBreak lb{u.byte_at[static_cast<std::size_t>(b)], status >= UBRK_LINE_HARD && status < UBRK_LINE_HARD_LIMIT};
+    if (!lb.hard && b > 0 && b < length) {
+      const UChar32 before = u.text.char32At(u.text.moveIndex32(b, -1)), after = u.text.char32At(b);
+      lb.in_word = !u_isWhitespace(before) && !spaceless(before) && !spaceless(after);
+    }
+    out.push_back(lb);
   }
   if (out.empty() || out.back().at != utf8.size()) out.push_back({utf8.size(), false});
   return out;

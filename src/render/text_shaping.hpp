@@ -41,6 +41,10 @@ bool right_to_left(std::string_view language);
 struct LineBreak {
   std::size_t at = 0;  //!< byte offset in the text where a line may end (and the next begin)
   bool hard = false;   //!< a line must end here (a newline)
+  //! Inside a word of a language written with spaces (after the / or - of a path, between
+  //! two Hangul syllables): a place to break only a word too wide for a line. A break after a
+  //! space, or beside an ideograph or a Thai letter (scripts written without spaces), is not.
+  bool in_word = false;
 };
 //! Where lines of `utf8` may end, in `language`'s rules, in order; the text's end last. An
 //! empty text has none. Japanese by phrases; `phrases` false: between any two characters

@@ -22,7 +22,9 @@ std::vector<std::string> wrap_text(const FontAtlas& font, std::string_view utf8,
 
 std::vector<std::string> wrap_text_in(const FontAtlas& font, std::string_view language, std::string_view utf8,
                                       float max_width) {
-  const std::vector<LineBreak> breaks = line_breaks(utf8, language);
+  // Lines end between words; a break inside a word (a path's /) only cuts a word too wide.
+  std::vector<LineBreak> breaks = line_breaks(utf8, language);
+  std::erase_if(breaks, [](const LineBreak& b) { return b.in_word; });
   std::vector<std::string> lines;
   auto width_of = [&](std::size_t from, std::size_t to) {
     return font.shape_in(language, trimmed(utf8.substr(from, to - from))).width;
@@ -41,9 +43,10 @@ std::vector<std::string> wrap_text_in(const FontAtlas& font, std::string_view la
     }
     std::size_t end = breaks[chosen].at;
     if (width_of(start, end) > max_width) {
-      // A first piece wider than the line (a Japanese phrase, a long word): cut it where UAX #14
-      // allows without phrases (between ideographs, never before 、), else between characters,
-      // as far as fits (at least one character a line, so that the text always ends).
+      // A first piece wider than the line (a Japanese phrase, a long word, a path): cut it where
+      // UAX #14 allows inside it (between ideographs but never before 、, after a path's /),
+      // else between characters, as far as fits (at least one character a line, so that the
+      // text always ends).
       const std::string_view piece = utf8.substr(start, end - start);
       std::size_t fit = 0;
       for (const LineBreak& b : line_breaks(piece, language, false)) {

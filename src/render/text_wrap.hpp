@@ -2,8 +2,9 @@
 // Lines of a text that fit a width, as its language breaks lines: Unicode line breaking
 // (UAX #14, render/text_shaping.hpp), so that a line ends only where the language allows
 // (after a space; between Japanese phrases, never inside a word such as 言語; between Thai
-// words; never before closing punctuation nor after opening punctuation). The spaces where a
-// line ends are dropped.
+// words; never before closing punctuation nor after opening punctuation), and between words
+// (a path or a Korean word is kept whole unless wider than a line). The spaces where a line
+// ends are dropped.
 #include <string>
 #include <string_view>
 #include <vector>

@@ -336,7 +336,8 @@ DoctorCheck check_languages(const AppConfig& config) {
             "languages show in English"};
   for (const std::string& p : dropin_problems())
     return {"languages", CheckLevel::warn, found + "; " + p,
-            "fix the line named (`msgfmt --check` checks a .po), or remove the file: meanwhile that language is not offered"};
+            "fix what is named (`msgfmt --check` checks a .po), or remove the file: a file that does not read is not "
+            "offered, a translation whose printf directives differ from its text's shows in English"};
   return {"languages", CheckLevel::ok, found, ""};
 }
 

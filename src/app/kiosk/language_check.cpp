@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "core/catalogue_file.hpp"
 #include "core/data_paths.hpp"
 #include "core/visitor_catalogues.hpp"
@@ -45,7 +47,9 @@ Lacks lacks_of(const std::string& language, const Catalogue& all, const render::
       continue;
     }
     for (const std::string& letter : atlas.missing_letters(language, it->second, 1000))
-      if (seen.insert(letter).second) out.letters += (out.letters.empty() ? "" : " ") + letter;
+      if (seen.insert(letter).second)  // as written, and its code point (a letter may not show where it is read)
+        out.letters += (out.letters.empty() ? "" : ", ") + letter +
+                       fmt::format(" (U+{:04X})", static_cast<std::uint32_t>(render::decode_utf8(letter).at(0)));
   }
   out.font = atlas.fonts(language).faces().front()->family();
   return out;

@@ -167,7 +167,7 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   const fs::path dir = test::scratch_dir();
   const test::CliResult r = test::run_mallet("doctor 2>/dev/null");
   const char* names[] = {"vulkan", "compositor", "audio", "wiimote", "camera", "settings", "models", "soundfont", "languages",
-                         "hidraw", "calibration", "disk", "service", "watchdog"};
+                         "language", "hidraw", "calibration", "disk", "service", "watchdog"};
   std::istringstream lines(r.output);
   std::string line;
   std::vector<std::string> seen;
@@ -199,15 +199,17 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   // The shipped settings, scenes and models are all readable.
   EXPECT_NE(r.output.find("ok    settings"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok    models"), std::string::npos) << r.output;
-  // Every shipped catalogue and the Japanese font are found (the test runner points at the
-  // catalogues this build made).
-  EXPECT_NE(r.output.find("ok    languages    en, de, fr, ja: 3 of 3 catalogues in "), std::string::npos) << r.output;
+  // Every shipped catalogue is found (the test runner points at the catalogues this build
+  // made), and the language shown (English) needs nothing.
+  EXPECT_NE(r.output.find("ok    languages    en, de, fr, ja, zh, ko, ar, he, hi: catalogues in "), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("ok    language     en: the texts as written"), std::string::npos) << r.output;
   // The JSON says the same, and Python's parser reads it.
   const test::CliResult j = test::run_mallet("doctor --json > " + (dir / "d.json").string() + " 2>/dev/null; exit $?");
   EXPECT_EQ(j.status, r.status);
   const std::string check =
       "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
-      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','hidraw',"
+      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','language','hidraw',"
       "'calibration','disk','service','watchdog'];"
       "assert all(x['status'] in ('ok','warn','fail') for x in c);"
       "assert d['fail']==sum(x['status']=='fail' for x in c) and d['ok']+d['warn']+d['fail']==len(c)\" " +

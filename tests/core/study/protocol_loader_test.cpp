@@ -377,19 +377,23 @@ TEST(StudyProtocol, AVisitorProtocolStatesItsOfferConsentTrialsAndTimeout) {
 }
 
 TEST(StudyProtocol, AVisitorProtocolGivesItsWordsPerLanguageAndAnyOtherLanguageGetsItsOwnWhole) {
-  // Issue 30: the shipped visitor study in English, German and French; a Japanese kiosk,
-  // whose words it lacks, shows it wholly in English (the protocol's own language).
+  // Issue 30: the shipped visitor study has words in every shipped language; a kiosk in a
+  // language a protocol lacks shows it wholly in the protocol's own language.
   const StudyProtocol v = load_shipped("visitor.toml");
   ASSERT_TRUE(v.visitor);
   EXPECT_EQ(v.visitor->language, "en");
-  EXPECT_EQ(v.visitor->language_for("de"), "de");
-  EXPECT_EQ(v.visitor->language_for("fr"), "fr");
-  EXPECT_EQ(v.visitor->language_for("ja"), "en");
-  EXPECT_EQ(v.visitor->language_for("en"), "en");
+  for (const std::string& l : visitor_languages()) EXPECT_EQ(v.visitor->language_for(l), l);
   EXPECT_NE(v.visitor->text_in("de").consent.find("Schlag auf Ja"), std::string::npos);
   EXPECT_NE(v.visitor->text_in("fr").offer.find("Aide la science"), std::string::npos);
+  EXPECT_NE(v.visitor->text_in("ar").consent.find("نعم"), std::string::npos);
   EXPECT_EQ(v.visitor->text_in("en").offer, v.visitor->offer);
-  EXPECT_EQ(v.visitor->text_in("ja").consent, v.visitor->consent);
+  const std::string german_only =
+      replaced(std::string(test::kTwoAfcProtocol), "seed = 42", "seed = 42\nresponse = \"strike\"") +
+      "[visitor]\nconsent = \"ok\"\n[visitor.text.de]\noffer = \"Hilf\"\nconsent = \"gut\"\n";
+  const StudyProtocol g = test::parse_protocol(german_only, "german.toml");
+  EXPECT_EQ(g.visitor->language_for("de"), "de");
+  EXPECT_EQ(g.visitor->language_for("ja"), "en");
+  EXPECT_EQ(g.visitor->text_in("ja").consent, "ok");
   // Each language's words are checked as the protocol's own; an unknown language, or the
   // protocol's own given twice, is refused at its line.
   const std::string strike =
