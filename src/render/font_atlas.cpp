@@ -24,12 +24,14 @@ constexpr float kMaxPixelHeight = 256.0f;
 //! Texts kept set: more (a screen's changing numbers over weeks) and the cache starts again.
 constexpr std::size_t kMaxTexts = 4096;
 
-//! The atlas's side: room for about a thousand glyph boxes of a line's height, which holds
-//! every glyph of a few languages' screens at once (a Latin letter takes half a box).
+//! The atlas's side: room for at least 24 × 24 glyph boxes of a line's height, about two
+//! thousand glyphs (a Latin letter takes half a box), where one language's screen draws 50 to
+//! 250 (`mallet bench render`): the nine shipped languages' screens fit at once, nearly.
+//! 2048 × 2048 at 1080p (4 MiB).
 int atlas_side(float pixel_height) {
   const int box = static_cast<int>(std::ceil(pixel_height * 1.4f)) + 2 * kPadding;
   int side = 256;
-  while (side < 32 * box && side < kMaxAtlasSide) side *= 2;
+  while (side < 24 * box && side < kMaxAtlasSide) side *= 2;
   return side;
 }
 
