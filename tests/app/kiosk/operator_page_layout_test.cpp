@@ -202,17 +202,24 @@ TEST(OperatorPageLayout, TheDoctorsChecksKeepTheirColumnsAndShowEachFixWhole) {
   }
 }
 
+//! The percussion scene drawn as the goldens are (lavapipe, validation on; another device by
+//! $MALLET_GOLDEN_DEVICE).
+render::HeadlessOptions golden_options(std::uint32_t w, std::uint32_t h) {
+  render::HeadlessOptions o;
+  o.size = {w, h};
+  o.validation = render::Validation::required;
+  o.cache_dir = "";
+  o.device = "llvmpipe";
+  if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+  return o;
+}
+
 // The page with the walkthrough's three faults over the percussion scene, at 16:9 and 5:4,
 // as lavapipe draws it (tests/golden_match.hpp; MALLET_UPDATE_GOLDENS=1 to update).
 TEST(OperatorPageGolden, WithThreeWarningsAt16x9And5x4) {
   for (const auto& [w, h, name] : {std::tuple{960u, 540u, "operator_page_warnings_16x9"},
                                    std::tuple{640u, 512u, "operator_page_warnings_5x4"}}) {
-    render::HeadlessOptions o;
-    o.size = {w, h};
-    o.validation = render::Validation::required;
-    o.cache_dir = "";
-    o.device = "llvmpipe";
-    if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+    const render::HeadlessOptions o = golden_options(w, h);
     render::HeadlessRenderer r(test::percussion(), o);
     const auto font = render::overlay_font(o.size);
     render::Overlay overlay(*font);
@@ -246,12 +253,7 @@ TEST(OperatorPageGolden, InArabicAndHindi) {
         {PageTone::status, fmt::sprintf(tr("scene: %s  (S next)"), "percussion.toml")},
         {PageTone::status, tr("calibration: R runs the screen with the mouse (not saved)")},
     };
-    render::HeadlessOptions o;
-    o.size = {960, 540};
-    o.validation = render::Validation::required;
-    o.cache_dir = "";
-    o.device = "llvmpipe";
-    if (const char* d = std::getenv("MALLET_GOLDEN_DEVICE")) o.device = d;
+    const render::HeadlessOptions o = golden_options(960, 540);
     render::HeadlessRenderer r(test::percussion(), o);
     const auto font = render::overlay_font(o.size);
     render::Overlay overlay(*font);
