@@ -2,11 +2,9 @@
 
 #include <libintl.h>
 
+#include <algorithm>
 #include <clocale>
-#include <cstdint>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -39,8 +37,9 @@ struct Dropped {
   Catalogue catalogue;
 };
 
-//! The drop-in folder's languages as last read. A catalogue read before is kept (never
-//! freed) when the folder is read again: tr() hands out pointers into it for the process.
+//! The drop-in folder's languages as last read. A catalogue read before and since changed or
+//! removed is kept (never freed): tr() hands out pointers into it for the process. One read
+//! again unchanged is the same object, so reloads alone never grow what is kept.
 struct DropIns {
   std::vector<std::shared_ptr<const Dropped>> now;
   std::vector<std::shared_ptr<const Dropped>> kept;
@@ -110,7 +109,7 @@ const std::vector<std::string>& load_dropin_catalogues() {
   DropIns& d = drop_ins();
   d.read = true;
   d.problems.clear();
-  for (auto& old : d.now) d.kept.push_back(std::move(old));
+  std::vector<std::shared_ptr<const Dropped>> before = std::move(d.now);
   d.now.clear();
   d.languages = shipped_languages();
   for (const auto& [language, file] : dropped_files(dropin_locale_dir())) {
@@ -120,8 +119,18 @@ const std::vector<std::string>& load_dropin_catalogues() {
     one->catalogue = read_catalogue(file, d.problems);
     if (!one->catalogue.read) continue;  // it does not read: not offered
     if (!is_visitor_language(language)) d.languages.push_back(language);
+    // The same texts as before: the catalogue read before goes on (nothing grows reload by reload).
+    const auto same = std::find_if(before.begin(), before.end(), [&](const auto& b) {
+      return b && b->language == language && b->catalogue.texts == one->catalogue.texts;
+    });
+    if (same != before.end()) {
+      d.now.push_back(std::move(*same));
+      continue;
+    }
     d.now.push_back(std::move(one));
   }
+  for (auto& old : before)  // changed or gone: kept, for the texts tr() handed out
+    if (old) d.kept.push_back(std::move(old));
   return d.problems;
 }
 

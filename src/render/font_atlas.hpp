@@ -55,7 +55,8 @@ class FontAtlas {
   float solid_u() const { return solid_u_; }
   float solid_v() const { return solid_v_; }
 
-  //! `utf8` set in the visitor's language (the one in use now), kept for the next time.
+  //! `utf8` set in the visitor's language (the one in use now), kept for the next time. The
+  //! reference holds until the next text is set (the cache may start again then).
   const ShapedText& shape(std::string_view utf8) const;
   const ShapedText& shape_in(std::string_view language, std::string_view utf8) const;
   //! Width in pixels of `utf8` set in the visitor's language.

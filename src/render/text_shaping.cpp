@@ -102,10 +102,7 @@ ShapedText shape_text(const FontFallback& fonts, std::string_view utf8) {
   ShapedText out;
   const Utf16Text u = to_utf16(utf8);
   const std::int32_t length = u.text.length();
-  if (length == 0) {
-    out.right_to_left = right_to_left(fonts.language());
-    return out;
-  }
+  if (length == 0) return out;
   UErrorCode status = U_ZERO_ERROR;
   const std::unique_ptr<UBiDi, BidiDeleter> bidi(ubidi_openSized(length, 0, &status));
   // A right-to-left language's text runs right to left wherever it has a right-to-left letter

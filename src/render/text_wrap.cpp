@@ -53,7 +53,7 @@ std::vector<std::string> wrap_text_in(const FontAtlas& font, std::string_view la
         if (width_of(start, start + b.at) > max_width) break;
         fit = b.at;
       }
-      if (fit == 0 || fit == piece.size()) {
+      if (fit == 0) {
         for (const std::size_t g : grapheme_ends(piece)) {
           if (fit != 0 && width_of(start, start + g) > max_width) break;
           fit = g;

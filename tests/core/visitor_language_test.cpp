@@ -164,6 +164,10 @@ TEST_F(DroppedInLanguage, APoFileDroppedInIsALanguageTheSettingsTake) {
   EXPECT_STREQ(tr("Yes"), "Jes");
   EXPECT_STREQ(tr("Tap %d"), "Frapeto %d");
   EXPECT_STREQ(tr("No"), "No");  // not translated: English
+  // Read again unchanged (a reload), the same catalogue goes on: the same text, at the same place.
+  const char* yes = tr("Yes");
+  EXPECT_TRUE(load_dropin_catalogues().empty());
+  EXPECT_EQ(tr("Yes"), yes);
 }
 
 TEST_F(DroppedInLanguage, ACompiledCatalogueAndAShippedLanguagesReplacementWork) {

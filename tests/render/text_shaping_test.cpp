@@ -48,7 +48,7 @@ std::vector<std::uint32_t> ids_of(const ShapedText& s) {
 
 TEST(TextShaping, ArabicJoinsAsHarfBuzzsOwnToolJoinsIt) {
   const std::string text = "ارفع المطرقة واضرب أحد القضبان";
-  const ShapedText& shaped = font().shape_in("ar", text);
+  const ShapedText shaped = font().shape_in("ar", text);
   ASSERT_FALSE(shaped.glyphs.empty());
   const Face& face = *shaped.glyphs.front().face;
   EXPECT_EQ(face.family(), "Noto Sans Arabic");
@@ -58,8 +58,8 @@ TEST(TextShaping, ArabicJoinsAsHarfBuzzsOwnToolJoinsIt) {
   // Joined: heh alone, at a word's end and between two letters takes three forms. The
   // glyphs run right to left: in بهب the middle one is the heh, in به the leftmost.
   const std::uint32_t alone = font().shape_in("ar", "ه").glyphs.at(0).glyph;
-  const ShapedText& middle = font().shape_in("ar", "بهب");
-  const ShapedText& end = font().shape_in("ar", "به");
+  const ShapedText middle = font().shape_in("ar", "بهب");
+  const ShapedText end = font().shape_in("ar", "به");
   ASSERT_EQ(middle.glyphs.size(), 3u);
   ASSERT_EQ(end.glyphs.size(), 2u);
   EXPECT_NE(middle.glyphs[1].glyph, alone);
@@ -69,14 +69,14 @@ TEST(TextShaping, ArabicJoinsAsHarfBuzzsOwnToolJoinsIt) {
 
 TEST(TextShaping, DevanagariFormsConjunctsAsHarfBuzzsOwnToolDoes) {
   const std::string text = "क्षेत्र में हिन्दी पट्टी";
-  const ShapedText& shaped = font().shape_in("hi", text);
+  const ShapedText shaped = font().shape_in("hi", text);
   ASSERT_FALSE(shaped.glyphs.empty());
   const Face& face = *shaped.glyphs.front().face;
   EXPECT_EQ(face.family(), "Noto Sans Devanagari");
   EXPECT_EQ(ids_of(shaped), hb_shape(face, "hi", text));
   EXPECT_FALSE(shaped.right_to_left);
   // The vowel sign ि is written after its consonant and drawn before it: "हि" starts with it.
-  const ShapedText& hi = font().shape_in("hi", "हि");
+  const ShapedText hi = font().shape_in("hi", "हि");
   ASSERT_EQ(hi.glyphs.size(), 2u);
   EXPECT_EQ(hi.glyphs[1].glyph, face.glyph_index(U'\u0939'));
   // क् + ष is one glyph, the conjunct क्ष, not three.
@@ -85,7 +85,7 @@ TEST(TextShaping, DevanagariFormsConjunctsAsHarfBuzzsOwnToolDoes) {
 
 TEST(TextShaping, HebrewRunsRightToLeftAroundALeftToRightRun) {
   const std::string text = "לחצו Page Down";
-  const ShapedText& s = font().shape_in("he", text);
+  const ShapedText s = font().shape_in("he", text);
   EXPECT_TRUE(s.right_to_left);
   ASSERT_GE(s.glyphs.size(), 12u);
   // Visual order, left to right: "Page Down" (in its own order), the space, then לחצו reversed.
@@ -102,7 +102,7 @@ TEST(TextShaping, InARightToLeftLanguageATextWithItsLettersRunsRightToLeft) {
   EXPECT_FALSE(font().shape_in("ar", "42").right_to_left);
   EXPECT_TRUE(font().shape_in("ar", "مستوى الصوت 80 %").right_to_left);
   // A translated sentence that starts with a Latin word is still an Arabic sentence.
-  const ShapedText& title = font().shape_in("ar", "Mallet: صفحة المشغّل");
+  const ShapedText title = font().shape_in("ar", "Mallet: صفحة المشغّل");
   EXPECT_TRUE(title.right_to_left);
   // Read from the right: "Mallet", then the colon to its left, then the Arabic.
   const Face& latin = *title.glyphs.back().face;
@@ -118,7 +118,7 @@ TEST(TextShaping, InARightToLeftLanguageATextWithItsLettersRunsRightToLeft) {
 
 TEST(TextShaping, JapaneseWithLatinIsSetInOneFont) {
   // The old atlas set the Latin of a Japanese line in another font, so lines looked uneven.
-  const ShapedText& s = font().shape_in("ja", "言語：ja  Page Down");
+  const ShapedText s = font().shape_in("ja", "言語：ja  Page Down");
   for (const PlacedGlyph& g : s.glyphs) EXPECT_EQ(g.face->family(), "Noto Sans CJK JP");
 }
 
