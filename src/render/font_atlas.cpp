@@ -141,6 +141,11 @@ const ShapedText& FontAtlas::shape_in(std::string_view language, std::string_vie
 
 const ShapedText& FontAtlas::shape(std::string_view utf8) const { return shape_in(visitor_language(), utf8); }
 
+void FontAtlas::warm(std::string_view language, const std::vector<std::string>& texts) const {
+  for (const std::string& text : texts)
+    for (const PlacedGlyph& g : shape_in(language, text).glyphs) quad(g);
+}
+
 bool FontAtlas::has_in(std::string_view language, char32_t code_point) const {
   return fonts(language).face_for(code_point) >= 0;
 }

@@ -65,6 +65,11 @@ class FontAtlas {
   //! space). An atlas too full for it starts again empty (generation() tells the GPU).
   std::optional<GlyphQuad> quad(const PlacedGlyph& glyph) const;
 
+  //! Sets each of `texts` in `language` and draws their glyphs now: what a screen will show,
+  //! ready before its first frame (the kiosk's start warms its language's catalogue), so that
+  //! showing it costs no shaping and no copy of the atlas to the GPU then.
+  void warm(std::string_view language, const std::vector<std::string>& texts) const;
+
   //! Whether a font of `language` has `code_point` (false: it draws as the font's box).
   bool has_in(std::string_view language, char32_t code_point) const;
   bool has(char32_t code_point) const;  //!< in the visitor's language

@@ -12,7 +12,9 @@
 #include <fmt/format.h>
 
 #include "core/data_paths.hpp"
+#include "core/catalogue_file.hpp"
 #include "core/journal.hpp"
+#include "core/visitor_language.hpp"
 #include "core/pixel_size.hpp"
 #include "core/file_error.hpp"
 #include "render/vk_error.hpp"
@@ -71,6 +73,16 @@ render::RenderSettings render_settings(const render::Context& ctx, const RenderC
   return rs;
 }
 
+std::vector<std::string> screen_texts() {
+  static const std::vector<std::string> msgids = [] {
+    std::vector<std::string> problems;
+    return read_catalogue(data_dir() / "po" / "mallet.pot", problems).msgids;
+  }();
+  std::vector<std::string> texts{"0123456789 %.,:;()/-"};
+  for (const std::string& id : msgids) texts.emplace_back(tr(id.c_str()));
+  return texts;
+}
+
 std::unique_ptr<render::FontAtlas> overlay_font(VkExtent2D extent, const std::map<std::string, std::string>& fonts) {
   const float shorter = static_cast<float>(std::min(extent.width, extent.height));
   const float px = std::max(14.0f, shorter / 24.0f);
@@ -90,6 +102,7 @@ ProductWindow::ProductWindow(const RenderConfig& r, const std::string& device, c
   window = std::make_unique<render::WindowTarget>(*ctx, options, &clock);
   aspect.set(static_cast<int>(window->extent().width), static_cast<int>(window->extent().height));
   font = overlay_font(window->extent(), r.fonts);
+  font->warm(visitor_language(), screen_texts());
   overlay = std::make_unique<render::Overlay>(*font);
   if (const char* lose = std::getenv("MALLET_INJECT_DEVICE_LOST")) {
     std::stringstream in(lose);

@@ -83,6 +83,10 @@ render::WindowOptions window_options(const RenderConfig& r, const std::string& s
 //! [render] msaa ("auto": what the device is recommended) and shadow, as renderer settings.
 render::RenderSettings render_settings(const render::Context& ctx, const RenderConfig& r);
 
+//! Every text of the kiosk's catalogue (the template's, in the visitor's language) and the
+//! digits: what a window's font warms before its first frame.
+std::vector<std::string> screen_texts();
+
 //! The overlay's font, sized for a window of this size: a 24th of its shorter side (the height
 //! of a landscape screen, the width of a portrait one), at least 14 px; each language in the
 //! family [fonts] names for it, else Noto's (render/font_fallback.hpp).

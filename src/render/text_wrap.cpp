@@ -1,5 +1,6 @@
 #include "render/text_wrap.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 #include "core/visitor_language.hpp"
@@ -22,6 +23,12 @@ std::vector<std::string> wrap_text(const FontAtlas& font, std::string_view utf8,
 
 std::vector<std::string> wrap_text_in(const FontAtlas& font, std::string_view language, std::string_view utf8,
                                       float max_width) {
+  // A text that fits is one line (most do): set once, no line breaking to find.
+  if (utf8.find('\n') == std::string_view::npos) {
+    const std::string_view whole = trimmed(utf8.substr(std::min(utf8.find_first_not_of(' '), utf8.size())));
+    if (whole.empty()) return {};
+    if (font.shape_in(language, whole).width <= max_width) return {std::string(whole)};
+  }
   // Lines end between words; a break inside a word (a path's /) only cuts a word too wide.
   std::vector<LineBreak> breaks = line_breaks(utf8, language);
   std::erase_if(breaks, [](const LineBreak& b) { return b.in_word; });

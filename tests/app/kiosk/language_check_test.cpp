@@ -1,0 +1,63 @@
+// `mallet doctor`'s language check (issue 30): a shipped language shown is whole; a language an
+// operator dropped in is counted against the template, its untranslated texts and the letters
+// no font has named, with the file to fix.
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app/kiosk/language_check.hpp"
+#include "core/visitor_catalogues.hpp"
+#include "core/visitor_language.hpp"
+#include "test_paths.hpp"
+
+namespace mallet::app {
+namespace {
+
+class LanguageCheck : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::scratch_dir();
+    setenv("MALLET_LOCALE_DROPIN", dir_.c_str(), 1);
+    std::vector<std::string> problems;
+    start_visitor_language("en", problems);
+  }
+  void TearDown() override {
+    unsetenv("MALLET_LOCALE_DROPIN");
+    load_dropin_catalogues();
+    use_visitor_language("en");
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(LanguageCheck, ShippedLanguagesShownAreWholeAndInTheirFonts) {
+  AppConfig c;
+  c.language = "ar";
+  c.attract.languages = {"ar", "hi", "en"};
+  const DoctorCheck check = check_language(c);
+  EXPECT_EQ(check.name, "language");
+  EXPECT_EQ(check.level, CheckLevel::ok) << check.found;
+  EXPECT_EQ(check.found, "ar: 62 of 62 texts in Noto Sans Arabic; hi: 62 of 62 texts in Noto Sans Devanagari; "
+                         "en: the texts as written");
+}
+
+TEST_F(LanguageCheck, ADroppedInLanguageNamesItsGapsAndTheFileToFix) {
+  // Two texts, one with a letter no font has (U+E000, private use).
+  std::ofstream(dir_ / "eo.po") << "msgid \"\"\nmsgstr \"\"\n\"Content-Type: text/plain; charset=UTF-8\\n\"\n\n"
+                                   "msgid \"Yes\"\nmsgstr \"Jes\"\n\nmsgid \"No\"\nmsgstr \"Ne \xEE\x80\x80\"\n";
+  load_dropin_catalogues();
+  AppConfig c;
+  c.language = "eo";
+  const DoctorCheck check = check_language(c);
+  EXPECT_EQ(check.level, CheckLevel::warn);
+  EXPECT_EQ(check.found.rfind("eo: 2 of 62 texts in ", 0), 0u) << check.found;
+  EXPECT_NE(check.found.find(", untranslated: \""), std::string::npos) << check.found;
+  EXPECT_NE(check.found.find("and 57 more (shown in English)"), std::string::npos) << check.found;
+  EXPECT_NE(check.found.find("no font has: \xEE\x80\x80 (U+E000)"), std::string::npos) << check.found;
+  EXPECT_NE(check.fix.find("translate them in " + (dir_ / "eo.po").string()), std::string::npos) << check.fix;
+  EXPECT_NE(check.fix.find("[fonts] eo = "), std::string::npos) << check.fix;
+}
+
+}  // namespace
+}  // namespace mallet::app
