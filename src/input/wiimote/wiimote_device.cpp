@@ -262,7 +262,12 @@ void WiimoteDevice::on_report(Nanos t, std::span<const std::uint8_t> report) {
   if (outcome.kind != ReportOutcome::Kind::ir) return;
   if (outcome.update.point || outcome.update.event != IrTrackerEvent::none || config_.every_frame) {
     LedSample s;
-    s.has_frame = outcome.frame.has_value();
+    // The camera's whole frame (the sensitivity tuner's) only once it is taken with the blocks
+    // last asked for: while a switch waits to be serviced, or its start-up runs, the remote
+    // goes on reporting with the old blocks, and a tuner fed those frames judged the old
+    // preset as the new one (seen in the VM test, whose start-ups take seconds).
+    s.has_frame = outcome.frame.has_value() && startup_.running() &&
+                  sensitivity_request_.load(std::memory_order_acquire) < 0;
     if (s.has_frame) s.frame = *outcome.frame;
     s.t_ns = t;
     s.event = outcome.update.event;
