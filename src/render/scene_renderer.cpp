@@ -224,6 +224,10 @@ SceneRenderer::SceneRenderer(const Context& ctx, const Scene& scene, const std::
   VkSampler raw_sampler;
   check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
   sampler_ = vk::Sampler(dev, raw_sampler);
+  // The glyph atlas never wraps: a glyph at its edge must not take in the opposite edge's.
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
+  atlas_sampler_ = vk::Sampler(dev, raw_sampler);
   sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;  // the cached light and depth: read texel by texel
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   check(vkCreateSampler(dev, &sci, nullptr, &raw_sampler), "creating a sampler");
@@ -284,8 +288,9 @@ VkDescriptorSet SceneRenderer::allocate_set(VkDescriptorSetLayout layout) {
   return set;
 }
 
-void SceneRenderer::write_image_set(VkDescriptorSet set, VkImageView view) {
-  VkDescriptorImageInfo ii{sampler_.get(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+void SceneRenderer::write_image_set(VkDescriptorSet set, VkImageView view, VkSampler sampler) {
+  VkDescriptorImageInfo ii{sampler != VK_NULL_HANDLE ? sampler : sampler_.get(), view,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
   w.descriptorCount = 1;
@@ -544,17 +549,44 @@ void SceneRenderer::ensure_attachments(VkExtent2D extent) {
   attachment_extent_ = extent;
 }
 
-void SceneRenderer::ensure_atlas(const FontAtlas& atlas) {
-  // The atlas fills as text is first shown (render/font_atlas.hpp): a new copy for the GPU
+void SceneRenderer::ensure_atlas(VkCommandBuffer cmd, const FontAtlas& atlas, Slot& slot) {
+  // The atlas fills as text is first shown (render/font_atlas.hpp): the GPU's copy follows it
   // whenever it changed, which after the first frames of a language is seldom.
   if (atlas_source_ == &atlas && atlas_generation_ == atlas.generation()) return;
-  vkDeviceWaitIdle(ctx_.device());
-  atlas_ = make_texture(ctx_, {static_cast<std::uint32_t>(atlas.width()), static_cast<std::uint32_t>(atlas.height())},
-                        VK_FORMAT_R8_UNORM, atlas.coverage(), 1);
-  if (atlas_set_ == VK_NULL_HANDLE) atlas_set_ = allocate_set(image_layout_.get());
-  write_image_set(atlas_set_, atlas_.view.get());
-  atlas_source_ = &atlas;
+  const VkExtent2D extent{static_cast<std::uint32_t>(atlas.width()), static_cast<std::uint32_t>(atlas.height())};
+  if (atlas_source_ != &atlas || atlas_extent_.width != extent.width || atlas_extent_.height != extent.height) {
+    // Another font (another screen size): its own texture, made once, with nothing in flight.
+    vkDeviceWaitIdle(ctx_.device());
+    atlas_ = make_texture(ctx_, extent, VK_FORMAT_R8_UNORM, atlas.coverage(), 1);
+    if (atlas_set_ == VK_NULL_HANDLE) atlas_set_ = allocate_set(image_layout_.get());
+    write_image_set(atlas_set_, atlas_.view.get(), atlas_sampler_.get());
+    atlas_source_ = &atlas;
+    atlas_extent_ = extent;
+    atlas_generation_ = atlas.generation();
+    return;
+  }
+  // Glyphs added: copied into the texture the frames already sample, by this frame's own
+  // commands, after every earlier frame's reads (the barrier's first scope) and before its own
+  // text. The texture and its descriptor stay as they are: a texture freed or a descriptor
+  // rewritten while a frame may still read it is what crashed lavapipe's rasterizer threads in
+  // the VM test (a read of freed memory, as new text first showed).
+  const std::span<const std::uint8_t> texels = atlas.coverage();
+  if (slot.atlas_staging.size < texels.size())
+    slot.atlas_staging = make_host_buffer(ctx_, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(slot.atlas_staging.mapped, texels.data(), texels.size());
+  transition(cmd, atlas_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyBufferToImage(cmd, slot.atlas_staging.buffer.get(), atlas_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         1, &region);
+  transition(cmd, atlas_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   atlas_generation_ = atlas.generation();
+  ++atlas_updates_;
 }
 
 std::uint32_t SceneRenderer::triangles_of(const Instance& instance) const {
@@ -644,7 +676,7 @@ void SceneRenderer::draw_instance(VkCommandBuffer cmd, const Instance& instance,
 
 void SceneRenderer::draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Slot& slot, VkExtent2D extent) {
   if (overlay.indices().empty()) return;
-  ensure_atlas(overlay.atlas());
+  // Its atlas's texture is up to date: record() copied the new glyphs before any drawing.
   const auto vbytes = bytes_of(overlay.vertices());
   const auto ibytes = bytes_of(overlay.indices());
   if (slot.overlay_vertices.size < vbytes.size())
@@ -773,8 +805,9 @@ void SceneRenderer::record(VkCommandBuffer cmd, const FrameTarget& target, const
                            std::uint32_t slot_index) {
   const VkExtent2D extent = target.extent;
   ensure_attachments(extent);
-  if (requested.overlay && !requested.overlay->indices().empty()) ensure_atlas(requested.overlay->atlas());
   Slot& slot = slots_.at(slot_index);
+  // Before any drawing: the atlas's new glyphs are copied outside the frame's rendering.
+  if (requested.overlay && !requested.overlay->indices().empty()) ensure_atlas(cmd, requested.overlay->atlas(), slot);
   if (background_scratch_slot_ == slot_index) {  // the frame that drew the background is done
     background_msaa_color_ = {};
     background_msaa_depth_ = {};

@@ -125,6 +125,8 @@ class SceneRenderer {
   std::size_t triangle_count() const;
   //! How many times the cached background was drawn: once per image size it met.
   std::uint64_t background_builds() const { return background_builds_; }
+  //! How often glyphs added to the overlay's atlas were copied into its texture in place.
+  std::uint64_t atlas_updates() const { return atlas_updates_; }
   //! How many passes the last frame drew over the cached background for the sphere's
   //! shadow and the lit detailed bars. Single-sampled frames (a CPU rasteriser's): shaded on
   //! the screen from the cached light, bars and depth, one pass over each rectangle that
@@ -163,12 +165,15 @@ class SceneRenderer {
     GpuBuffer frame_uniform;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
     GpuBuffer overlay_vertices, overlay_indices;
+    GpuBuffer atlas_staging;  //!< the atlas's texels as this slot's frame copies them to the GPU
   };
 
   void load_model(const std::filesystem::path& file, const std::string& name);
   void build_pipelines(VkPipelineCache cache);
   void ensure_attachments(VkExtent2D extent);
-  void ensure_atlas(const FontAtlas& atlas);
+  //! The atlas's texture as `atlas` is now: made for a new atlas, else its added glyphs copied
+  //! in by `cmd` (outside any rendering), never replaced while a frame may sample it.
+  void ensure_atlas(VkCommandBuffer cmd, const FontAtlas& atlas, Slot& slot);
   void record_background(VkCommandBuffer cmd, const Slot& slot, std::uint32_t slot_index);
   //! The cached instruments' light per pixel and depth (screen_space_shadow()).
   void record_cached_light(VkCommandBuffer cmd, const Slot& slot);
@@ -190,7 +195,8 @@ class SceneRenderer {
   void draw_instance(VkCommandBuffer cmd, const Instance& instance, Shadow shadow, glm::vec3 emissive = glm::vec3(0.0f));
   void draw_overlay(VkCommandBuffer cmd, const Overlay& overlay, Slot& slot, VkExtent2D extent);
   VkDescriptorSet allocate_set(VkDescriptorSetLayout layout);
-  void write_image_set(VkDescriptorSet set, VkImageView view);
+  //! `sampler`: the scene's own (repeating, linear) unless another is given.
+  void write_image_set(VkDescriptorSet set, VkImageView view, VkSampler sampler = VK_NULL_HANDLE);
 
   const Context& ctx_;
   const Scene& scene_;
@@ -200,7 +206,7 @@ class SceneRenderer {
   std::vector<Instance> instruments_;
   std::map<std::string, GpuModel> models_;
   GpuImage white_;
-  vk::Sampler sampler_, nearest_sampler_;
+  vk::Sampler sampler_, nearest_sampler_, atlas_sampler_;
   vk::DescriptorSetLayout frame_layout_, image_layout_, shadow_layout_;
   vk::DescriptorPool pool_;
   vk::PipelineLayout scene_pipeline_layout_, overlay_pipeline_layout_, shadow_pipeline_layout_;
@@ -233,6 +239,8 @@ class SceneRenderer {
   PixelRect drawn_area_;
   const FontAtlas* atlas_source_ = nullptr;
   std::uint64_t atlas_generation_ = 0;
+  VkExtent2D atlas_extent_{};
+  std::uint64_t atlas_updates_ = 0;  //!< copies of added glyphs into the texture (tests)
   GpuImage atlas_;
   VkDescriptorSet atlas_set_ = VK_NULL_HANDLE;
 };

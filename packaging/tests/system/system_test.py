@@ -95,6 +95,23 @@ class Test:
                             "journalctl -b --no-pager -n 25 -o short-monotonic 2>&1")
         return "guest says:\n" + status
 
+    def failure_journal(self, name, since):
+        """A failed scenario's journal (every unit, since it began) in OUT/journal-NAME.txt, and
+        its last lines from the kiosk and the test's own units on the output, where a CI log
+        shows them (a later reboot's journal.txt no longer holds this boot)."""
+        try:
+            _, text = self.sh(f"journalctl --since @{since} -o short-monotonic --no-pager", timeout=300)
+            with open(os.path.join(self.args.out, f"journal-{name}.txt"), "w") as f:
+                f.write(text)
+            for unit, lines in ((UNIT, 40), ("wiimote-emulator", 15)):
+                tail = self.sh(f"journalctl -u {unit} --since @{since} -o short-monotonic --no-pager "
+                               f"| grep -v ' strike t=' | tail -n {lines}", timeout=120)[1].rstrip()
+                if tail and "-- No entries --" not in tail:
+                    print(f"  {unit}, last lines of the scenario:", flush=True)
+                    print("\n".join("  | " + l for l in tail.splitlines()), flush=True)
+        except Exception as e:  # the machine may be the reason the scenario failed
+            print(f"system: could not save {name}'s journal: {e}", flush=True)
+
     def screen(self, name):
         path = os.path.join(self.args.out, name + ".ppm")
         width, height, rgb = self.vm.qmp.screendump(path)
@@ -474,12 +491,15 @@ class Test:
             for name in names:
                 self.ran += 1
                 start = time.monotonic()
+                since = self.guest_time() if name != "first-boot" else None
                 try:
                     said = getattr(self, name.replace("-", "_"))()
                     print(f"ok   {name} ({time.monotonic() - start:.0f} s): {said}", flush=True)
                 except VmError as e:
                     failed += 1
                     print(f"FAIL {name} ({time.monotonic() - start:.0f} s): {e}", flush=True)
+                    if since:
+                        self.failure_journal(name, since)
                     if name == "first-boot":
                         break
         finally:
