@@ -43,6 +43,12 @@ GpuImage make_image(const Context& ctx, VkExtent2D extent, VkFormat format, VkIm
 GpuImage make_texture(const Context& ctx, VkExtent2D extent, VkFormat format,
                       std::span<const std::uint8_t> pixels, std::uint32_t bytes_per_pixel);
 
+//! Records a whole texture's texels copied from `staging` (tightly packed) into `image`: from
+//! `from` (what the earlier commands left it as, after their `src_stage`/`src_access`) to
+//! TRANSFER_DST, the copy, then SHADER_READ_ONLY_OPTIMAL for fragment shaders.
+void record_texture_upload(VkCommandBuffer cmd, VkBuffer staging, VkImage image, VkExtent2D extent,
+                           VkImageLayout from, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access);
+
 //! Records a layout transition with a full synchronization2 barrier between the given
 //! stages/accesses.
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,

@@ -574,17 +574,9 @@ void SceneRenderer::ensure_atlas(VkCommandBuffer cmd, const FontAtlas& atlas, Sl
   if (slot.atlas_staging.size < texels.size())
     slot.atlas_staging = make_host_buffer(ctx_, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   std::memcpy(slot.atlas_staging.mapped, texels.data(), texels.size());
-  transition(cmd, atlas_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {extent.width, extent.height, 1};
-  vkCmdCopyBufferToImage(cmd, slot.atlas_staging.buffer.get(), atlas_.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                         1, &region);
-  transition(cmd, atlas_.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-             VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  record_texture_upload(cmd, slot.atlas_staging.buffer.get(), atlas_.image.get(), extent,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   atlas_generation_ = atlas.generation();
   ++atlas_updates_;
 }
