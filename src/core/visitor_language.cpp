@@ -121,7 +121,7 @@ const std::vector<std::string>& load_dropin_catalogues() {
     if (!is_visitor_language(language)) d.languages.push_back(language);
     // The same texts as before: the catalogue read before goes on (nothing grows reload by reload).
     const auto same = std::find_if(before.begin(), before.end(), [&](const auto& b) {
-      return b && b->language == language && b->catalogue.texts == one->catalogue.texts;
+      return b && b->language == one->language && b->catalogue.texts == one->catalogue.texts;
     });
     if (same != before.end()) {
       d.now.push_back(std::move(*same));
