@@ -1,0 +1,65 @@
+#include "audio/actuator_inverse.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "audio/fft.hpp"
+
+namespace mallet::audio {
+
+InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& r, const InverseSpec& spec) {
+  if (!(spec.gain_limit_db > 0 && spec.gain_limit_db <= 40))
+    throw std::invalid_argument("the inverse's gain limit must be above 0 and at most 40 dB");
+  if (!(spec.taps >= 16 && spec.taps <= 8192)) throw std::invalid_argument("the inverse has 16 to 8192 taps");
+  std::vector<double> band_db;
+  for (const ResponsePoint& p : r.points)
+    if (p.freq_hz >= r.band_low_hz && p.freq_hz <= r.band_high_hz) band_db.push_back(p.magnitude_db);
+  if (band_db.size() < 3 || !(r.sample_rate_hz > 0)) throw std::invalid_argument("the response has no usable band");
+  std::nth_element(band_db.begin(), band_db.begin() + static_cast<std::ptrdiff_t>(band_db.size() / 2), band_db.end());
+  InverseFilter out;
+  out.target_db = band_db[band_db.size() / 2];
+  const double target = std::pow(10.0, out.target_db / 20.0);
+  const double limit = std::pow(10.0, spec.gain_limit_db / 20.0);
+  const double beta = (target / (2 * limit)) * (target / (2 * limit));
+
+  const std::size_t n = fft_size_for(std::max<std::size_t>(4 * h.size(), 32 * static_cast<std::size_t>(spec.taps)));
+  const Spectrum spectrum = real_dft(h, n);
+  const double bin_hz = static_cast<double>(r.sample_rate_hz) / static_cast<double>(n);
+  const auto bin_of = [&](double f) { return static_cast<std::size_t>(std::llround(f / bin_hz)); };
+  const std::size_t k_lo = std::max<std::size_t>(1, bin_of(r.band_low_hz));
+  const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(r.band_high_hz));
+  std::vector<double> magnitude(spectrum.size());
+  for (std::size_t k = 0; k < spectrum.size(); ++k) {
+    const double a = std::abs(spectrum[std::clamp(k, k_lo, k_hi)]);
+    magnitude[k] = std::max(target * a / (a * a + beta), 1e-6);
+  }
+  const Spectrum c = minimum_phase(magnitude, n);
+  std::vector<double> taps = inverse_real_dft(c, n);
+  taps.resize(static_cast<std::size_t>(spec.taps));
+  const std::size_t fade = taps.size() / 8;
+  for (std::size_t i = 0; i < fade; ++i) {
+    const double x = static_cast<double>(i + 1) / static_cast<double>(fade + 1);  // 0 → 1 toward the end
+    taps[taps.size() - fade + i] *= 0.5 + 0.5 * std::cos(std::numbers::pi * x);
+  }
+  out.taps = std::move(taps);
+
+  // What the cut filter does over the band: its gains and its latency.
+  double weighted = 0, weights = 0;
+  out.max_gain_db = -1e9;
+  out.min_gain_db = 1e9;
+  for (const ResponsePoint& p : r.points) {
+    if (p.freq_hz < r.band_low_hz || p.freq_hz > r.band_high_hz) continue;
+    const double gain_db = 20 * std::log10(std::abs(response_at(out.taps, p.freq_hz, r.sample_rate_hz)));
+    out.max_gain_db = std::max(out.max_gain_db, gain_db);
+    out.min_gain_db = std::min(out.min_gain_db, gain_db);
+    const double w = std::pow(10.0, p.magnitude_db / 20.0);
+    weighted += w * group_delay_at(out.taps, p.freq_hz, r.sample_rate_hz);
+    weights += w;
+  }
+  out.latency_samples = weights > 0 ? weighted / weights : 0.0;
+  return out;
+}
+
+}  // namespace mallet::audio
