@@ -7,11 +7,31 @@
 
 #include "audio/portaudio_output.hpp"
 #include "core/config/instruments_config.hpp"
+#include "core/data_paths.hpp"
 #include "core/file_error.hpp"
 #include "core/journal.hpp"
 #include "core/named.hpp"
 
 namespace mallet::audio {
+
+std::optional<ActuatorEq> actuator_eq_in_force(const AppConfig& config, int sample_rate_hz,
+                                               const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!config.actuator.equalize || !std::filesystem::exists(path, ec)) return std::nullopt;
+  try {
+    ActuatorEq eq = load_actuator_eq(path);
+    if (eq.sample_rate_hz != sample_rate_hz) {
+      journal::warning("{}: measured at {} Hz, the audio runs at {} Hz: the actuator is not equalised "
+                       "(mallet calibrate actuator again)",
+                       path.string(), eq.sample_rate_hz, sample_rate_hz);
+      return std::nullopt;
+    }
+    return eq;
+  } catch (const std::exception& e) {
+    journal::warning("{}; the actuator is not equalised", e.what());
+    return std::nullopt;
+  }
+}
 
 AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_rate_hz, bool acoustic_enabled) {
   // A scene without instruments (the texture) needs no acoustic presets at all.
@@ -37,6 +57,11 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   s.acoustic_volume = config.audio.volume;
   s.acoustic_enabled = acoustic_enabled;
   AudioRig rig;
+  rig.actuator_eq = actuator_eq_in_force(config, sample_rate_hz, actuator_eq_path());
+  if (rig.actuator_eq) {
+    s.actuator_eq = rig.actuator_eq->taps;
+    s.eq_alignment_samples = rig.actuator_eq->alignment_samples();
+  }
   if (config.audio.acoustic == AcousticRoute::midi)
     rig.midi = std::make_unique<FluidSynthRoute>(config.audio.soundfont, sample_rate_hz, programs);
   try {

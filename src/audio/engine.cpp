@@ -54,6 +54,11 @@ AudioEngine::AudioEngine(const Scene& scene, std::vector<ModalPreset> presets, E
   acoustic_bus_.resize(kMaxBlock);
   actuator_bus_.resize(kMaxBlock);
   ahead_ns_ = static_cast<Nanos>(std::llround(settings_.schedule_ahead_ms * 1e6));
+  if (settings_.eq_alignment_samples < 0 || settings_.eq_alignment_samples > 8192)
+    throw std::invalid_argument("audio: the actuator inverse's alignment must be 0 to 8192 samples");
+  if (!settings_.actuator_eq.empty()) actuator_eq_ = FirFilter(settings_.actuator_eq);
+  acoustic_delay_.assign(static_cast<std::size_t>(settings_.eq_alignment_samples), 0.0);
+  alignment_ns_ = frames_to_ns(settings_.eq_alignment_samples, settings_.sample_rate_hz);
 }
 
 bool AudioEngine::post(const Impact& impact, Producer from) {
@@ -205,6 +210,14 @@ void AudioEngine::process(float* out, int frames) {
       frame = end;
     }
 
+    actuator_eq_.process(actuator_bus_.data(), n);
+    if (!acoustic_delay_.empty()) {
+      for (int i = 0; i < n; ++i) {
+        double& slot = acoustic_delay_[acoustic_delay_pos_];
+        std::swap(slot, acoustic_bus_[static_cast<std::size_t>(i)]);
+        acoustic_delay_pos_ = acoustic_delay_pos_ + 1 == acoustic_delay_.size() ? 0 : acoustic_delay_pos_ + 1;
+      }
+    }
     const double volume = volume_.load(std::memory_order_relaxed);
     std::uint64_t clipped = 0;
     float* o = out + static_cast<std::ptrdiff_t>(done) * channels;

@@ -27,6 +27,13 @@
 // peak limiter (audio/peak_limiter.hpp; threshold 0.9 for the note, soft_clip_knee for the
 // actuator, ceiling PeakLimiter::kCeiling), so no setting drives a channel to full scale and
 // nothing is delayed. When both signals share one channel, their sum is limited instead.
+//
+// Actuator inverse: with EngineSettings::actuator_eq (the taps of actuator_eq.toml, in force
+// when [actuator] equalize allows), the actuator signal passes that FIR filter
+// (audio/fir_filter.hpp) before its limiter. Where the filter's latency is positive the
+// speaker's note is delayed by the same whole samples (eq_alignment_samples), so both
+// channels of a strike are still heard on one sample, and the engine's origin (frame 0's
+// time) moves by as much: heard times stay true.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -35,6 +42,7 @@
 #include <vector>
 
 #include "audio/damped_oscillator.hpp"
+#include "audio/fir_filter.hpp"
 #include "audio/modal_bar.hpp"
 #include "audio/peak_limiter.hpp"
 #include "audio/spsc_ring.hpp"
@@ -66,6 +74,8 @@ struct EngineSettings {
   int max_voices = 64;
   double acoustic_volume = 1.0;     //!< gain of the speaker channel (operator volume)
   bool acoustic_enabled = true;     //!< false: the speaker channel is silent
+  std::vector<double> actuator_eq;  //!< the actuator inverse's taps; empty = none
+  int eq_alignment_samples = 0;     //!< the speaker's delay that keeps it with the inverse (0..8192)
 };
 
 struct EngineCounters {
@@ -97,7 +107,9 @@ class AudioEngine {
   bool post_motion(const StripeMotion& motion, Producer from = Producer::main);
 
   //! The monotonic-clock time of frame 0. Set before the stream starts.
-  void set_origin(Nanos origin_ns) { origin_ns_ = origin_ns; }
+  //! `origin_ns` is when the device plays frame 0; the engine's own origin is later by the
+  //! inverse's alignment (what it renders at frame i is heard at frame i + alignment).
+  void set_origin(Nanos origin_ns) { origin_ns_ = origin_ns + alignment_ns_; }
   Nanos origin() const { return origin_ns_; }
 
   //! Replaces the modal voices as the speaker's source (nullptr: back to modal). Call
@@ -168,6 +180,10 @@ class AudioEngine {
   std::atomic<double> gain_;
   PeakLimiter acoustic_limiter_, actuator_limiter_;  //!< when the two signals have their own channels
   PeakLimiter mixed_limiter_;                         //!< when they share one
+  FirFilter actuator_eq_;                //!< the actuator inverse (inactive without taps)
+  std::vector<double> acoustic_delay_;   //!< the speaker's alignment ring (eq_alignment_samples)
+  std::size_t acoustic_delay_pos_ = 0;
+  Nanos alignment_ns_ = 0;
   std::atomic<std::uint64_t> impacts_{0}, dropped_{0}, late_{0}, stolen_{0}, clipped_{0};
   std::atomic<int> active_{0};
   static_assert(std::atomic<double>::is_always_lock_free);

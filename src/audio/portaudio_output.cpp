@@ -1,5 +1,7 @@
 #include "audio/portaudio_output.hpp"
 
+#include "core/sample_clock.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -161,10 +163,6 @@ std::vector<DeviceInfo> resolve_locked(const std::string& spec) {
 }
 
 // Nanoseconds of `frames` at `rate`, without overflow for any run length.
-Nanos frames_to_ns(std::int64_t frames, int rate) {
-  return (frames / rate) * kNanosPerSecond + (frames % rate) * kNanosPerSecond / rate;
-}
-
 }  // namespace
 
 class PortAudioOutput::Session : public PaSession {};

@@ -21,6 +21,9 @@ namespace mallet {
 struct ActuatorConfig {
   double gain = 0.2;             //!< the paper's amplifier knob: output = gain·A·v·e^(−Bt)·sin
   double soft_clip_knee = 0.9;   //!< the output limiter's threshold: identity below (audio/peak_limiter.hpp)
+  //! Apply the measured chain's inverse (actuator_eq.toml in the state folder, written by
+  //! `mallet calibrate actuator`) to the actuator channel; nothing happens without that file.
+  bool equalize = true;
 };
 
 //! soft_clip_knee's range in the settings: the top stays under the output limiter's

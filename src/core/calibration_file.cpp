@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/config/toml_reader.hpp"
 #include "core/ir_camera_settings.hpp"
+#include "core/toml_text.hpp"
 
 namespace mallet {
 
@@ -42,35 +43,7 @@ std::optional<std::pair<std::string, std::string>> problem_of(const Calibration&
   return std::nullopt;
 }
 
-std::string number_text(double v) {
-  return fmt::format("{:.17g}", v);
-}
-
-// A TOML basic string.
-std::string toml_string(std::string_view s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (c < 0x20 || c == 0x7f) {
-      out += fmt::format("\\u{:04x}", c);
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-// Text safe inside a one-line comment.
-std::string one_line(std::string_view s) {
-  std::string out(s);
-  for (char& ch : out)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = ' ';
-  return out;
-}
-
+using toml_text::exact_number;
 
 }  // namespace
 
@@ -145,31 +118,31 @@ std::string format_calibration(const Calibration& c) {
   const auto& h = c.camera_to_screen.h;
   std::string out;
   out += "# Mallet camera -> screen calibration.\n";
-  out += "# Written by " + one_line(c.created_by.empty() ? "mallet" : c.created_by) + " at " +
-         one_line(c.created_utc.empty() ? "an unknown time" : c.created_utc) + ".\n";
+  out += "# Written by " + toml_text::comment(c.created_by.empty() ? "mallet" : c.created_by) + " at " +
+         toml_text::comment(c.created_utc.empty() ? "an unknown time" : c.created_utc) + ".\n";
   out += "# Maps raw Wii Remote IR camera pixels (x 0..1023, y 0..767, not mirrored) to normalised\n"
          "# screen coordinates (0..1, origin top-left): [sx*w, sy*w, w] = matrix . [cam_x, cam_y, 1].\n"
          "# Refit (mallet calibrate fit) whenever the remote or the screen moves.\n";
   out += "format_version = " + std::to_string(kFormatVersion) + "\n";
-  out += "created_utc = " + toml_string(c.created_utc) + "\n";
-  out += "created_by = " + toml_string(c.created_by) + "\n";
-  if (!c.remote.empty()) out += "remote = " + toml_string(c.remote) + "  # the Wii Remote it was made with\n";
+  out += "created_utc = " + toml_text::quoted(c.created_utc) + "\n";
+  out += "created_by = " + toml_text::quoted(c.created_by) + "\n";
+  if (!c.remote.empty()) out += "remote = " + toml_text::quoted(c.remote) + "  # the Wii Remote it was made with\n";
   if (!c.ir_sensitivity.empty())
-    out += "ir_sensitivity = " + toml_string(c.ir_sensitivity) + "  # the IR camera sensitivity chosen with it\n";
+    out += "ir_sensitivity = " + toml_text::quoted(c.ir_sensitivity) + "  # the IR camera sensitivity chosen with it\n";
   out += "\n[camera_to_screen]\n";
   out += "# row-major 3x3 homography, camera pixels -> normalised screen\n";
   out += "matrix = [\n";
   for (int r = 0; r < 3; ++r)
-    out += "  " + number_text(h[r * 3]) + ", " + number_text(h[r * 3 + 1]) + ", " + number_text(h[r * 3 + 2]) + ",\n";
+    out += "  " + exact_number(h[r * 3]) + ", " + exact_number(h[r * 3 + 1]) + ", " + exact_number(h[r * 3 + 2]) + ",\n";
   out += "]\n";
-  out += "screen_width_px = " + number_text(c.screen.width_px) + "  # the screen the errors are measured on\n";
-  out += "screen_height_px = " + number_text(c.screen.height_px) + "\n";
+  out += "screen_width_px = " + exact_number(c.screen.width_px) + "  # the screen the errors are measured on\n";
+  out += "screen_height_px = " + exact_number(c.screen.height_px) + "\n";
   out += "points = " + std::to_string(c.points) + "  # calibration points used in the fit\n";
-  out += "rms_error_screen_px = " + number_text(c.rms_error_screen_px) + "  # |H(cam) - screen| in screen pixels\n";
-  out += "max_error_screen_px = " + number_text(c.max_error_screen_px) + "\n";
-  out += "rms_error_camera_px = " + number_text(c.rms_error_camera_px) +
+  out += "rms_error_screen_px = " + exact_number(c.rms_error_screen_px) + "  # |H(cam) - screen| in screen pixels\n";
+  out += "max_error_screen_px = " + exact_number(c.max_error_screen_px) + "\n";
+  out += "rms_error_camera_px = " + exact_number(c.rms_error_camera_px) +
          "  # |inverse(H)(screen) - cam| in camera pixels\n";
-  out += "max_error_camera_px = " + number_text(c.max_error_camera_px) + "\n";
+  out += "max_error_camera_px = " + exact_number(c.max_error_camera_px) + "\n";
   return out;
 }
 

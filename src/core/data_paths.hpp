@@ -106,5 +106,7 @@ inline std::filesystem::path state_dir() {
 
 //! The kiosk's camera → screen calibration (written by its calibration screen).
 inline std::filesystem::path calibration_path() { return state_dir() / "calibration.toml"; }
+//! The actuator's measured chain and its inverse (core/actuator_eq_file.hpp).
+inline std::filesystem::path actuator_eq_path() { return state_dir() / "actuator_eq.toml"; }
 
 }  // namespace mallet

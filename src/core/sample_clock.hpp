@@ -32,4 +32,9 @@ constexpr double seconds_since(const SampleAlignment& a, std::int64_t n, int sam
   return static_cast<double>(n - a.index) / sample_rate_hz + a.delay_s;
 }
 
+//! The time `frames` samples take, in whole nanoseconds (truncated), exact for any count.
+constexpr Nanos frames_to_ns(std::int64_t frames, int sample_rate_hz) {
+  return (frames / sample_rate_hz) * kNanosPerSecond + (frames % sample_rate_hz) * kNanosPerSecond / sample_rate_hz;
+}
+
 }  // namespace mallet

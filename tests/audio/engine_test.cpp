@@ -157,6 +157,34 @@ TEST(AudioEngine, ActuatorChannelEqualsExactEquationOneForAnyBlockSize) {
   }
 }
 
+TEST(AudioEngine, TheActuatorInverseFiltersTheActuatorChannelAndTheNoteWaitsForItsLatency) {
+  // A small inverse: its taps are what an impulse on the actuator channel gives back.
+  EngineSettings plain;
+  EngineSettings equalised;
+  equalised.actuator_eq = {0.5, 0.0, 0.0, -0.2, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.03};
+  equalised.eq_alignment_samples = 3;
+  const std::vector<Impact> impacts = {strike(3, 1'000'007, 1.0), strike(12, 9'333'333, 0.6)};
+  for (int block : {16, 64, 1000}) {
+    AudioEngine a(percussion(), simple_presets(), plain);
+    AudioEngine b(percussion(), simple_presets(), equalised);
+    const auto out_a = run(a, impacts, 4800, block), out_b = run(b, impacts, 4800, block);
+    const auto act_a = channel(out_a, 2, 1), act_b = channel(out_b, 2, 1);
+    const auto note_a = channel(out_a, 2, 0), note_b = channel(out_b, 2, 0);
+    for (std::size_t n = 0; n < act_a.size(); ++n) {
+      double want = 0;
+      for (std::size_t j = 0; j < equalised.actuator_eq.size() && j <= n; ++j) want += equalised.actuator_eq[j] * act_a[n - j];
+      ASSERT_NEAR(act_b[n], want, 1e-6) << "block " << block << " sample " << n;
+      ASSERT_EQ(note_b[n], n < 3 ? 0.0f : static_cast<float>(note_a[n - 3])) << "block " << block << " sample " << n;
+    }
+  }
+  // Frame 0 is heard 3 samples later than the device plays it.
+  AudioEngine b(percussion(), simple_presets(), equalised);
+  b.set_origin(1'000'000'000);
+  EXPECT_EQ(b.origin(), 1'000'000'000 + 62'500);
+  equalised.eq_alignment_samples = -1;
+  EXPECT_THROW(AudioEngine(percussion(), simple_presets(), equalised), std::invalid_argument);
+}
+
 TEST(AudioEngine, AsSoonAsPossibleStartsALateImpactAtTheNextBlock) {
   AudioEngine engine(percussion(), simple_presets(), EngineSettings{});
   std::vector<float> out(2 * 64 * 4);

@@ -57,6 +57,7 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
   if (auto t = top.optional_table("actuator")) {
     t->read("gain", c.actuator.gain, kGainKnob.lo, kGainKnob.hi);  // the operator page's range too
     t->read("soft_clip_knee", c.actuator.soft_clip_knee, kMinSoftClipKnee, kMaxSoftClipKnee);
+    c.actuator.equalize = t->boolean_or("equalize", c.actuator.equalize);
     t->finish();
   }
   if (auto t = top.optional_table("audio")) {
