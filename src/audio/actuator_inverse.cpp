@@ -9,6 +9,13 @@
 
 namespace mallet::audio {
 
+double target_shape(double f, double low_hz, double high_hz) {
+  const double hi = (f / high_hz) * (f / high_hz);
+  if (!(low_hz > 0)) return 1 / std::sqrt(1 + hi * hi);
+  const double lo = (f / low_hz) * (f / low_hz);
+  return lo / std::sqrt(1 + lo * lo) / std::sqrt(1 + hi * hi);
+}
+
 InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& r, const InverseSpec& spec) {
   if (!(spec.gain_limit_db > 0 && spec.gain_limit_db <= 40))
     throw std::invalid_argument("the inverse's gain limit must be above 0 and at most 40 dB");
@@ -17,9 +24,10 @@ InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& 
   for (const ResponsePoint& p : r.points)
     if (p.freq_hz >= r.band_low_hz && p.freq_hz <= r.band_high_hz) band_db.push_back(p.magnitude_db);
   if (band_db.size() < 3 || !(r.sample_rate_hz > 0)) throw std::invalid_argument("the response has no usable band");
+  const double weakest_db = *std::min_element(band_db.begin(), band_db.end());
   std::nth_element(band_db.begin(), band_db.begin() + static_cast<std::ptrdiff_t>(band_db.size() / 2), band_db.end());
   InverseFilter out;
-  out.target_db = band_db[band_db.size() / 2];
+  out.target_db = std::min(band_db[band_db.size() / 2], weakest_db + spec.gain_limit_db - 3.0);
   const double target = std::pow(10.0, out.target_db / 20.0);
   const double limit = std::pow(10.0, spec.gain_limit_db / 20.0);
   const double beta = (target / (2 * limit)) * (target / (2 * limit));
@@ -28,12 +36,24 @@ InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& 
   const Spectrum spectrum = real_dft(h, n);
   const double bin_hz = static_cast<double>(r.sample_rate_hz) / static_cast<double>(n);
   const auto bin_of = [&](double f) { return static_cast<std::size_t>(std::llround(f / bin_hz)); };
-  const std::size_t k_lo = std::max<std::size_t>(1, bin_of(r.band_low_hz));
-  const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(r.band_high_hz));
+  // The chain's magnitude as measured wherever the sweep measured it (its range less a third
+  // of an octave at the bottom, a sixth at the top, as analyse_response takes it), not only
+  // over the usable band: outside the band the inverse
+  // still divides by the chain's true magnitude, so the equalised chain's phase inside the
+  // band is the target's own (a minimum-phase phase depends on the magnitude everywhere).
+  const double reliable_low_hz = r.points.front().freq_hz * std::pow(2.0, 1.0 / 3.0);
+  const double reliable_high_hz = r.points.back().freq_hz / std::pow(2.0, 1.0 / 6.0);
+  const std::size_t k_lo = std::max<std::size_t>(1, bin_of(reliable_low_hz));
+  const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(reliable_high_hz));
+  const std::vector<double> chain = extended_magnitude(spectrum, k_lo, k_hi);
+  // The target high-passes only a chain that falls below its band within the sweep (an
+  // inertial actuator): one that reaches the sweep's bottom is kept flat down to DC.
+  const double high_pass_hz = r.band_low_hz > reliable_low_hz * 1.01 ? r.band_low_hz : 0.0;
   std::vector<double> magnitude(spectrum.size());
   for (std::size_t k = 0; k < spectrum.size(); ++k) {
-    const double a = std::abs(spectrum[std::clamp(k, k_lo, k_hi)]);
-    magnitude[k] = std::max(target * a / (a * a + beta), 1e-6);
+    const double f = static_cast<double>(k) * bin_hz;
+    const double a = chain[k];
+    magnitude[k] = std::clamp(target_shape(f, high_pass_hz, r.band_high_hz) * target * a / (a * a + beta), 1e-6, limit);
   }
   const Spectrum c = minimum_phase(magnitude, n);
   std::vector<double> taps = inverse_real_dft(c, n);

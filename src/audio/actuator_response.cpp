@@ -20,10 +20,15 @@ double db(double linear) { return 20.0 * std::log10(std::max(linear, 1e-300)); }
 std::vector<double> extended_magnitude(std::span<const std::complex<double>> spectrum, std::size_t k_lo, std::size_t k_hi) {
   k_lo = std::clamp<std::size_t>(k_lo, 1, spectrum.size() - 1);
   k_hi = std::clamp(k_hi, k_lo, spectrum.size() - 1);
-  // The log-log slope over the octave inside each edge, continued outward.
+  // The log-log slope over the octave inside the low edge and the half octave inside the
+  // high one (nearer a roll-off's asymptote), continued outward.
   const auto log_mag = [&](std::size_t k) { return std::log(std::max(std::abs(spectrum[k]), 1e-300)); };
-  const std::size_t lo_ref = std::min(2 * k_lo, k_hi), hi_ref = std::max(k_hi / 2, k_lo);
-  const double lo_slope = lo_ref > k_lo ? (log_mag(lo_ref) - log_mag(k_lo)) / std::log(static_cast<double>(lo_ref) / static_cast<double>(k_lo)) : 0.0;
+  const std::size_t lo_ref = std::min(2 * k_lo, k_hi), hi_ref = std::max(static_cast<std::size_t>(static_cast<double>(k_hi) / std::numbers::sqrt2), k_lo);
+  double lo_slope = lo_ref > k_lo ? (log_mag(lo_ref) - log_mag(k_lo)) / std::log(static_cast<double>(lo_ref) / static_cast<double>(k_lo)) : 0.0;
+  // A chain that is nearly flat at the sweep's bottom (less than 6 dB an octave: below a
+  // resonance, not an inertial actuator's 12) is held flat down to DC: continuing the slow
+  // rise toward its resonance would make it weaker at DC than it is.
+  if (lo_slope < 1.0) lo_slope = 0.0;
   const double hi_slope = k_hi > hi_ref ? (log_mag(k_hi) - log_mag(hi_ref)) / std::log(static_cast<double>(k_hi) / static_cast<double>(hi_ref)) : 0.0;
   std::vector<double> magnitude(spectrum.size());
   for (std::size_t k = 0; k < spectrum.size(); ++k) {
@@ -75,7 +80,8 @@ std::vector<std::complex<double>> minimum_phase(std::span<const double> magnitud
   return folded;
 }
 
-ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1_hz, double f2_hz, double band_db) {
+ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1_hz, double f2_hz, double band_db,
+                                  std::size_t pre) {
   if (h.empty() || !(f1_hz > 0 && f1_hz < f2_hz && f2_hz < rate / 2.0))
     throw std::invalid_argument("analyse_response: an impulse response and 0 < f1 < f2 < rate/2 are needed");
   ActuatorResponse r;
@@ -84,7 +90,8 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
   double previous_phase = 0;
   bool first = true;
   for (double f = f1_hz; f <= f2_hz * 1.0000001; f *= step) {
-    const std::complex<double> v = response_at(h, f, rate);
+    // Time from h[pre]: the pre samples' linear phase taken back out.
+    const std::complex<double> v = response_at(h, f, rate) * std::polar(1.0, 2 * kPi * f / rate * static_cast<double>(pre));
     double phase = std::arg(v) * 180.0 / kPi;
     if (!first) {
       while (phase - previous_phase > 180.0) phase -= 360.0;
@@ -92,7 +99,7 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
     }
     first = false;
     previous_phase = phase;
-    r.points.push_back({f, db(std::abs(v)), phase, 1000.0 * group_delay_at(h, f, rate) / rate});
+    r.points.push_back({f, db(std::abs(v)), phase, 1000.0 * (group_delay_at(h, f, rate) - static_cast<double>(pre)) / rate});
   }
   // The resonance and the usable band, a third of an octave inside the sweep.
   const double lo = f1_hz * std::pow(2.0, 1.0 / 3.0), hi = f2_hz / std::pow(2.0, 1.0 / 3.0);
@@ -121,7 +128,7 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
   const auto bin_of = [&](double f) { return static_cast<std::size_t>(std::llround(f / bin_hz)); };
   const std::size_t k_lo = std::max<std::size_t>(1, bin_of(r.band_low_hz));
   const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(r.band_high_hz));
-  const Spectrum m = minimum_phase(extended_magnitude(spectrum, bin_of(lo), bin_of(hi)), n);
+  const Spectrum m = minimum_phase(extended_magnitude(spectrum, bin_of(lo), bin_of(f2_hz / std::pow(2.0, 1.0 / 6.0))), n);
   double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, unwrapped = 0, previous = 0;
   for (std::size_t k = k_lo; k <= k_hi; ++k) {
     double phase = std::arg(spectrum[k] / m[k]);
@@ -146,7 +153,7 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
   if (denominator > 0) {
     const double slope = (sw * sxy - sx * sy) / denominator;
     const double intercept = (sy - slope * sx) / sw;
-    r.delay_samples = -slope;
+    r.delay_samples = -slope - static_cast<double>(pre);
     const double wrapped = std::remainder(intercept, 2 * kPi);
     r.inverted = std::abs(wrapped) > kPi / 2;
   }

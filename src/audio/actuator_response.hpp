@@ -10,8 +10,10 @@
 // THE PURE DELAY is what the chain adds beyond a minimum-phase system of the same
 // magnitude: the slope of the excess phase arg(H / H_min) over the usable band, fitted
 // with an intercept (a sensor wired the other way round adds π). H_min comes from the
-// magnitude by the real cepstrum; outside the usable band the magnitude is held at the
-// band edge's.
+// magnitude by the real cepstrum, from the magnitude measured up to a sixth of an octave
+// below the sweep's top and continued along its slope beyond (extended_magnitude). What the
+// chain does above the sweep is not known: against the simulated plants this leaves a
+// constant bias of +0.4 to +1.1 samples (audio/simulated_plant.hpp; measured).
 #include <complex>
 #include <span>
 #include <vector>
@@ -41,11 +43,15 @@ std::complex<double> response_at(std::span<const double> h, double freq_hz, int 
 //! Its group delay in samples at freq_hz: Re(Σ n·h[n]·e^(−jωn) / H).
 double group_delay_at(std::span<const double> h, double freq_hz, int rate);
 
+//! `h[pre]` is the response at the sweep's first sample (deconvolve_sweep's `pre`): phases,
+//! group delays and the delay are measured from there.
 ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1_hz, double f2_hz,
-                                  double band_db = 30.0);
+                                  double band_db = 30.0, std::size_t pre = 0);
 
 //! |spectrum| (n/2 + 1 bins) between bins k_lo and k_hi, continued outside them along the
-//! log-log slope of the octave inside each edge (at most 80 dB below the edge): the
+//! log-log slope of the octave inside the low edge and the half octave inside the high one
+//! (at most 80 dB below the edge; held flat
+//! below k_lo when that octave rises by less than 6 dB): the
 //! magnitude a minimum-phase reconstruction needs everywhere, from a measurement that only
 //! holds between the sweep's ends.
 std::vector<double> extended_magnitude(std::span<const std::complex<double>> spectrum, std::size_t k_lo,

@@ -44,7 +44,7 @@ std::vector<double> exp_sweep(const SweepSpec& s) {
 }
 
 std::vector<double> deconvolve_sweep(std::span<const double> recorded, std::span<const double> sweep,
-                                     const SweepSpec& spec, std::size_t length) {
+                                     const SweepSpec& spec, std::size_t length, std::size_t pre) {
   check(spec);
   if (recorded.size() < sweep.size()) throw std::invalid_argument("the recording is shorter than the sweep");
   const std::size_t n = fft_size_for(recorded.size() + sweep.size());
@@ -53,14 +53,23 @@ std::vector<double> deconvolve_sweep(std::span<const double> recorded, std::span
   double peak = 0;
   for (const auto& v : x) peak = std::max(peak, std::norm(v));
   const double bin_hz = static_cast<double>(spec.sample_rate_hz) / static_cast<double>(n);
+  // Outside the sweep the division is faded out over an octave (a raised cosine in log
+  // frequency) rather than cut: a brick wall at f1 rings for about 1/f1 on both sides of
+  // the response, and the part before its first sample would be lost.
+  const auto fade = [](double octaves_out) {
+    if (octaves_out <= 0) return 1.0;
+    if (octaves_out >= 1) return 0.0;
+    return 0.5 + 0.5 * std::cos(std::numbers::pi * octaves_out);
+  };
   for (std::size_t k = 0; k < y.size(); ++k) {
-    const double f = static_cast<double>(k) * bin_hz;
-    const double eps = (f >= spec.f1_hz && f <= spec.f2_hz) ? 1e-6 * peak : peak;
-    y[k] = y[k] * std::conj(x[k]) / (std::norm(x[k]) + eps);
+    const double f = std::max(static_cast<double>(k) * bin_hz, 1e-9);
+    const double w = fade(std::log2(spec.f1_hz / f)) * fade(std::log2(f / spec.f2_hz));
+    y[k] = w * y[k] * std::conj(x[k]) / (std::norm(x[k]) + 1e-6 * peak);
   }
-  std::vector<double> h = inverse_real_dft(y, n);
-  h.resize(std::min(length, n));
-  h.resize(length, 0.0);
+  const std::vector<double> circular = inverse_real_dft(y, n);
+  // From `pre` samples before the sweep's first sample (the end of the circular result).
+  std::vector<double> h(length, 0.0);
+  for (std::size_t i = 0; i < length && i < n; ++i) h[i] = circular[(i + n - pre % n) % n];
   return h;
 }
 

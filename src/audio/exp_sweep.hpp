@@ -8,9 +8,10 @@
 // actuator is not kicked. A recording y of the sweep through a chain gives the chain's
 // impulse response by regularised spectral division (Kirkeby's form):
 //
-//   H(k) = Y(k) · X*(k) / (|X(k)|² + ε(k)),   ε = 1e-6 · max|X|² inside [f1, f2],
-//                                             max|X|² outside (the sweep put nothing there)
+//   H(k) = W(k) · Y(k) · X*(k) / (|X(k)|² + ε),   ε = 1e-6 · max|X|²,
 //
+// W fading the result out over the octave below f1 and the octave above f2 (a raised
+// cosine in log frequency: the sweep put nothing there, and a brick wall would ring),
 // on one FFT long enough that the linear convolution does not wrap. A weakly nonlinear
 // chain's harmonics land at negative times (the end of the circular result): the
 // response's first `length` samples are the linear part alone.
@@ -33,10 +34,13 @@ struct SweepSpec {
 //! that cannot be played (0 < f1 < f2 < rate/2, T ≥ 0.1 s, level ≤ 0 dB).
 std::vector<double> exp_sweep(const SweepSpec& spec);
 
-//! The chain's impulse response, `length` samples from the sweep's first sample, from
-//! `recorded` (the input, sample-aligned with the sweep's output, at least as long as the
-//! sweep). In the recording's units per unit of the output.
+//! The chain's impulse response, `length` samples from `pre` samples before the sweep's
+//! first sample, from `recorded` (the input, sample-aligned with the sweep's output, at
+//! least as long as the sweep). In the recording's units per unit of the output. W is
+//! zero-phase, so the response is smeared by about 1/f1 to both sides of its onset: `pre`
+//! (kDeconvolutionPre) keeps the part before it, whatever the chain's own delay.
+inline constexpr std::size_t kDeconvolutionPre = 8192;
 std::vector<double> deconvolve_sweep(std::span<const double> recorded, std::span<const double> sweep,
-                                     const SweepSpec& spec, std::size_t length);
+                                     const SweepSpec& spec, std::size_t length, std::size_t pre = kDeconvolutionPre);
 
 }  // namespace mallet::audio

@@ -97,9 +97,12 @@ struct DeviceInfo {
   std::string name;
   std::string host_api;              //!< "ALSA", "JACK Audio Connection Kit", ...
   int max_output_channels = 0;
+  int max_input_channels = 0;
   double default_sample_rate_hz = 0;
   double default_low_latency_s = 0;  //!< PortAudio's defaultLowOutputLatency
   bool is_default = false;           //!< the default output device of the default host API
+  bool is_default_input = false;     //!< the default input device of the default host API
+  double default_low_input_latency_s = 0;  //!< PortAudio's defaultLowInputLatency
 };
 
 //! Every output device PortAudio sees (initialises and terminates PortAudio itself).

@@ -1,9 +1,12 @@
 #pragma once
-// A known actuator chain, for the tests and for `mallet-bench actuator`'s JACK plant:
-// a voice coil seen by an accelerometer (a resonant second-order high-pass: flat above the
-// resonance, falling 12 dB an octave below it; the audio EQ cookbook's form), the stick's
-// roll-off (a one-pole low-pass), and a pure delay of whole samples. Its exact response is
-// known, so what a measurement recovers can be compared with the truth.
+// A known actuator chain, for the tests and for `mallet-bench actuator`'s JACK plant: a
+// resonance (the audio EQ cookbook's second-order sections), the stick's roll-off (a
+// one-pole low-pass: the second pole), and a pure delay of whole samples. Its exact response
+// is known, so what a measurement recovers can be compared with the truth.
+//   low_pass:  the voice coil's excursion as a sensor on the stick reads it (a piezo disc):
+//              flat below the resonance, a peak of about Q at it, falling above;
+//   high_pass: an inertial actuator seen by an accelerometer: flat above the resonance,
+//              falling 12 dB an octave below it, nothing at DC.
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -12,7 +15,10 @@
 
 namespace mallet::audio {
 
+enum class PlantKind { low_pass, high_pass };
+
 struct PlantSpec {
+  PlantKind kind = PlantKind::low_pass;
   double resonance_hz = 180.0;
   double q = 4.0;
   double rolloff_hz = 1000.0;  //!< the second pole
@@ -27,8 +33,13 @@ class SimulatedPlant {
     const double w0 = 2 * std::numbers::pi * spec.resonance_hz / spec.sample_rate_hz;
     const double alpha = std::sin(w0) / (2 * spec.q);
     const double a0 = 1 + alpha;
-    b0_ = (1 + std::cos(w0)) / 2 / a0;
-    b1_ = -(1 + std::cos(w0)) / a0;
+    if (spec.kind == PlantKind::high_pass) {
+      b0_ = (1 + std::cos(w0)) / 2 / a0;
+      b1_ = -(1 + std::cos(w0)) / a0;
+    } else {
+      b0_ = (1 - std::cos(w0)) / 2 / a0;
+      b1_ = (1 - std::cos(w0)) / a0;
+    }
     b2_ = b0_;
     a1_ = -2 * std::cos(w0) / a0;
     a2_ = (1 - alpha) / a0;
