@@ -93,13 +93,18 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
     // Time from h[pre]: the pre samples' linear phase taken back out.
     const std::complex<double> v = response_at(h, f, rate) * std::polar(1.0, 2 * kPi * f / rate * static_cast<double>(pre));
     double phase = std::arg(v) * 180.0 / kPi;
+    const double delay_samples = group_delay_at(h, f, rate) - static_cast<double>(pre);
     if (!first) {
-      while (phase - previous_phase > 180.0) phase -= 360.0;
-      while (phase - previous_phase < -180.0) phase += 360.0;
+      // Unwrapped toward where the group delay says the phase went: a long delay turns the
+      // phase by more than half a turn between two points.
+      const ResponsePoint& last = r.points.back();
+      const double mean_delay_s = 0.5 * (last.group_delay_ms / 1000.0 + delay_samples / rate);
+      const double predicted = previous_phase - 360.0 * (f - last.freq_hz) * mean_delay_s;
+      phase += 360.0 * std::round((predicted - phase) / 360.0);
     }
     first = false;
     previous_phase = phase;
-    r.points.push_back({f, db(std::abs(v)), phase, 1000.0 * (group_delay_at(h, f, rate) - static_cast<double>(pre)) / rate});
+    r.points.push_back({f, db(std::abs(v)), phase, 1000.0 * delay_samples / rate});
   }
   // The resonance and the usable band, a third of an octave inside the sweep.
   const double lo = f1_hz * std::pow(2.0, 1.0 / 3.0), hi = f2_hz / std::pow(2.0, 1.0 / 3.0);

@@ -33,7 +33,7 @@ struct FeltFit {
 inline constexpr double kFeltSpeeds[3] = {0.3, 0.6, 1.0};  //!< m/s
 
 //! `materials` at each of kFeltSpeeds, one every `spacing_s`, the first at `lead_s`.
-std::vector<FeltStrike> felt_strikes(const std::vector<Material>& materials, int rate, double lead_s = 0.1,
+std::vector<FeltStrike> felt_strikes(const std::vector<Material>& materials, int rate, double lead_s = 0.25,
                                      double spacing_s = 0.6);
 
 //! The actuator channel for `strikes` (total samples), through `taps` when not empty.

@@ -67,6 +67,7 @@ ActuatorEq read(const toml::table& root, const std::string& name) {
   e.resonance_db = top.number("resonance_db");
   pair("usable_band_hz", e.band_low_hz, e.band_high_hz);
   e.delay_ms = top.number("delay_ms");
+  if (top.has("round_trip_ms")) e.round_trip_ms = top.number("round_trip_ms");
   e.gain_limit_db = top.number("gain_limit_db");
   e.target_db = top.number("target_db");
   e.latency_samples = top.number("latency_samples");
@@ -133,6 +134,8 @@ std::string format_actuator_eq(const ActuatorEq& e) {
   out += "resonance_db = " + exact_number(e.resonance_db) + "  # sensor units per unit of output\n";
   out += "usable_band_hz = [" + exact_number(e.band_low_hz) + ", " + exact_number(e.band_high_hz) + "]\n";
   out += "delay_ms = " + exact_number(e.delay_ms) + "  # the chain's pure delay (the sound card's round trip included)\n";
+  if (e.round_trip_ms)
+    out += "round_trip_ms = " + exact_number(*e.round_trip_ms) + "  # the sound card's, measured by a loopback cable\n";
   out += "gain_limit_db = " + exact_number(e.gain_limit_db) + "\n";
   out += "target_db = " + exact_number(e.target_db) + "  # the level the chain is equalised to\n";
   out += "latency_samples = " + exact_number(e.latency_samples) + "  # the inverse's group delay over the band\n";

@@ -16,6 +16,7 @@
 //   resonance_db = 5.9                      # sensor units per unit of output
 //   usable_band_hz = [63.5, 1522.2]
 //   delay_ms = 0.77                         # the chain's pure delay (round trip included)
+//   round_trip_ms = 10.7                    # optional: the sound card's, by a loopback cable
 //   gain_limit_db = 12.0
 //   target_db = -6.8                        # the level the chain is equalised to
 //   latency_samples = -66.1                 # the inverse's group delay over the band
@@ -30,6 +31,7 @@
 // name the calibration in force by its date and this hash.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,6 +48,7 @@ struct ActuatorEq {
   double resonance_hz = 0, resonance_db = 0;
   double band_low_hz = 0, band_high_hz = 0;
   double delay_ms = 0;
+  std::optional<double> round_trip_ms;  //!< the sound card's, when a loopback measured it
   double gain_limit_db = 0;
   double target_db = 0;
   double latency_samples = 0;

@@ -15,5 +15,6 @@ void add_bench_report(CLI::App& bench);
 void add_bench_latency(CLI::App& bench);
 void add_bench_prediction(CLI::App& bench);
 void add_bench_soak(CLI::App& bench);
+void add_bench_actuator(CLI::App& bench);
 
 }  // namespace mallet::app

@@ -29,6 +29,7 @@ void add_benchmarks(CLI::App& bench) {
   mallet::app::add_bench_latency(bench);
   mallet::app::add_bench_prediction(bench);
   mallet::app::add_bench_soak(bench);
+  mallet::app::add_bench_actuator(bench);
 }
 
 }  // namespace

@@ -166,12 +166,15 @@ A bad CAL (FILE:LINE:COLUMN: key: problem) or a point the map sends to infinity 
 }  // namespace
 
 void register_calibrate(CLI::App& app) {
-  CLI::App* calibrate = app.add_subcommand("calibrate", "Camera -> screen calibration (homography) for the Wii Remote");
+  CLI::App* calibrate = app.add_subcommand(
+      "calibrate", "Calibrations: the Wii Remote's camera -> screen, the actuator through the sound card");
   calibrate->require_subcommand(1);
-  calibrate->footer(R"(fit: point pairs (CSV) -> calibration file; map: one camera point -> screen through it.
-Run `mallet calibrate fit --help` for both file formats.)");
+  calibrate->footer(R"(fit: point pairs (CSV) -> camera calibration file; map: one camera point -> screen through it.
+actuator: the actuator and stick measured with a sweep, their bounded inverse saved (--verify:
+Table 1's strikes as felt). Run `mallet calibrate COMMAND --help` for each one's files.)");
   add_fit(*calibrate);
   add_map(*calibrate);
+  add_calibrate_actuator(*calibrate);
 }
 
 }  // namespace mallet::app

@@ -25,6 +25,8 @@ int run_bench_program(const std::vector<std::string>& args);
 void register_wiimote(CLI::App& app);
 void register_camera(CLI::App& app);
 void register_calibrate(CLI::App& app);
+//! `mallet calibrate actuator` (cmd_calibrate_actuator.cpp), under `calibrate`.
+void add_calibrate_actuator(CLI::App& calibrate);
 void register_render(CLI::App& app);
 void register_run(CLI::App& app);
 void register_study(CLI::App& app);
