@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -137,14 +138,19 @@ struct ActuatorBenchOptions {
 // Runs `mallet ARGS` with the bench's JACK server, wiring the plant while it runs; its output
 // goes to ours. Returns its exit status.
 int run_mallet(const std::vector<std::string>& args, const std::string& server, const std::filesystem::path& state,
-               JackPlant& plant) {
+               JackPlant& plant, std::vector<std::string>* lines = nullptr) {
   const std::filesystem::path mallet = sibling_program("mallet");
   if (mallet.empty()) throw std::runtime_error("bench actuator: the program mallet is not installed beside mallet-bench");
   latency::ChildOptions o;
   o.argv = {mallet.string()};
   o.argv.insert(o.argv.end(), args.begin(), args.end());
   o.env = {{"JACK_DEFAULT_SERVER", server}, {"MALLET_STATE_DIR", state.string()}, {"JACK_NO_AUDIO_RESERVATION", "1"}};
-  o.on_line = [](Nanos, std::string_view line) { std::printf("  | %.*s\n", static_cast<int>(line.size()), line.data()); };
+  std::mutex lines_mutex;
+  o.on_line = [&](Nanos, std::string_view line) {
+    std::printf("  | %.*s\n", static_cast<int>(line.size()), line.data());
+    std::lock_guard lock(lines_mutex);
+    if (lines) lines->emplace_back(line);
+  };
   latency::Child child(std::move(o));
   // Each recording is a stream of its own (a new JACK client): wired as it appears, as a
   // sound card stays wired.
@@ -156,6 +162,7 @@ int run_mallet(const std::vector<std::string>& args, const std::string& server, 
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   child.stop();
+  std::lock_guard lock(lines_mutex);
   std::fflush(stdout);
   const std::string how = child.ended_how();
   if (!wired) throw std::runtime_error("bench actuator: the calibration's JACK ports never appeared (" + how + ")");
@@ -218,8 +225,29 @@ void run_bench_actuator(const ActuatorBenchOptions& o) {
   std::fflush(stdout);
   std::vector<std::string> verify = {"calibrate", "actuator", "--verify"};
   verify.insert(verify.end(), common.begin(), common.end());
-  if (const int status = run_mallet(verify, server, o.out_dir, plant); status != 0)
+  std::vector<std::string> lines;
+  if (const int status = run_mallet(verify, server, o.out_dir, plant, &lines); status != 0)
     throw std::runtime_error(fmt::format("bench actuator: mallet calibrate actuator --verify ended with {}", status));
+  double before = -1, after = -1;
+  for (const std::string& line : lines)
+    std::sscanf(line.c_str(), "worst |error| of B and f: %lf%% without the inverse, %lf%% with it", &before, &after);
+
+  // The table, for scripts: what was recovered against what the plant was given.
+  const std::filesystem::path csv = o.out_dir / "actuator.csv";
+  std::ofstream out(csv);
+  out << "quantity,recovered,injected,error,target\n";
+  out << fmt::format("magnitude_worst_db,{:.4f},0,{:.4f},1\n", worst_db, worst_db);
+  if (eq.round_trip_ms) {
+    const double chain = (eq.delay_ms - *eq.round_trip_ms) * rate / 1000.0;
+    out << fmt::format("delay_samples,{:.3f},{},{:.3f},1\n", chain, o.delay_samples, chain - o.delay_samples);
+    out << fmt::format("round_trip_samples,{:.3f},{},{:.3f},\n", *eq.round_trip_ms * rate / 1000.0, o.period,
+                       *eq.round_trip_ms * rate / 1000.0 - o.period);
+  }
+  out << fmt::format("resonance_hz,{:.2f},{:.2f},{:.2f},\n", eq.resonance_hz, o.resonance_hz, eq.resonance_hz - o.resonance_hz);
+  out << fmt::format("felt_worst_before_percent,{:.2f},0,{:.2f},\n", before, before);
+  out << fmt::format("felt_worst_after_percent,{:.2f},0,{:.2f},3\n", after, after);
+  if (!out) throw std::runtime_error("bench actuator: cannot write " + csv.string());
+  std::printf("\nwrote %s\n", csv.string().c_str());
 }
 
 }  // namespace
