@@ -127,6 +127,39 @@ std::optional<std::int64_t> parse_utc(const std::string& iso) {
   return static_cast<std::int64_t>(timegm(&t));
 }
 
+DoctorCheck judge_actuator_eq(const std::string& path, const std::optional<ActuatorEq>& eq, const std::string& problem,
+                              std::int64_t now, bool equalize, int sample_rate_hz) {
+  DoctorCheck c{"actuator", CheckLevel::ok, "", ""};
+  const std::string measure = "with the sensor on the stick: `mallet calibrate actuator` (docs/operators.md)";
+  if (!problem.empty()) {
+    c.level = CheckLevel::warn;
+    c.found = problem + "; the actuator plays uncorrected";
+    c.fix = "measure again " + measure;
+    return c;
+  }
+  if (!eq) {
+    c.found = "not measured (" + path + "): the actuator plays Eq. 1 as computed, through the voice coil's own response";
+    c.fix = "optional: " + measure;
+    return c;
+  }
+  const std::optional<std::int64_t> made = parse_utc(eq->created_utc);
+  const std::int64_t days = made ? (now - *made) / 86400 : -1;
+  c.found = fmt::format("{}, made {} ({}), sensor \"{}\", resonance {:.0f} Hz, band {:.0f}-{:.0f} Hz, calibration {}", path,
+                        eq->created_utc.empty() ? "at an unknown time" : eq->created_utc,
+                        days >= 0 ? std::to_string(days) + " days ago" : "age unknown", eq->sensor, eq->resonance_hz,
+                        eq->band_low_hz, eq->band_high_hz, eq->hash());
+  if (eq->sample_rate_hz != sample_rate_hz) {
+    c.level = CheckLevel::warn;
+    c.found += fmt::format("; measured at {} Hz, the audio runs at {} Hz: not applied", eq->sample_rate_hz, sample_rate_hz);
+    c.fix = "measure again at this rate " + measure;
+  } else if (!equalize) {
+    c.found += "; not applied ([actuator] equalize = false)";
+  } else {
+    c.found += "; applied to the actuator channel";
+  }
+  return c;
+}
+
 DoctorCheck judge_calibration(const std::string& path, const std::optional<Calibration>& cal,
                               const std::string& problem, std::int64_t now, const std::optional<std::string>& remote) {
   DoctorCheck c{"calibration", CheckLevel::ok, "", ""};

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/actuator_eq_file.hpp"
 #include "core/calibration_file.hpp"
 #include "core/enum_names.hpp"
 
@@ -81,6 +82,13 @@ DoctorCheck judge_renderer(const std::string& device, bool cpu, std::uint32_t wi
 DoctorCheck judge_calibration(const std::string& path, const std::optional<Calibration>& calibration,
                               const std::string& problem, std::int64_t now_unix_s,
                               const std::optional<std::string>& connected_remote);
+
+//! The actuator calibration (actuator_eq.toml): none is fine (the actuator plays Eq. 1 as
+//! computed); a file that cannot be read, or was measured at another sample rate, warns (the
+//! kiosk then plays uncorrected); otherwise when it was made, with what, its identity and
+//! whether the kiosk applies it ([actuator] equalize).
+DoctorCheck judge_actuator_eq(const std::string& path, const std::optional<ActuatorEq>& eq, const std::string& problem,
+                              std::int64_t now_unix_s, bool equalize, int sample_rate_hz);
 
 //! Seconds since the Unix epoch of an ISO 8601 UTC time ("2025-05-01T09:30:00Z"); none if
 //! it is not one.

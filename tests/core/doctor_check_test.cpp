@@ -115,5 +115,27 @@ TEST(DoctorCheck, Calibration) {
   EXPECT_EQ(judge_calibration("c.toml", old, "", now, std::nullopt).level, CheckLevel::warn);
 }
 
+TEST(DoctorCheck, ActuatorCalibration) {
+  const std::int64_t now = *parse_utc("2026-12-16T00:00:00Z");
+  const DoctorCheck none = judge_actuator_eq("a.toml", std::nullopt, "", now, true, 48000);
+  EXPECT_EQ(none.level, CheckLevel::ok);
+  EXPECT_NE(none.found.find("not measured"), std::string::npos) << none.found;
+  const DoctorCheck bad = judge_actuator_eq("a.toml", std::nullopt, "a.toml:3:1: taps: bad", now, true, 48000);
+  EXPECT_EQ(bad.level, CheckLevel::warn);
+  EXPECT_NE(bad.found.find("a.toml:3:1"), std::string::npos) << bad.found;
+  ActuatorEq eq;
+  eq.created_utc = "2026-12-06T00:00:00Z";
+  eq.sensor = "piezo";
+  eq.sample_rate_hz = 48000;
+  eq.taps = std::vector<double>(16, 0.1);
+  const DoctorCheck applied = judge_actuator_eq("a.toml", eq, "", now, true, 48000);
+  EXPECT_EQ(applied.level, CheckLevel::ok);
+  EXPECT_NE(applied.found.find("10 days ago"), std::string::npos) << applied.found;
+  EXPECT_NE(applied.found.find(eq.hash()), std::string::npos) << applied.found;
+  EXPECT_NE(applied.found.find("applied to the actuator channel"), std::string::npos) << applied.found;
+  EXPECT_NE(judge_actuator_eq("a.toml", eq, "", now, false, 48000).found.find("not applied"), std::string::npos);
+  EXPECT_EQ(judge_actuator_eq("a.toml", eq, "", now, true, 44100).level, CheckLevel::warn);
+}
+
 }  // namespace
 }  // namespace mallet

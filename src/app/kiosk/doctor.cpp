@@ -421,6 +421,22 @@ DoctorCheck check_calibration(const std::optional<std::string>& remote) {
   return judge_calibration(path.string(), cal, problem, static_cast<std::int64_t>(std::time(nullptr)), remote);
 }
 
+DoctorCheck check_actuator(const AppConfig& config) {
+  const fs::path path = actuator_eq_path();
+  std::error_code ec;
+  std::optional<ActuatorEq> eq;
+  std::string problem;
+  if (fs::exists(path, ec)) {
+    try {
+      eq = load_actuator_eq(path);
+    } catch (const std::exception& e) {
+      problem = e.what();
+    }
+  }
+  return judge_actuator_eq(path.string(), eq, problem, static_cast<std::int64_t>(std::time(nullptr)),
+                           config.actuator.equalize, config.audio.sample_rate_hz);
+}
+
 //! Why the kiosk could not write into its state folder `dir`, tried as far as this process
 //! stands for the kiosk's user: a read-only file system always; a file created, written and
 //! removed again when it runs as root or as the folder's owner. Empty: nothing found.
@@ -593,6 +609,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
     checks.push_back(check_soundfont(setup.config));
     checks.push_back(check_languages(setup.config));
     checks.push_back(check_language(setup.config));
+    checks.push_back(check_actuator(setup.config));
   } catch (const std::exception& e) {
     // What the kiosk starts on meanwhile: the same route as its start (kiosk_setup.hpp).
     const Result<KioskSetup, std::string> fallback = start_setup(ko, state_dir() / kLastGoodSettings);
