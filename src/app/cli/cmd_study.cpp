@@ -281,7 +281,8 @@ a simulated observer (rows marked source=simulated). One CSV row per trial, fsyn
 next: participant,trial,condition,stimuli,answer,correct,response_time_ms, then
 protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak, then
 actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct,
-then planned_trials,estimate_mode_pct,language (the language the trial's words were shown in).
+then planned_trials,estimate_mode_pct,language (the language the trial's words were shown in),
+then actuator_eq_hash,actuator_eq_utc (the actuator calibration in force; empty: none).
 Run again with the same participant to resume: trials already in the CSV are skipped; an
 incomplete last line (a crash while writing) is dropped with a warning naming FILE:LINE.)");
   cmd->add_option("--protocol", o->protocol, "Protocol file (TOML)")->check(CLI::ExistingFile);

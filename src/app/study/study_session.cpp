@@ -1,5 +1,8 @@
 #include "app/study/study_session.hpp"
 
+#include "audio/audio_setup.hpp"
+#include "core/data_paths.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <utility>
@@ -12,6 +15,7 @@
 #include "core/data_paths.hpp"
 #include "app/common/settings_source.hpp"
 #include "app/study/study_stimuli.hpp"
+#include "audio/audio_setup.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/config/instruments_config.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -292,6 +296,9 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
   };
   ResultsWriter writer(plan.csv, plan.existing);
   const std::string session = plan.session.empty() ? utc_now() : plan.session;
+  // The actuator calibration the engine applies (audio_setup.hpp: the same choice).
+  const std::optional<ActuatorEq> eq =
+      audio::actuator_eq_in_force(plan.config, plan.config.audio.sample_rate_hz, actuator_eq_path());
   Nanos t = stage.now();
   const std::string procedure(procedure_name(plan.protocol.procedure));
   while (const std::optional<ScheduledTrial> next_one = next_trial()) {
@@ -309,6 +316,10 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
     }
     row->procedure = procedure;
     row->planned_trials = plan.planned_trials();
+    if (eq) {
+      row->actuator_eq_hash = eq->hash();
+      row->actuator_eq_utc = eq->created_utc;
+    }
     if (adaptive) {  // the track's state after this answer
       adaptive->record(trial, row->correct);
       const TrackState s = adaptive->state(trial.condition);

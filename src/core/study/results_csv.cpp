@@ -40,7 +40,8 @@ struct Columns {
       difference_pct = kMissing, source = kMissing, session = kMissing, visual_peak_m = kMissing,
       actuator_peak = kMissing, actuator_onset_ms = kMissing, picture_onset_ms = kMissing, procedure = kMissing,
       track_trial = kMissing, reversals = kMissing, estimate_pct = kMissing, estimate_sd_pct = kMissing,
-      planned_trials = kMissing, estimate_mode_pct = kMissing, language = kMissing;
+      planned_trials = kMissing, estimate_mode_pct = kMissing, language = kMissing, actuator_eq_hash = kMissing,
+      actuator_eq_utc = kMissing;
 };
 
 Columns find_columns(const std::vector<std::string>& header, const std::string& file) {
@@ -55,7 +56,7 @@ Columns find_columns(const std::vector<std::string>& header, const std::string& 
       {"procedure", &c.procedure}, {"track_trial", &c.track_trial}, {"reversals", &c.reversals},
       {"estimate_pct", &c.estimate_pct}, {"estimate_sd_pct", &c.estimate_sd_pct},
       {"planned_trials", &c.planned_trials}, {"estimate_mode_pct", &c.estimate_mode_pct},
-      {"language", &c.language}};
+      {"language", &c.language}, {"actuator_eq_hash", &c.actuator_eq_hash}, {"actuator_eq_utc", &c.actuator_eq_utc}};
   for (const auto& [name, index] : names)
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) *index = static_cast<int>(i);
@@ -119,6 +120,8 @@ ResultRow parse_row(const std::vector<std::string>& f, const Columns& c, const s
   r.estimate_sd_pct = number(field(c.estimate_sd_pct), file, line, "estimate_sd_pct", true);
   r.estimate_mode_pct = number(field(c.estimate_mode_pct), file, line, "estimate_mode_pct", true);
   r.language = field(c.language);
+  r.actuator_eq_hash = field(c.actuator_eq_hash);
+  r.actuator_eq_utc = field(c.actuator_eq_utc);
   return r;
 }
 
@@ -144,7 +147,8 @@ std::string format_row(const ResultRow& r, std::size_t columns) {
       g(r.visual_peak_m, 6, true), g(r.actuator_peak, 6, true), g(r.actuator_onset_ms, 3),
       g(r.picture_onset_ms, 3), r.procedure, r.track_trial > 0 ? std::to_string(r.track_trial) : "",
       r.reversals >= 0 ? std::to_string(r.reversals) : "", exact(r.estimate_pct), exact(r.estimate_sd_pct),
-      r.planned_trials > 0 ? std::to_string(r.planned_trials) : "", exact(r.estimate_mode_pct), r.language};
+      r.planned_trials > 0 ? std::to_string(r.planned_trials) : "", exact(r.estimate_mode_pct), r.language,
+      r.actuator_eq_hash, r.actuator_eq_utc};
   std::string out;
   for (std::size_t i = 0; i < std::min(columns, kResultsColumns); ++i) out += (i ? "," : "") + fields[i];
   out += '\n';

@@ -9,6 +9,7 @@
 //   ,planned_trials                                                          (sessions)
 //   ,estimate_mode_pct                                                       (QUEST's mode; QUEST+: its joint mode's threshold)
 //   ,language                                                                (the words shown: en, de, fr, ja)
+//   ,actuator_eq_hash,actuator_eq_utc                                        (the actuator calibration in force)
 // `correct` is 1 or 0; `difference_pct` the 2AFC pair's difference in B (empty for
 // name_material); `source` who answered (file, simulated); `session` when that run began
 // (UTC); the two peaks are what the condition really presented (measured on the rendered
@@ -25,8 +26,11 @@
 // rows stopped early (a visitor who walked away). `estimate_mode_pct` is QUEST's posterior
 // mode after the answer (the grid's most probable threshold; QUEST+: the threshold of its
 // joint mode; in full; empty for the other procedures). `language` is the language the
-// trial's words were shown in (the prompts, the answer labels; a visitor study's consent):
-// columns are only ever added at the end. A file begun before some of these
+// trial's words were shown in (the prompts, the answer labels; a visitor study's consent).
+// `actuator_eq_hash` and `actuator_eq_utc` name the actuator calibration whose inverse the
+// actuator channel passed (core/actuator_eq_file.hpp: its identity and when it was measured),
+// both empty when none was in force (none measured, or [actuator] equalize = false).
+// Columns are only ever added at the end. A file begun before some of these
 // columns keeps its header: its rows are appended with the columns it has.
 #include <cstdint>
 #include <filesystem>
@@ -44,9 +48,9 @@ inline constexpr const char* kResultsHeader =
     "participant,trial,condition,stimuli,answer,correct,response_time_ms,"
     "protocol,task,difference_pct,source,session,visual_peak_m,actuator_peak,"
     "actuator_onset_ms,picture_onset_ms,procedure,track_trial,reversals,estimate_pct,estimate_sd_pct,"
-    "planned_trials,estimate_mode_pct,language";
+    "planned_trials,estimate_mode_pct,language,actuator_eq_hash,actuator_eq_utc";
 //! The columns this version writes.
-inline constexpr std::size_t kResultsColumns = 24;
+inline constexpr std::size_t kResultsColumns = 26;
 //! How many of kResultsHeader's columns a file's header has: kResultsHeaderWithoutTiming
 //! or longer, up to all of them, in this order; 0 for any other header (not resumable).
 std::size_t results_columns(std::string_view header);
@@ -76,6 +80,8 @@ struct ResultRow {
   int planned_trials = 0;  //!< 0: not recorded
   double estimate_mode_pct = std::numeric_limits<double>::quiet_NaN();  //!< QUEST: posterior mode; NaN: none
   std::string language;  //!< the words' language; empty in an older file
+  std::string actuator_eq_hash;  //!< the actuator calibration in force; empty: none
+  std::string actuator_eq_utc;   //!< when it was measured; empty: none
 };
 
 //! The row as written, ending in '\n': its first `columns` columns (kResultsHeader's order).

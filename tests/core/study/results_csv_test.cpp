@@ -38,6 +38,14 @@ ResultRow row(int trial, bool correct) {
   return r;
 }
 
+// The header's first `n` columns.
+std::string first_columns(std::size_t n) {
+  const std::string header = kResultsHeader;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < n && at != std::string::npos; ++i) at = header.find(',', at + (i ? 1 : 0));
+  return at == std::string::npos ? header : header.substr(0, at);
+}
+
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -46,7 +54,7 @@ std::string slurp(const fs::path& p) {
 TEST(ResultsCsv, HeaderStartsWithTheRequiredColumns) {
   EXPECT_EQ(std::string(kResultsHeader).rfind("participant,trial,condition,stimuli,answer,correct,response_time_ms,", 0), 0u);
   EXPECT_EQ(format_row(row(3, true)),
-            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,,,\n");
+            "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08,,,,,,,,,,,,\n");
   EXPECT_EQ(format_row(row(3, true), 14),
             "P01,3,both,wood|metal,2,1,640.500,t,2afc_harder,12.5,file,2026-11-23T14:00:00Z,0.003,0.08\n");
   ResultRow naming = row(1, false);
@@ -219,9 +227,8 @@ TEST(ResultsCsv, AnAdaptiveTracksStateRoundTrips) {
 
 TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
   // The estimates are written as the shortest decimal that reads back as the same double (4
-  // significant digits before), and QUEST's posterior mode is a column of its own, the last.
-  const std::string header = kResultsHeader;
-  const std::string before_language = header.substr(0, header.rfind(','));
+  // significant digits before), and QUEST's posterior mode is a column of its own (the 23rd).
+  const std::string before_language = first_columns(23);
   EXPECT_EQ(before_language.substr(before_language.rfind(',') + 1), "estimate_mode_pct");
   const fs::path dir = test::scratch_dir();
   ResultRow r = row(4, true);
@@ -277,7 +284,7 @@ TEST(ResultsCsv, EstimatesAreWrittenInFullAndQuestsModeComesLast) {
 
 TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
   const fs::path csv = test::scratch_dir() / "r.csv";
-  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,,,\n"; }
+  { std::ofstream(csv) << kResultsHeader << "\n" << "P01,x,both,a|b,1,1,5,t,2afc_harder,1,file,s,0,0,1,20,constant,,,,,,,,,\n"; }
   EXPECT_EQ(std::string(test::file_error_of([&] { read_results(csv); }).what()),
             csv.string() + ":2: trial: \"x\" is not a number");
   { std::ofstream(csv) << "participant,trial\nP01,1\n"; }
@@ -289,14 +296,14 @@ TEST(ResultsCsv, ABadLineInTheMiddleIsAFileError) {
 TEST(ResultsCsv, TheLanguageTheWordsWereShownInIsTheLastColumnAndAnOlderFileResumesWithoutIt) {
   // A visitor shown the study in German (issue 30): the row says so; a file begun before the
   // column reads, its rows without a language, and a session resumed in it keeps its columns.
-  const std::string header = kResultsHeader;
-  EXPECT_EQ(header.substr(header.rfind(',') + 1), "language");
-  const std::string before_language = header.substr(0, header.rfind(','));
-  EXPECT_EQ(results_columns(before_language), kResultsColumns - 1);
+  const std::string with_language = first_columns(24);
+  EXPECT_EQ(with_language.substr(with_language.rfind(',') + 1), "language");
+  const std::string before_language = first_columns(23);
+  EXPECT_EQ(results_columns(before_language), 23u);
   const fs::path dir = test::scratch_dir();
   ResultRow r = row(1, true);
   r.language = "de";
-  EXPECT_TRUE(format_row(r).ends_with(",de\n")) << format_row(r);
+  EXPECT_TRUE(format_row(r, 24).ends_with(",de\n")) << format_row(r, 24);
   {
     ResultsWriter w(dir / "r.csv", read_results(dir / "r.csv"));
     w.append(r);
@@ -304,7 +311,7 @@ TEST(ResultsCsv, TheLanguageTheWordsWereShownInIsTheLastColumnAndAnOlderFileResu
   const ResultsFile back = read_results(dir / "r.csv");
   ASSERT_EQ(back.rows.size(), 1u);
   EXPECT_EQ(back.rows[0].language, "de");
-  { std::ofstream(dir / "v23.csv") << before_language << "\n" << format_row(r, kResultsColumns - 1); }
+  { std::ofstream(dir / "v23.csv") << before_language << "\n" << format_row(r, 23); }
   {
     ResultsWriter w(dir / "v23.csv", read_results(dir / "v23.csv"));
     w.append(r);
@@ -313,6 +320,38 @@ TEST(ResultsCsv, TheLanguageTheWordsWereShownInIsTheLastColumnAndAnOlderFileResu
   ASSERT_EQ(old.rows.size(), 2u);
   for (const ResultRow& o : old.rows) EXPECT_EQ(o.language, "") << "not in that file's columns";
   EXPECT_EQ(slurp(dir / "v23.csv"), before_language + "\n" + format_row(r, 23) + format_row(r, 23));
+}
+
+TEST(ResultsCsv, TheActuatorCalibrationInForceIsTheLastTwoColumnsAndAnOlderFileResumesWithoutThem) {
+  // A study run with the actuator equalised (issue 32): each row names the calibration by its
+  // identity and date; a file begun before the columns keeps its 24.
+  const std::string header = kResultsHeader;
+  EXPECT_TRUE(header.ends_with(",language,actuator_eq_hash,actuator_eq_utc")) << header;
+  const fs::path dir = test::scratch_dir();
+  ResultRow r = row(1, true);
+  r.actuator_eq_hash = "19c52f955d6bb599";
+  r.actuator_eq_utc = "2026-12-06T08:39:03Z";
+  EXPECT_TRUE(format_row(r).ends_with(",19c52f955d6bb599,2026-12-06T08:39:03Z\n")) << format_row(r);
+  {
+    ResultsWriter w(dir / "r.csv", read_results(dir / "r.csv"));
+    w.append(r);
+    w.append(row(2, false));  // none in force
+  }
+  const ResultsFile back = read_results(dir / "r.csv");
+  ASSERT_EQ(back.rows.size(), 2u);
+  EXPECT_EQ(back.rows[0].actuator_eq_hash, "19c52f955d6bb599");
+  EXPECT_EQ(back.rows[0].actuator_eq_utc, "2026-12-06T08:39:03Z");
+  EXPECT_EQ(back.rows[1].actuator_eq_hash, "");
+  const std::string v24 = first_columns(24);
+  { std::ofstream(dir / "v24.csv") << v24 << "\n" << format_row(r, 24); }
+  {
+    ResultsWriter w(dir / "v24.csv", read_results(dir / "v24.csv"));
+    w.append(r);
+  }
+  const ResultsFile old = read_results(dir / "v24.csv");
+  ASSERT_EQ(old.rows.size(), 2u);
+  for (const ResultRow& o : old.rows) EXPECT_EQ(o.actuator_eq_hash, "") << "not in that file's columns";
+  EXPECT_EQ(slurp(dir / "v24.csv"), v24 + "\n" + format_row(r, 24) + format_row(r, 24));
 }
 
 }  // namespace
