@@ -44,6 +44,19 @@ std::vector<double> extended_magnitude(std::span<const std::complex<double>> spe
   return magnitude;
 }
 
+double flat_path_delay(std::span<const double> h, std::size_t pre) {
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < h.size(); ++i)
+    if (std::abs(h[i]) > std::abs(h[k])) k = i;
+  double offset = 0;
+  if (k > 0 && k + 1 < h.size()) {
+    const double a = std::abs(h[k - 1]), b = std::abs(h[k]), c = std::abs(h[k + 1]);
+    const double d = a - 2 * b + c;
+    if (d != 0) offset = 0.5 * (a - c) / d;
+  }
+  return static_cast<double>(k) + offset - static_cast<double>(pre);
+}
+
 std::complex<double> response_at(std::span<const double> h, double freq_hz, int rate) {
   const double w = 2 * kPi * freq_hz / rate;
   const std::complex<double> step = std::polar(1.0, -w);

@@ -48,6 +48,10 @@ double group_delay_at(std::span<const double> h, double freq_hz, int rate);
 ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1_hz, double f2_hz,
                                   double band_db = 30.0, std::size_t pre = 0);
 
+//! The delay in samples of a flat path (a loopback cable) from its impulse response: the
+//! peak, interpolated by a parabola through it and its neighbours, less `pre`.
+double flat_path_delay(std::span<const double> h, std::size_t pre = 0);
+
 //! |spectrum| (n/2 + 1 bins) between bins k_lo and k_hi, continued outside them along the
 //! log-log slope of the octave inside the low edge and the half octave inside the high one
 //! (at most 80 dB below the edge; held flat

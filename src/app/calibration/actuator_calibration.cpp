@@ -5,66 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "app/calibration/recording_checks.hpp"
 #include "core/calibration_file.hpp"
 
 namespace mallet::app {
 
 namespace {
 
-constexpr double kLeadS = 0.25;     // silence before the sweep: the noise floor
-constexpr double kClip = 0.99;      // |x| at or above it: the input clipped
-constexpr double kMinSnrDb = 20.0;  // the sweep's RMS over the noise's
-
-double rms(std::span<const double> x) {
-  double s = 0;
-  for (double v : x) s += v * v;
-  return x.empty() ? 0.0 : std::sqrt(s / static_cast<double>(x.size()));
-}
-
-double db(double v) { return 20.0 * std::log10(std::max(v, 1e-12)); }
-
-// Checks one recorded channel: refused when it clips or holds nothing but noise.
-void check_channel(std::span<const double> x, std::size_t lead, std::size_t played, const std::string& what,
-                   double& peak_dbfs, double& snr_db) {
-  double peak = 0;
-  for (double v : x) peak = std::max(peak, std::abs(v));
-  peak_dbfs = db(peak);
-  if (peak >= kClip)
-    throw MeasurementRefused(fmt::format("the {} clips (peak {:.1f} dBFS): lower --level or the input's gain", what, peak_dbfs));
-  const double noise = rms(x.first(lead));
-  const double signal = rms(x.subspan(lead, std::min(played, x.size() - lead)));
-  snr_db = noise > 0 ? db(signal / noise) : (signal > 0 ? 200.0 : 0.0);
-  if (signal <= 0 || snr_db < kMinSnrDb)
-    throw MeasurementRefused(fmt::format(
-        "the {} records silence ({:.1f} dBFS, {:.1f} dB over the noise before the sweep; {} needed): check its "
-        "wiring, the input channel (--channel) and the input's gain, or raise --level",
-        what, db(signal), snr_db, kMinSnrDb));
-}
-
-// The loopback's delay in samples: the peak of its response, interpolated (a cable is flat).
-double loopback_delay(std::span<const double> h, std::size_t pre) {
-  std::size_t k = 0;
-  for (std::size_t i = 1; i < h.size(); ++i)
-    if (std::abs(h[i]) > std::abs(h[k])) k = i;
-  double offset = 0;
-  if (k > 0 && k + 1 < h.size()) {
-    const double a = std::abs(h[k - 1]), b = std::abs(h[k]), c = std::abs(h[k + 1]);
-    const double d = a - 2 * b + c;
-    if (d != 0) offset = 0.5 * (a - c) / d;
-  }
-  return static_cast<double>(k) + offset - static_cast<double>(pre);
-}
-
-// A recording during which the stream over- or underran has lost or repeated samples: it is
-// made again (up to three times in all); the last one is kept, its xruns reported.
-audio::DuplexRecording record_whole(const audio::DuplexRequest& io, std::span<const float> signal) {
-  audio::DuplexRecording rec;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    rec = audio::play_and_record(io, signal);
-    if (rec.xruns == 0) break;
-  }
-  return rec;
-}
+constexpr double kLeadS = 0.25;  // silence before the sweep: the noise floor
 
 }  // namespace
 
@@ -83,18 +31,18 @@ ActuatorMeasurement measure_actuator(const ActuatorRig& rig, const audio::SweepS
 
   ActuatorMeasurement m;
   m.xruns = rec.xruns;
-  check_channel(rec.channels[0], lead, sweep.size(), fmt::format("sensor (input channel {})", rig.sensor_channel + 1),
-                m.sensor_peak_dbfs, m.snr_db);
+  const ChannelLevels sensor =
+      check_channel(rec.channels[0], lead, sweep.size(), fmt::format("sensor (input channel {})", rig.sensor_channel + 1));
+  m.sensor_peak_dbfs = sensor.peak_dbfs;
+  m.snr_db = sensor.snr_db;
   const std::size_t length = audio::kDeconvolutionPre + 16384;
   const auto after_lead = [&](const std::vector<double>& x) { return std::span<const double>(x).subspan(lead); };
   const std::vector<double> h = audio::deconvolve_sweep(after_lead(rec.channels[0]), sweep, spec, length);
   m.response = audio::analyse_response(h, spec.sample_rate_hz, spec.f1_hz, spec.f2_hz, 30.0, audio::kDeconvolutionPre);
   if (rig.loopback_channel) {
-    double peak = 0, snr = 0;
-    check_channel(rec.channels[1], lead, sweep.size(),
-                  fmt::format("loopback (input channel {})", *rig.loopback_channel + 1), peak, snr);
+    check_channel(rec.channels[1], lead, sweep.size(), fmt::format("loopback (input channel {})", *rig.loopback_channel + 1));
     const std::vector<double> loop = audio::deconvolve_sweep(after_lead(rec.channels[1]), sweep, spec, length);
-    m.round_trip_samples = loopback_delay(loop, audio::kDeconvolutionPre);
+    m.round_trip_samples = audio::flat_path_delay(loop, audio::kDeconvolutionPre);
   }
   try {
     m.inverse = audio::design_inverse(h, m.response, inverse_spec);
@@ -143,8 +91,8 @@ std::vector<FeltRow> verify_felt(const ActuatorRig& rig, const std::vector<Mater
     audio::DuplexRecording rec = record_whole(io, signal);
     double peak = 0;
     for (double v : rec.channels[0]) peak = std::max(peak, std::abs(v));
-    if (peak >= kClip)
-      throw MeasurementRefused(fmt::format("the sensor clips (peak {:.1f} dBFS) on Table 1's strikes: lower [actuator] gain or the input's gain", db(peak)));
+    if (peak >= kClipLevel)
+      throw MeasurementRefused(fmt::format("the sensor clips (peak {:.1f} dBFS) on Table 1's strikes: lower [actuator] gain or the input's gain", 20 * std::log10(peak)));
     if (peak <= 0) throw MeasurementRefused("the sensor records silence on Table 1's strikes: check its wiring and --channel");
     return audio::fit_felt(strikes, rec.channels[0], delay, rate);
   };

@@ -5,7 +5,7 @@
 // designed, and the result as actuator_eq.toml; and --verify's felt-signal table, Table 1's
 // strikes played without and with the inverse and fitted back out of the recording.
 //
-// A recording that cannot be used is refused with one line (MeasurementRefused): a sensor
+// A recording that cannot be used is refused with one line (recording_checks.hpp): a sensor
 // that clips, one that records nothing but noise, a loopback that carries nothing.
 #include <optional>
 #include <stdexcept>
@@ -15,18 +15,13 @@
 #include "audio/actuator_inverse.hpp"
 #include "audio/actuator_response.hpp"
 #include "audio/duplex_measurement.hpp"
+#include "app/calibration/recording_checks.hpp"
 #include "audio/exp_sweep.hpp"
 #include "audio/felt_signal.hpp"
 #include "core/actuator_eq_file.hpp"
 #include "core/material.hpp"
 
 namespace mallet::app {
-
-//! The recording is not fit to measure with: what to do about it, in one line (exit 2).
-class MeasurementRefused : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct ActuatorRig {
   audio::DuplexRequest io;        //!< output device and channels; io.input_channels set here

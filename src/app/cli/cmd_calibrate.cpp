@@ -171,10 +171,12 @@ void register_calibrate(CLI::App& app) {
   calibrate->require_subcommand(1);
   calibrate->footer(R"(fit: point pairs (CSV) -> camera calibration file; map: one camera point -> screen through it.
 actuator: the actuator and stick measured with a sweep, their bounded inverse saved (--verify:
-Table 1's strikes as felt). Run `mallet calibrate COMMAND --help` for each one's files.)");
+Table 1's strikes as felt); latency: the sound card's output latency on a loopback cable.
+Run `mallet calibrate COMMAND --help` for each one's files.)");
   add_fit(*calibrate);
   add_map(*calibrate);
   add_calibrate_actuator(*calibrate);
+  add_calibrate_latency(*calibrate);
 }
 
 }  // namespace mallet::app

@@ -27,6 +27,8 @@ void register_camera(CLI::App& app);
 void register_calibrate(CLI::App& app);
 //! `mallet calibrate actuator` (cmd_calibrate_actuator.cpp), under `calibrate`.
 void add_calibrate_actuator(CLI::App& calibrate);
+//! `mallet calibrate latency` (cmd_calibrate_latency.cpp), under `calibrate`.
+void add_calibrate_latency(CLI::App& calibrate);
 void register_render(CLI::App& app);
 void register_run(CLI::App& app);
 void register_study(CLI::App& app);
