@@ -1,6 +1,7 @@
 #include "core/doctor_check.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 
@@ -156,6 +157,37 @@ DoctorCheck judge_actuator_eq(const std::string& path, const std::optional<Actua
     c.found += "; not applied ([actuator] equalize = false)";
   } else {
     c.found += "; applied to the actuator channel";
+  }
+  return c;
+}
+
+DoctorCheck judge_latency(const std::string& path, const std::optional<LatencyMeasurement>& m, const std::string& problem,
+                          std::int64_t now, double setting_ms) {
+  DoctorCheck c{"latency", CheckLevel::ok, "", ""};
+  const std::string setting =
+      setting_ms < 0 ? std::string("PortAudio's own figure") : fmt::format("{:.3f} ms", setting_ms);
+  if (!problem.empty()) {
+    c.level = CheckLevel::warn;
+    c.found = problem;
+    c.fix = "measure again: `mallet calibrate latency --loopback CH` (docs/operators.md)";
+    return c;
+  }
+  if (!m) {
+    c.found = "never measured (" + path + "); [timing] audio_output_latency_ms: " + setting;
+    c.fix = "optional: a loopback cable and `mallet calibrate latency --loopback CH` (docs/operators.md)";
+    return c;
+  }
+  const std::optional<std::int64_t> made = parse_utc(m->measured_utc);
+  const std::int64_t days = made ? (now - *made) / 86400 : -1;
+  c.found = fmt::format("measured {} ({}): round trip {:.3f} ms, output {:.3f} ms (PortAudio said {:.3f} ms); "
+                        "[timing] audio_output_latency_ms: {}",
+                        m->measured_utc, days >= 0 ? std::to_string(days) + " days ago" : "age unknown", m->round_trip_ms(),
+                        m->output_latency_ms(), m->portaudio_output_latency_ms, setting);
+  const double in_force = setting_ms < 0 ? m->portaudio_output_latency_ms : setting_ms;
+  if (std::abs(in_force - m->output_latency_ms()) > 1.0) {
+    c.level = CheckLevel::warn;
+    c.fix = "the setting is not what was measured: `mallet calibrate latency --loopback CH --save`, then "
+            "`systemctl reload mallet`";
   }
   return c;
 }

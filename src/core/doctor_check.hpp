@@ -9,6 +9,7 @@
 
 #include "core/actuator_eq_file.hpp"
 #include "core/calibration_file.hpp"
+#include "core/latency_record.hpp"
 #include "core/enum_names.hpp"
 
 namespace mallet {
@@ -89,6 +90,13 @@ DoctorCheck judge_calibration(const std::string& path, const std::optional<Calib
 //! whether the kiosk applies it ([actuator] equalize).
 DoctorCheck judge_actuator_eq(const std::string& path, const std::optional<ActuatorEq>& eq, const std::string& problem,
                               std::int64_t now_unix_s, bool equalize, int sample_rate_hz);
+
+//! The sound card's latency: when `mallet calibrate latency` last measured it (latency.toml),
+//! what it found, and what [timing] audio_output_latency_ms says (`setting_ms` < 0: PortAudio's
+//! own figure). Never measured is fine (ok, with how to); a setting that differs by more than
+//! a millisecond from the measurement warns; a file that does not read warns.
+DoctorCheck judge_latency(const std::string& path, const std::optional<LatencyMeasurement>& measured,
+                          const std::string& problem, std::int64_t now_unix_s, double setting_ms);
 
 //! Seconds since the Unix epoch of an ISO 8601 UTC time ("2025-05-01T09:30:00Z"); none if
 //! it is not one.

@@ -437,6 +437,19 @@ DoctorCheck check_actuator(const AppConfig& config) {
                            config.actuator.equalize, config.audio.sample_rate_hz);
 }
 
+DoctorCheck check_latency(const AppConfig& config) {
+  const fs::path path = state_dir() / "latency.toml";
+  std::optional<LatencyMeasurement> m;
+  std::string problem;
+  try {
+    m = load_latency_record(path);
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  return judge_latency(path.string(), m, problem, static_cast<std::int64_t>(std::time(nullptr)),
+                       config.audio.output_latency_ms);
+}
+
 //! Why the kiosk could not write into its state folder `dir`, tried as far as this process
 //! stands for the kiosk's user: a read-only file system always; a file created, written and
 //! removed again when it runs as root or as the folder's owner. Empty: nothing found.
@@ -610,6 +623,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
     checks.push_back(check_languages(setup.config));
     checks.push_back(check_language(setup.config));
     checks.push_back(check_actuator(setup.config));
+    checks.push_back(check_latency(setup.config));
   } catch (const std::exception& e) {
     // What the kiosk starts on meanwhile: the same route as its start (kiosk_setup.hpp).
     const Result<KioskSetup, std::string> fallback = start_setup(ko, state_dir() / kLastGoodSettings);
