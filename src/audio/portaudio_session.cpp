@@ -107,16 +107,22 @@ DeviceInfo describe(int index) {
   return info;
 }
 
-std::vector<DeviceInfo> outputs_locked() {
+namespace {
+
+// Every device with channels in that direction.
+std::vector<DeviceInfo> devices_locked(bool inputs) {
   std::vector<DeviceInfo> out;
   const PaDeviceIndex count = Pa_GetDeviceCount();
   for (PaDeviceIndex i = 0; i < count; ++i) {
     const PaDeviceInfo* d = Pa_GetDeviceInfo(i);
-    if (d && d->maxOutputChannels > 0) out.push_back(describe(i));
+    if (d && (inputs ? d->maxInputChannels : d->maxOutputChannels) > 0) out.push_back(describe(i));
   }
   return out;
 }
 
+}  // namespace
+
+std::vector<DeviceInfo> outputs_locked() { return devices_locked(false); }
 
 std::string known_devices(const std::vector<DeviceInfo>& outputs) {
   if (outputs.empty()) return "PortAudio sees no output device at all";
@@ -154,16 +160,7 @@ std::vector<DeviceInfo> resolve_locked(const std::string& spec) {
   throw std::runtime_error("audio: no output device matches \"" + spec + "\"; " + known_devices(outputs));
 }
 
-
-std::vector<DeviceInfo> inputs_locked() {
-  std::vector<DeviceInfo> out;
-  const PaDeviceIndex count = Pa_GetDeviceCount();
-  for (PaDeviceIndex i = 0; i < count; ++i) {
-    const PaDeviceInfo* d = Pa_GetDeviceInfo(i);
-    if (d && d->maxInputChannels > 0) out.push_back(describe(i));
-  }
-  return out;
-}
+std::vector<DeviceInfo> inputs_locked() { return devices_locked(true); }
 
 DeviceInfo resolve_input_locked(const std::string& spec) {
   const std::vector<DeviceInfo> inputs = inputs_locked();

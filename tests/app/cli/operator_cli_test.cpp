@@ -167,7 +167,7 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   const fs::path dir = test::scratch_dir();
   const test::CliResult r = test::run_mallet("doctor 2>/dev/null");
   const char* names[] = {"vulkan", "compositor", "audio", "wiimote", "camera", "settings", "models", "soundfont", "languages",
-                         "language", "hidraw", "calibration", "disk", "service", "watchdog"};
+                         "language", "actuator", "latency", "hidraw", "calibration", "disk", "service", "watchdog"};
   std::istringstream lines(r.output);
   std::string line;
   std::vector<std::string> seen;
@@ -204,12 +204,15 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   EXPECT_NE(r.output.find("ok    languages    en, de, fr, ja, zh, ko, ar, he, hi: catalogues in "), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("ok    language     en: the texts as written"), std::string::npos) << r.output;
+  // No actuator calibration and no latency measured here: both fine, each saying how.
+  EXPECT_NE(r.output.find("ok    actuator     not measured ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok    latency      never measured ("), std::string::npos) << r.output;
   // The JSON says the same, and Python's parser reads it.
   const test::CliResult j = test::run_mallet("doctor --json > " + (dir / "d.json").string() + " 2>/dev/null; exit $?");
   EXPECT_EQ(j.status, r.status);
   const std::string check =
       "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
-      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','language','hidraw',"
+      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','language','actuator','latency','hidraw',"
       "'calibration','disk','service','watchdog'];"
       "assert all(x['status'] in ('ok','warn','fail') for x in c);"
       "assert d['fail']==sum(x['status']=='fail' for x in c) and d['ok']+d['warn']+d['fail']==len(c)\" " +
