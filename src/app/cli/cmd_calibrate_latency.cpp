@@ -36,6 +36,7 @@ void run_latency(const LatencyOptions& o) {
     std::fprintf(stderr, "mallet: nothing to measure with: give --loopback CH (a cable from the actuator's output "
                          "to input channel CH)\n");
     finish_with(2);
+    return;
   }
   const AppConfig config = command_settings(o.config, o.config_dir, "calibrate latency");
   audio::DuplexRequest io;
@@ -53,10 +54,12 @@ void run_latency(const LatencyOptions& o) {
   } catch (const MeasurementRefused& e) {
     std::fprintf(stderr, "mallet: %s\n", e.what());
     finish_with(2);
+    return;
   } catch (const std::runtime_error& e) {
     if (std::string(e.what()).rfind("this sound card has no input", 0) == 0) {
       std::fprintf(stderr, "mallet: %s\n", e.what());
       finish_with(2);
+      return;
     }
     throw;
   }
