@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include "app/bench/bench_report.hpp"
 #include "app/bench/bench_commands.hpp"
 #include "core/data_paths.hpp"
+#include "core/felt_table_file.hpp"
 #include "core/config/scene_config.hpp"
 #include "core/quality.hpp"
 
@@ -89,6 +91,39 @@ void measure_prediction(const Scene& scene, const ReportOptions& o, ReportSectio
   out.tables.push_back(full);
 }
 
+// The felt signal of the last `mallet calibrate actuator --verify` on this machine
+// (core/felt_table_file.hpp), when the state folder keeps one: Table 1's strikes as the
+// sensor on the stick felt them, without and with the actuator's inverse.
+void felt_signal_part(const Scene&, const ReportOptions&, ReportSections& out) {
+  const std::filesystem::path path = actuator_eq_path().parent_path() / "actuator_felt.csv";
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    out.skipped.push_back("the felt signal: no actuator calibration verified here (" + path.string() +
+                          "; `mallet calibrate actuator --verify` with a sensor on the stick)");
+    return;
+  }
+  const std::vector<FeltRecord> rows = read_felt_table(path);  // a malformed file: FileError, exit 2
+  TextTable t;
+  t.title = "The felt signal: Table 1's strikes through the actuator and stick";
+  t.header = {"material", "v (m/s)", "B (1/s)", "f (Hz)", "B before", "f before", "B after", "f after"};
+  const auto cell = [](double fitted, double table) {
+    return std::isnan(fitted) ? std::string("-") : fmt::format("{:.1f} ({:+.1f} %)", fitted, 100 * (fitted - table) / table);
+  };
+  std::string calibration, verified;
+  for (const FeltRecord& r : rows) {
+    t.rows.push_back({r.material, fmt::format("{:.2f}", r.speed_m_per_s), fmt::format("{:.1f}", r.table_decay_per_s),
+                      fmt::format("{:.1f}", r.table_freq_hz), cell(r.decay_before, r.table_decay_per_s),
+                      cell(r.freq_before, r.table_freq_hz), cell(r.decay_after, r.table_decay_per_s),
+                      cell(r.freq_after, r.table_freq_hz)});
+    calibration = r.calibration;
+    verified = r.verified_utc;
+  }
+  t.note = "Measured by `mallet calibrate actuator --verify` at " + verified + " (" + path.string() + "), " +
+           (calibration.empty() ? std::string("with no calibration in force") : "the inverse of calibration " + calibration) +
+           ": B and f fitted from the sensor on the stick (core/damped_sine_fit.hpp).";
+  out.tables.push_back(t);
+}
+
 void run(const ReportOptions& o) {
   const Scene scene = config::load_scene(o.scene);
   ReportSections s;
@@ -98,7 +133,8 @@ void run(const ReportOptions& o) {
                                                    {"pointer filter", measure_pointer},
                                                    {"contact prediction", measure_prediction},
                                                    {"latency budget", measure_latency_budget},
-                                                   {"the kiosk's CPU", measure_kiosk_cpu_part}};
+                                                   {"the kiosk's CPU", measure_kiosk_cpu_part},
+                                                   {"the felt signal", felt_signal_part}};
   for (const auto& [name, measure] : parts) {
     std::printf("bench report: %s ...\n", name);
     std::fflush(stdout);

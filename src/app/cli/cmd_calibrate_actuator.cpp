@@ -2,6 +2,7 @@
 // measured through the sound card's input, its bounded inverse saved as actuator_eq.toml, and
 // with --verify Table 1's strikes checked as the sensor feels them
 // (app/calibration/actuator_calibration.hpp).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -12,7 +13,10 @@
 #include "app/calibration/actuator_calibration.hpp"
 #include "app/cli/commands.hpp"
 #include "app/common/settings_source.hpp"
+#include "core/atomic_file.hpp"
+#include "core/calibration_file.hpp"
 #include "core/config/materials_config.hpp"
+#include "core/felt_table_file.hpp"
 #include "core/data_paths.hpp"
 
 namespace mallet::app {
@@ -108,6 +112,19 @@ void run_verify(const ActuatorOptions& o, const AppConfig& config) {
     throw;
   }
   std::fputs(felt_table(rows).c_str(), stdout);
+  const std::filesystem::path kept = o.out.parent_path() / "actuator_felt.csv";
+  std::vector<FeltRecord> records;
+  const std::string now = utc_timestamp_now();
+  for (const FeltRow& r : rows) {
+    const auto fitted = [](const audio::FeltFit& f, double v) { return f.fit.ok ? v : std::nan(""); };
+    FeltRecord k{r.strike.material, r.strike.speed_m_per_s, r.strike.table.decay_per_s, r.strike.table.freq_hz,
+                 fitted(r.before, r.before.fit.decay_per_s), fitted(r.before, r.before.fit.freq_hz),
+                 r.after ? fitted(*r.after, r.after->fit.decay_per_s) : std::nan(""),
+                 r.after ? fitted(*r.after, r.after->fit.freq_hz) : std::nan(""), eq ? eq->hash() : std::string(), now};
+    records.push_back(k);
+  }
+  write_file_atomically(kept, format_felt_table(records));
+  std::printf("kept in %s (mallet bench report shows it)\n", kept.string().c_str());
   if (!eq) std::printf("no calibration at %s: run `mallet calibrate actuator` for the after columns\n", o.out.string().c_str());
 }
 
@@ -133,7 +150,7 @@ trip is then measured too and the chain's own delay given without it.
 --verify: no sweep; plays Table 1's wood and metal strikes at 0.3, 0.6 and 1.0 m/s without and
 with the saved inverse, fits Eq. 1's B and f back out of the recording and prints the
 felt-signal table (columns: material, v m/s, B 1/s, f Hz, then B, error, f, error before and
-after).
+after); keeps it beside the calibration as actuator_felt.csv (`mallet bench report` shows it).
 Exit status: 0 done; 2 with one line: no input ("this sound card has no input: ..."), a sensor
 that records silence or clips, bad settings or a bad file; 1 a device that fails.)");
   add_settings_options(*cmd, o->config, o->config_dir);
