@@ -61,7 +61,7 @@ DuplexRecording play_and_record(const DuplexRequest& r, std::span<const float> s
   const DeviceInfo out_device = resolve_locked(r.output_device).front();
   const DeviceInfo in_device = resolve_input_locked(r.input_device);
   if (in_device.max_input_channels < in_channels)
-    throw std::runtime_error(fmt::format("this sound card has no input: \"{}\" records {} channel(s), channel {} was asked for",
+    throw NoInput(fmt::format("this sound card has no input: \"{}\" records {} channel(s), channel {} was asked for",
                                          in_device.name, in_device.max_input_channels, in_channels));
   if (out_device.max_output_channels < r.output_channels)
     throw std::runtime_error(fmt::format("audio: \"{}\" has {} output channel(s), {} are needed", out_device.name,

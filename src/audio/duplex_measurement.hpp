@@ -9,10 +9,18 @@
 // for every channel recorded. The callback copies (no allocation, no lock); the caller's
 // thread waits for the last frame (bounded) and then closes the stream.
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace mallet::audio {
+
+//! A device that records nothing, or fewer channels than asked for: "this sound card has no
+//! input: ...", naming the input devices there are.
+class NoInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct DuplexRequest {
   std::string output_device;  //!< as [audio] device: empty = the default output
@@ -33,9 +41,9 @@ struct DuplexRecording {
   unsigned long xruns = 0;      //!< callbacks flagged as under- or overflowing
 };
 
-//! Throws std::runtime_error with one line: "this sound card has no input: …" for an input
-//! device that records nothing (or has fewer channels than asked), the device errors of
-//! PortAudio, and a stream that stopped delivering frames.
+//! Throws NoInput, "this sound card has no input: …", for an input
+//! device that records nothing (or has fewer channels than asked); std::runtime_error with
+//! one line for PortAudio's device errors and a stream that stopped delivering frames.
 DuplexRecording play_and_record(const DuplexRequest& request, std::span<const float> signal);
 
 }  // namespace mallet::audio

@@ -7,6 +7,8 @@
 
 #include <dlfcn.h>
 #include <portaudio.h>
+
+#include "audio/duplex_measurement.hpp"
 #if __has_include(<alsa/error.h>)
 #include <alsa/asoundlib.h>  // only snd_lib_error_set_handler; libasound is in portaudio-2.0's Libs
 #define MALLET_HAVE_ALSA_ERROR_HANDLER 1
@@ -170,19 +172,19 @@ DeviceInfo resolve_input_locked(const std::string& spec) {
   if (spec.empty()) {
     for (const DeviceInfo& d : inputs)
       if (d.is_default_input) return d;
-    throw std::runtime_error("this sound card has no input: there is no default input device (" + known + ")");
+    throw NoInput("this sound card has no input: there is no default input device (" + known + ")");
   }
   if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
     for (const DeviceInfo& d : inputs)
       if (spec.size() < 10 && d.index == std::stoi(spec)) return d;
-    throw std::runtime_error("this sound card has no input: device " + spec + " records nothing (" + known + ")");
+    throw NoInput("this sound card has no input: device " + spec + " records nothing (" + known + ")");
   }
   const std::string want = lower(spec);
   for (const DeviceInfo& d : inputs)
     if (lower(d.name) == want) return d;
   for (const DeviceInfo& d : inputs)
     if (lower(d.name).find(want) != std::string::npos) return d;
-  throw std::runtime_error("this sound card has no input: no input device matches \"" + spec + "\" (" + known + ")");
+  throw NoInput("this sound card has no input: no input device matches \"" + spec + "\" (" + known + ")");
 }
 
 }  // namespace mallet::audio

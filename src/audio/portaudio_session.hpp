@@ -37,8 +37,8 @@ std::string known_devices(const std::vector<DeviceInfo>& outputs);
 //! dmix itself where the default leads to it), all digits = index, else a case-insensitive
 //! part of the name (an exact name wins). Throws std::runtime_error naming those there are.
 std::vector<DeviceInfo> resolve_locked(const std::string& spec);
-//! The same for an input device (empty = the default input). Throws std::runtime_error
-//! "this sound card has no input: ..." naming the input devices there are.
+//! The same for an input device (empty = the default input). Throws NoInput
+//! (duplex_measurement.hpp), naming the input devices there are.
 DeviceInfo resolve_input_locked(const std::string& spec);
 
 }  // namespace mallet::audio

@@ -20,14 +20,12 @@ ActuatorMeasurement measure_actuator(const ActuatorRig& rig, const audio::SweepS
                                      const audio::InverseSpec& inverse_spec) {
   const std::vector<double> sweep = audio::exp_sweep(spec);
   const auto lead = static_cast<std::size_t>(kLeadS * spec.sample_rate_hz);
-  std::vector<float> played(lead + sweep.size(), 0.0f);
-  for (std::size_t i = 0; i < sweep.size(); ++i) played[lead + i] = static_cast<float>(sweep[i]);
   audio::DuplexRequest io = rig.io;
   io.sample_rate_hz = spec.sample_rate_hz;
   io.input_channels = {rig.sensor_channel};
   if (rig.loopback_channel) io.input_channels.push_back(*rig.loopback_channel);
   io.tail_s = 0.5;
-  const audio::DuplexRecording rec = record_whole(io, played);
+  const audio::DuplexRecording rec = record_whole(io, after_silence(sweep, lead));
 
   ActuatorMeasurement m;
   m.xruns = rec.xruns;

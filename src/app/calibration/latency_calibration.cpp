@@ -18,11 +18,9 @@ LatencyMeasurement measure_round_trip(audio::DuplexRequest io, int loopback_chan
   spec.sample_rate_hz = io.sample_rate_hz;
   const std::vector<double> sweep = audio::exp_sweep(spec);
   const auto lead = static_cast<std::size_t>(0.25 * io.sample_rate_hz);
-  std::vector<float> played(lead + sweep.size(), 0.0f);
-  for (std::size_t i = 0; i < sweep.size(); ++i) played[lead + i] = static_cast<float>(sweep[i]);
   io.input_channels = {loopback_channel};
   io.tail_s = 0.5;
-  const audio::DuplexRecording rec = record_whole(io, played);
+  const audio::DuplexRecording rec = record_whole(io, after_silence(sweep, lead));
   check_channel(rec.channels[0], lead, sweep.size(), fmt::format("loopback (input channel {})", loopback_channel + 1));
   const std::vector<double> h = audio::deconvolve_sweep(std::span<const double>(rec.channels[0]).subspan(lead), sweep,
                                                         spec, audio::kDeconvolutionPre + 16384);

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include <fmt/format.h>
+
+#include "app/common/command_support.hpp"
 
 namespace mallet::app {
 
@@ -39,13 +43,30 @@ ChannelLevels check_channel(std::span<const double> x, std::size_t lead, std::si
   return levels;
 }
 
+std::vector<float> after_silence(std::span<const double> signal, std::size_t lead) {
+  std::vector<float> played(lead + signal.size(), 0.0f);
+  for (std::size_t i = 0; i < signal.size(); ++i) played[lead + i] = static_cast<float>(signal[i]);
+  return played;
+}
+
 audio::DuplexRecording record_whole(const audio::DuplexRequest& io, std::span<const float> signal) {
   audio::DuplexRecording rec;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    rec = audio::play_and_record(io, signal);
-    if (rec.xruns == 0) break;
+  try {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      rec = audio::play_and_record(io, signal);
+      if (rec.xruns == 0) break;
+    }
+  } catch (const audio::NoInput& e) {
+    throw MeasurementRefused(e.what());
   }
   return rec;
+}
+
+void refuse_measurement(const MeasurementRefused& refused) {
+  std::fprintf(stderr, "mallet: %s\n", refused.what());
+  std::fflush(stderr);
+  finish_with(2);
+  std::abort();  // finish_with throws: never reached
 }
 
 }  // namespace mallet::app

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "audio/duplex_measurement.hpp"
 
@@ -31,8 +32,16 @@ struct ChannelLevels {
 //! silence (less than kMinSnrDb over the noise).
 ChannelLevels check_channel(std::span<const double> x, std::size_t lead, std::size_t played, const std::string& what);
 
+//! What the stream plays: `lead` samples of silence (the noise floor check_channel measures),
+//! then `signal`.
+std::vector<float> after_silence(std::span<const double> signal, std::size_t lead);
+
 //! play_and_record, made again (three times in all) while the stream over- or underran; the
-//! last recording is kept, its xruns counted in it.
+//! last recording is kept, its xruns counted in it. An input that records nothing
+//! (audio::NoInput) is a MeasurementRefused with the same line.
 audio::DuplexRecording record_whole(const audio::DuplexRequest& io, std::span<const float> signal);
+
+//! Says the refusal on stderr in one line ("mallet: ...") and ends the command with status 2.
+[[noreturn]] void refuse_measurement(const MeasurementRefused& refused);
 
 }  // namespace mallet::app

@@ -38,13 +38,6 @@ struct ActuatorOptions {
   std::filesystem::path out;
 };
 
-[[noreturn]] void refuse(const std::string& line) {
-  std::fprintf(stderr, "mallet: %s\n", line.c_str());
-  std::fflush(stderr);
-  finish_with(2);
-  std::abort();  // finish_with throws; never reached
-}
-
 ActuatorRig rig_for(const ActuatorOptions& o, const AppConfig& config) {
   ActuatorRig rig;
   rig.io.output_device = config.audio.device;
@@ -73,10 +66,7 @@ void run_measure(const ActuatorOptions& o, const AppConfig& config) {
   try {
     m = measure_actuator(rig, sweep, {.gain_limit_db = o.gain_limit_db, .taps = o.taps});
   } catch (const MeasurementRefused& e) {
-    refuse(e.what());
-  } catch (const std::runtime_error& e) {
-    if (std::string(e.what()).rfind("this sound card has no input", 0) == 0) refuse(e.what());
-    throw;
+    refuse_measurement(e);
   }
   std::fputs(response_report(m).c_str(), stdout);
   write_actuator_eq_file(o.out, m.eq);
@@ -106,10 +96,7 @@ void run_verify(const ActuatorOptions& o, const AppConfig& config) {
   try {
     rows = verify_felt(rig, table1, config.actuator.gain, eq);
   } catch (const MeasurementRefused& e) {
-    refuse(e.what());
-  } catch (const std::runtime_error& e) {
-    if (std::string(e.what()).rfind("this sound card has no input", 0) == 0) refuse(e.what());
-    throw;
+    refuse_measurement(e);
   }
   std::fputs(felt_table(rows).c_str(), stdout);
   const std::filesystem::path kept = o.out.parent_path() / "actuator_felt.csv";
