@@ -76,7 +76,8 @@ class JackPlant {
   bool wire(int outputs, int actuator, std::chrono::milliseconds timeout) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     do {
-      std::map<std::string, std::vector<std::string>> outs = ports(JackPortIsOutput), ins = ports(JackPortIsInput);
+      std::map<std::string, std::vector<std::string>> outs = latency::ports_by_client(client_, JackPortIsOutput),
+                                                      ins = latency::ports_by_client(client_, JackPortIsInput);
       for (auto& [client, o] : outs) {
         auto in = ins.find(client);
         if (in == ins.end() || static_cast<int>(o.size()) < outputs || in->second.empty()) continue;
@@ -91,25 +92,14 @@ class JackPlant {
     return false;
   }
 
- private:
-  std::map<std::string, std::vector<std::string>> ports(unsigned long flags) {
-    std::map<std::string, std::vector<std::string>> by_client;
-    const std::string self = std::string(jack_get_client_name(client_)) + ":";
-    if (const char** names = jack_get_ports(client_, nullptr, JACK_DEFAULT_AUDIO_TYPE, flags)) {
-      for (const char** n = names; *n; ++n) {
-        const std::string name = *n;
-        if (name.rfind("system:", 0) == 0 || name.rfind(self, 0) == 0) continue;
-        by_client[name.substr(0, name.find(':'))].push_back(name);
-      }
-      jack_free(names);
-    }
-    for (auto& [client, names] : by_client)  // in_0 … in_9, in_10: by length, then name
-      std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-      });
-    return by_client;
-  }
+  static constexpr int kMaxLoopDelay = 48000;
+  //! The loopback cable's own delay in samples (0 to kMaxLoopDelay): a sound card's round
+  //! trip for `mallet calibrate latency` to find. Set between runs.
+  void set_loopback_delay(int samples) { loopback_delay_.store(samples, std::memory_order_relaxed); }
+  //! The JACK server's xruns so far (a cycle late: samples lost or repeated on every port).
+  std::uint64_t xruns() const { return xruns_.load(std::memory_order_relaxed); }
 
+ private:
   static int xrun(void* self) {
     static_cast<JackPlant*>(self)->xruns_.fetch_add(1, std::memory_order_relaxed);
     return 0;
@@ -130,16 +120,6 @@ class JackPlant {
     }
     return 0;
   }
-
- public:
-  static constexpr int kMaxLoopDelay = 48000;
-  //! The loopback cable's own delay in samples (0 to kMaxLoopDelay): a sound card's round
-  //! trip for `mallet calibrate latency` to find. Set between runs.
-  void set_loopback_delay(int samples) { loopback_delay_.store(samples, std::memory_order_relaxed); }
-  //! The JACK server's xruns so far (a cycle late: samples lost or repeated on every port).
-  std::uint64_t xruns() const { return xruns_.load(std::memory_order_relaxed); }
-
- private:
 
   audio::SimulatedPlant plant_;
   jack_client_t* client_ = nullptr;

@@ -166,25 +166,29 @@ int JackRecorder::xrun(void* self) {
   return 0;
 }
 
+std::map<std::string, std::vector<std::string>> ports_by_client(jack_client_t* self, unsigned long flags) {
+  const std::string own = std::string(jack_get_client_name(self)) + ":";
+  std::map<std::string, std::vector<std::string>> by_client;
+  if (const char** names = jack_get_ports(self, nullptr, JACK_DEFAULT_AUDIO_TYPE, flags)) {
+    for (const char** n = names; *n; ++n) {
+      const std::string name = *n;
+      if (name.rfind("system:", 0) == 0 || name.rfind(own, 0) == 0) continue;
+      by_client[name.substr(0, name.find(':'))].push_back(name);
+    }
+    jack_free(names);
+  }
+  for (auto& [client, names] : by_client)
+    std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+      return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+  return by_client;
+}
+
 std::vector<std::string> JackRecorder::connect_source(std::chrono::milliseconds timeout) {
-  const std::string self = std::string(jack_get_client_name(client_)) + ":";
   const Nanos deadline = monotonic_now() + std::chrono::duration_cast<std::chrono::nanoseconds>(timeout).count();
   do {
-    std::map<std::string, std::vector<std::string>> by_client;
-    if (const char** names = jack_get_ports(client_, nullptr, JACK_DEFAULT_AUDIO_TYPE, JackPortIsOutput)) {
-      for (const char** n = names; *n; ++n) {
-        const std::string name = *n;
-        if (name.rfind("system:", 0) == 0 || name.rfind(self, 0) == 0) continue;
-        by_client[name.substr(0, name.find(':'))].push_back(name);
-      }
-      jack_free(names);
-    }
-    for (auto& [client, names] : by_client) {
+    for (auto& [client, names] : ports_by_client(client_, JackPortIsOutput)) {
       if (names.size() < ports_.size()) continue;
-      // out_0, out_1, ...: by length, then name, so that out_10 comes after out_9.
-      std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-      });
       std::vector<std::string> connected;
       for (std::size_t c = 0; c < ports_.size(); ++c) {
         const int e = jack_connect(client_, names[c].c_str(), jack_port_name(ports_[c]));

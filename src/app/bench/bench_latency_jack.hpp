@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,11 @@ typedef struct _jack_client jack_client_t;
 typedef struct _jack_port jack_port_t;
 
 namespace mallet::app::latency {
+
+//! The audio ports of every client but the system and `self`, in one direction (JackPortIsOutput
+//! or JackPortIsInput), by client name, each client's in channel order (out_0 … out_9, out_10:
+//! by length, then name): where the kiosk's PortAudio stream is found on a bench's server.
+std::map<std::string, std::vector<std::string>> ports_by_client(jack_client_t* self, unsigned long flags);
 
 //! jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD, up and accepting clients.
 class JackServer {
