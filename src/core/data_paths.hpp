@@ -108,5 +108,7 @@ inline std::filesystem::path state_dir() {
 inline std::filesystem::path calibration_path() { return state_dir() / "calibration.toml"; }
 //! The actuator's measured chain and its inverse (core/actuator_eq_file.hpp).
 inline std::filesystem::path actuator_eq_path() { return state_dir() / "actuator_eq.toml"; }
+//! The sound card's latency as last measured (core/latency_record.hpp).
+inline std::filesystem::path latency_record_path() { return state_dir() / "latency.toml"; }
 
 }  // namespace mallet

@@ -32,12 +32,9 @@ struct LatencyOptions {
 constexpr const char* kDropIn = "60-measured-latency.toml";
 
 void run_latency(const LatencyOptions& o) {
-  if (!o.loopback) {
-    std::fprintf(stderr, "mallet: nothing to measure with: give --loopback CH (a cable from the actuator's output "
-                         "to input channel CH)\n");
-    finish_with(2);
-    return;
-  }
+  if (!o.loopback)
+    refuse_measurement(MeasurementRefused(
+        "nothing to measure with: give --loopback CH (a cable from the actuator's output to input channel CH)"));
   const AppConfig config = command_settings(o.config, o.config_dir, "calibrate latency");
   audio::DuplexRequest io;
   io.output_device = config.audio.device;
@@ -52,16 +49,7 @@ void run_latency(const LatencyOptions& o) {
   try {
     m = measure_round_trip(io, *o.loopback - 1);
   } catch (const MeasurementRefused& e) {
-    std::fprintf(stderr, "mallet: %s\n", e.what());
-    finish_with(2);
-    return;
-  } catch (const std::runtime_error& e) {
-    if (std::string(e.what()).rfind("this sound card has no input", 0) == 0) {
-      std::fprintf(stderr, "mallet: %s\n", e.what());
-      finish_with(2);
-      return;
-    }
-    throw;
+    refuse_measurement(e);
   }
   std::printf("devices: \"%s\" out, \"%s\" in, %d Hz%s\n", m.output_device.c_str(), m.input_device.c_str(),
               m.sample_rate_hz, m.xruns ? " (the stream over/underran: measure again)" : "");
@@ -73,7 +61,7 @@ void run_latency(const LatencyOptions& o) {
               m.output_latency_ms(), m.portaudio_output_latency_ms,
               config.audio.output_latency_ms < 0 ? std::string("-1 (PortAudio's figure)").c_str()
                                                         : fmt::format("{:.3f}", config.audio.output_latency_ms).c_str());
-  const std::filesystem::path record = state_dir() / "latency.toml";
+  const std::filesystem::path record = latency_record_path();
   std::filesystem::create_directories(record.parent_path());
   write_file_atomically(record, format_latency_record(m));
   std::printf("kept in %s\n", record.string().c_str());

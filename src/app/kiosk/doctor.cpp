@@ -406,46 +406,45 @@ DoctorCheck check_hidraw() {
   return c;
 }
 
+//! A file of the state folder as a check reads it: none when absent; when it is there but does
+//! not read, none and `problem` says why.
+template <typename Load>
+auto read_state_file(const fs::path& path, Load load, std::string& problem) -> std::optional<decltype(load(path))> {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  try {
+    return load(path);
+  } catch (const std::exception& e) {
+    problem = e.what();
+    return std::nullopt;
+  }
+}
+
 DoctorCheck check_calibration(const std::optional<std::string>& remote) {
   const fs::path path = calibration_path();
-  std::error_code ec;
-  std::optional<Calibration> cal;
   std::string problem;
-  if (fs::exists(path, ec)) {
-    try {
-      cal = load_calibration(path);
-    } catch (const std::exception& e) {
-      problem = e.what();
-    }
-  }
+  const std::optional<Calibration> cal = read_state_file(path, load_calibration, problem);
   return judge_calibration(path.string(), cal, problem, static_cast<std::int64_t>(std::time(nullptr)), remote);
 }
 
 DoctorCheck check_actuator(const AppConfig& config) {
   const fs::path path = actuator_eq_path();
-  std::error_code ec;
-  std::optional<ActuatorEq> eq;
   std::string problem;
-  if (fs::exists(path, ec)) {
-    try {
-      eq = load_actuator_eq(path);
-    } catch (const std::exception& e) {
-      problem = e.what();
-    }
-  }
+  const std::optional<ActuatorEq> eq = read_state_file(path, load_actuator_eq, problem);
   return judge_actuator_eq(path.string(), eq, problem, static_cast<std::int64_t>(std::time(nullptr)),
                            config.actuator.equalize, config.audio.sample_rate_hz);
 }
 
 DoctorCheck check_latency(const AppConfig& config) {
-  const fs::path path = state_dir() / "latency.toml";
-  std::optional<LatencyMeasurement> m;
+  const fs::path path = latency_record_path();
   std::string problem;
-  try {
-    m = load_latency_record(path);
-  } catch (const std::exception& e) {
-    problem = e.what();
-  }
+  const std::optional<LatencyMeasurement> m = read_state_file(
+      path,
+      [](const fs::path& p) {
+        if (std::optional<LatencyMeasurement> r = load_latency_record(p)) return *r;
+        throw std::runtime_error(p.string() + ": removed while it was read");
+      },
+      problem);
   return judge_latency(path.string(), m, problem, static_cast<std::int64_t>(std::time(nullptr)),
                        config.audio.output_latency_ms);
 }
