@@ -55,6 +55,8 @@ class HeadlessLoop {
   double visual_offset_m(Nanos t_present) const { return route_.loop().visual_offset_m(t_present); }
   const Counters& counters() const { return counters_; }
   const audio::AudioEngine& engine() const { return *rig_.engine; }
+  //! The actuator calibration the engine applies, if any.
+  const std::optional<ActuatorEq>& actuator_eq() const { return rig_.actuator_eq; }
   int sample_rate_hz() const { return rate_; }
   int channels() const { return channels_; }
 

@@ -31,6 +31,7 @@ class HeadlessStage final : public StudyStage {
   //! A straight crossing through the disc's centre, left to right, from 0.4 R outside it on
   //! each side, at constant speed over the time given (sampled at 1 kHz).
   Exploration explore(const Scene& trial_scene, Nanos until) override;
+  std::optional<ActuatorEq> actuator_eq() const override { return loop_.actuator_eq(); }
   //! The audio's last second rendered, and the WAV closed.
   void finish();
 

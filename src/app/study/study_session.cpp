@@ -1,8 +1,5 @@
 #include "app/study/study_session.hpp"
 
-#include "audio/audio_setup.hpp"
-#include "core/data_paths.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <utility>
@@ -15,7 +12,6 @@
 #include "core/data_paths.hpp"
 #include "app/common/settings_source.hpp"
 #include "app/study/study_stimuli.hpp"
-#include "audio/audio_setup.hpp"
 #include "core/actuator_signal.hpp"
 #include "core/config/instruments_config.hpp"
 #include "core/config/app_config_loader.hpp"
@@ -296,9 +292,7 @@ StudyRunResult run_session(const StudyPlan& plan, const Scene& scene, StudyStage
   };
   ResultsWriter writer(plan.csv, plan.existing);
   const std::string session = plan.session.empty() ? utc_now() : plan.session;
-  // The actuator calibration the engine applies (audio_setup.hpp: the same choice).
-  const std::optional<ActuatorEq> eq =
-      audio::actuator_eq_in_force(plan.config, plan.config.audio.sample_rate_hz, actuator_eq_path());
+  const std::optional<ActuatorEq> eq = stage.actuator_eq();  // what the stage's engine applies
   Nanos t = stage.now();
   const std::string procedure(procedure_name(plan.protocol.procedure));
   while (const std::optional<ScheduledTrial> next_one = next_trial()) {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/strike/strike_route.hpp"
+#include "core/actuator_eq_file.hpp"
 #include "core/app_config.hpp"
 #include "core/pointer_sample.hpp"
 #include "core/scene.hpp"
@@ -127,6 +128,9 @@ class StudyStage {
   //! texture_slope: the participant crosses `trial_scene`'s disc from now until `until`
   //! (headless: a straight crossing through its centre); what it presented.
   virtual Exploration explore(const Scene& trial_scene, Nanos until) = 0;
+  //! The actuator calibration whose inverse the stage's engine applies (audio_setup.hpp), for
+  //! the results' actuator_eq_hash and actuator_eq_utc; none when it applies none.
+  virtual std::optional<ActuatorEq> actuator_eq() const = 0;
 };
 
 //! An answer, given at `at` on the stage's clock.

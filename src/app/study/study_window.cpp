@@ -155,6 +155,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     if (strike) struck_.push_back(*strike);
     return strike;
   }
+  std::optional<ActuatorEq> actuator_eq() const override { return rig_.actuator_eq; }
   Exploration explore(const Scene& trial_scene, Nanos until) override {
     const AppConfig& c = plan_.config;
     banner_ = tr("Cross the white disc");

@@ -62,7 +62,9 @@ class FakeStage final : public StudyStage {
   double take_actuator_peak() override { return std::exchange(peak, 0.0) + (taps.empty() ? 0.0 : 0.25); }
   std::optional<Strike> hand(Nanos, Vec2) override { return std::nullopt; }
   Exploration explore(const Scene&, Nanos) override { return {}; }
+  std::optional<ActuatorEq> actuator_eq() const override { return eq; }
   Nanos t = 5 * kNanosPerSecond;  // not 0: the real clock is not
+  std::optional<ActuatorEq> eq;  //!< the calibration the stage says its engine applies
   double peak = 0;
   std::vector<Impact> taps;
 };
@@ -109,6 +111,26 @@ TEST(StudySession, OneTrialPresentsBothTapsThenTakesTheAnswerAsARow) {
   EXPECT_DOUBLE_EQ(row->actuator_onset_ms, 7.0);
   EXPECT_DOUBLE_EQ(row->picture_onset_ms, 25.0);
   EXPECT_EQ(next, start + 600 * kMs + 640 * kMs + 100 * kMs);
+}
+
+TEST(StudySession, EachRowNamesTheActuatorCalibrationTheStagesEngineApplies) {
+  const fs::path dir = test::scratch_dir();
+  const StudyPlan plan = plan_study(options(dir));
+  const Scene scene = make_study_scene(plan.base, plan.protocol);
+  FakeStage stage;
+  ActuatorEq eq;
+  eq.created_utc = "2026-12-06T09:30:00Z";
+  eq.sample_rate_hz = 48000;
+  eq.taps = std::vector<double>(16, 0.25);
+  stage.eq = eq;
+  ListAnswers answers({{"1", 300 * kMs}, {"2", 300 * kMs}});
+  EXPECT_EQ(run_session(plan, scene, stage, answers).answered, 2);
+  const std::vector<study::ResultRow> rows = study::read_results(dir / "r.csv").rows;
+  ASSERT_EQ(rows.size(), 2u);
+  for (const study::ResultRow& r : rows) {
+    EXPECT_EQ(r.actuator_eq_hash, eq.hash());
+    EXPECT_EQ(r.actuator_eq_utc, "2026-12-06T09:30:00Z");
+  }
 }
 
 TEST(StudySession, AKeyFromBeforeTheWindowOpenedCountsAsAtItsOpening) {
