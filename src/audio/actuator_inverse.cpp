@@ -23,7 +23,8 @@ InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& 
   std::vector<double> band_db;
   for (const ResponsePoint& p : r.points)
     if (p.freq_hz >= r.band_low_hz && p.freq_hz <= r.band_high_hz) band_db.push_back(p.magnitude_db);
-  if (band_db.size() < 3 || !(r.sample_rate_hz > 0)) throw std::invalid_argument("the response has no usable band");
+  if (band_db.size() < 3 || !(r.sample_rate_hz > 0) || !(r.measured_low_hz > 0 && r.measured_low_hz < r.measured_high_hz))
+    throw std::invalid_argument("the response has no usable band");
   const double weakest_db = *std::min_element(band_db.begin(), band_db.end());
   std::nth_element(band_db.begin(), band_db.begin() + static_cast<std::ptrdiff_t>(band_db.size() / 2), band_db.end());
   InverseFilter out;
@@ -36,19 +37,16 @@ InverseFilter design_inverse(std::span<const double> h, const ActuatorResponse& 
   const Spectrum spectrum = real_dft(h, n);
   const double bin_hz = static_cast<double>(r.sample_rate_hz) / static_cast<double>(n);
   const auto bin_of = [&](double f) { return static_cast<std::size_t>(std::llround(f / bin_hz)); };
-  // The chain's magnitude as measured wherever the sweep measured it (its range less a third
-  // of an octave at the bottom, a sixth at the top, as analyse_response takes it), not only
-  // over the usable band: outside the band the inverse
-  // still divides by the chain's true magnitude, so the equalised chain's phase inside the
-  // band is the target's own (a minimum-phase phase depends on the magnitude everywhere).
-  const double reliable_low_hz = r.points.front().freq_hz * std::pow(2.0, 1.0 / 3.0);
-  const double reliable_high_hz = r.points.back().freq_hz / std::pow(2.0, 1.0 / 6.0);
-  const std::size_t k_lo = std::max<std::size_t>(1, bin_of(reliable_low_hz));
-  const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(reliable_high_hz));
+  // The chain's magnitude as measured wherever the sweep measured it (the response's measured
+  // range), not only over the usable band: outside the band the inverse still divides by the
+  // chain's true magnitude, so the equalised chain's phase inside the band is the target's own
+  // (a minimum-phase phase depends on the magnitude everywhere).
+  const std::size_t k_lo = std::max<std::size_t>(1, bin_of(r.measured_low_hz));
+  const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(r.measured_high_hz));
   const std::vector<double> chain = extended_magnitude(spectrum, k_lo, k_hi);
   // The target high-passes only a chain that falls below its band within the sweep (an
   // inertial actuator): one that reaches the sweep's bottom is kept flat down to DC.
-  const double high_pass_hz = r.band_low_hz > reliable_low_hz * 1.01 ? r.band_low_hz : 0.0;
+  const double high_pass_hz = r.band_low_hz > r.measured_low_hz * 1.01 ? r.band_low_hz : 0.0;
   std::vector<double> magnitude(spectrum.size());
   for (std::size_t k = 0; k < spectrum.size(); ++k) {
     const double f = static_cast<double>(k) * bin_hz;

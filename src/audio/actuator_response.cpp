@@ -121,6 +121,8 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
   }
   // The resonance and the usable band, a third of an octave inside the sweep.
   const double lo = f1_hz * std::pow(2.0, 1.0 / 3.0), hi = f2_hz / std::pow(2.0, 1.0 / 3.0);
+  r.measured_low_hz = lo;
+  r.measured_high_hz = f2_hz / std::pow(2.0, 1.0 / 6.0);
   std::size_t peak = r.points.size();
   for (std::size_t i = 0; i < r.points.size(); ++i) {
     if (r.points[i].freq_hz < lo || r.points[i].freq_hz > hi) continue;
@@ -146,7 +148,7 @@ ActuatorResponse analyse_response(std::span<const double> h, int rate, double f1
   const auto bin_of = [&](double f) { return static_cast<std::size_t>(std::llround(f / bin_hz)); };
   const std::size_t k_lo = std::max<std::size_t>(1, bin_of(r.band_low_hz));
   const std::size_t k_hi = std::min(spectrum.size() - 1, bin_of(r.band_high_hz));
-  const Spectrum m = minimum_phase(extended_magnitude(spectrum, bin_of(lo), bin_of(f2_hz / std::pow(2.0, 1.0 / 6.0))), n);
+  const Spectrum m = minimum_phase(extended_magnitude(spectrum, bin_of(r.measured_low_hz), bin_of(r.measured_high_hz)), n);
   double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, unwrapped = 0, previous = 0;
   for (std::size_t k = k_lo; k <= k_hi; ++k) {
     double phase = std::arg(spectrum[k] / m[k]);

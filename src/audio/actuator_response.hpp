@@ -34,6 +34,11 @@ struct ActuatorResponse {
   double resonance_db = 0;
   double band_low_hz = 0;   //!< the usable band
   double band_high_hz = 0;
+  //! Where the magnitude counts as measured: the sweep less a third of an octave at the
+  //! bottom (its fade-in) and a sixth at the top. Beyond, extended_magnitude continues it;
+  //! the delay here and the inverse (actuator_inverse.hpp) both use this range.
+  double measured_low_hz = 0;
+  double measured_high_hz = 0;
   double delay_samples = 0; //!< the pure delay
   bool inverted = false;    //!< the excess phase's intercept is nearer π than 0
 };
