@@ -73,10 +73,12 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
   return rig;
 }
 
-std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioConfig& config,
-                                                     std::string& status) {
+std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioConfig& config, std::string& status,
+                                              const std::optional<CaptureSpec>& capture) {
   try {
-    auto output = std::make_unique<PortAudioOutput>(engine, config);
+    PortAudioOutput::Options options;
+    options.capture = capture;
+    auto output = std::make_unique<PortAudioOutput>(engine, config, options);
     output->start();
     status = fmt::format("audio: {}, {:.1f} ms", output->device().name.c_str(),
                          output->output_latency_s() * 1e3);

@@ -9,6 +9,7 @@
 
 #include <portaudio.h>
 
+#include "audio/duplex_measurement.hpp"
 #include "audio/portaudio_session.hpp"
 #include "core/journal.hpp"
 #include "core/sample_clock.hpp"
@@ -25,9 +26,9 @@ constexpr int kScratchFrames = 4096;  // int16 conversion and silent rendering, 
 class PortAudioOutput::Session : public PaSession {};
 
 struct PortAudioOutput::Trampoline {
-  static int callback(const void*, void* output, unsigned long frames, const PaStreamCallbackTimeInfo*,
+  static int callback(const void* input, void* output, unsigned long frames, const PaStreamCallbackTimeInfo*,
                       PaStreamCallbackFlags flags, void* self) {
-    return static_cast<PortAudioOutput*>(self)->render(output, frames, flags);
+    return static_cast<PortAudioOutput*>(self)->render(input, output, frames, flags);
   }
   static void finished(void* self) {
     static_cast<PortAudioOutput*>(self)->stream_finished_.store(true, std::memory_order_relaxed);
@@ -57,6 +58,8 @@ PortAudioOutput::PortAudioOutput(AudioEngine& engine, const AudioConfig& config,
   if (config.grow_after_underruns < 0 || !(config.underrun_window_ms > 0))
     throw std::invalid_argument("audio: grow_after_underruns must be >= 0 and underrun_window_ms > 0");
   scratch_.resize(static_cast<std::size_t>(kScratchFrames) * static_cast<std::size_t>(channels_));
+  if (options_.capture)
+    capture_ = std::make_unique<StreamCapture>(sample_rate_, options_.capture->input_channels, options_.capture->seconds);
   std::lock_guard lock(pa_mutex());
   session_ = std::make_unique<Session>();
   open_locked();
@@ -111,20 +114,41 @@ void PortAudioOutput::open_device_locked(const DeviceInfo& device) {
   p.hostApiSpecificStreamInfo = nullptr;
   const unsigned long fpb = config_.frames_per_buffer > 0 ? static_cast<unsigned long>(config_.frames_per_buffer)
                                                           : paFramesPerBufferUnspecified;
+  // The capture's input side: the same stream, so that its frames are the played ones'.
+  PaStreamParameters in{};
+  DeviceInfo in_device;
+  if (options_.capture) {
+    in_device = resolve_input_locked(options_.capture->input_device);
+    const int needed = *std::max_element(options_.capture->input_channels.begin(), options_.capture->input_channels.end()) + 1;
+    if (in_device.max_input_channels < needed)
+      throw NoInput("this sound card has no input: \"" + in_device.name + "\" records " +
+                    std::to_string(in_device.max_input_channels) + " channel(s), channel " + std::to_string(needed) +
+                    " was asked for");
+    in.device = in_device.index;
+    in.channelCount = needed;
+    in.sampleFormat = paFloat32;
+    in.suggestedLatency = std::max(in_device.default_low_input_latency_s, p.suggestedLatency);
+  }
   PaStream* stream = nullptr;
-  const PaError e = Pa_OpenStream(&stream, nullptr, &p, sample_rate_, fpb, paClipOff | paDitherOff,
-                                  &Trampoline::callback, this);
+  const PaError e = Pa_OpenStream(&stream, options_.capture ? &in : nullptr, &p, sample_rate_, fpb,
+                                  paClipOff | paDitherOff, &Trampoline::callback, this);
   if (e != paNoError)
     throw std::runtime_error("audio: cannot open \"" + device.name + "\" (" + std::to_string(channels_) + " ch, " +
                              std::to_string(sample_rate_) + " Hz, " +
-                             (options_.format == StreamFormat::int16 ? "int16" : "float32") +
-                             "): " + error_text(e));
+                             (options_.format == StreamFormat::int16 ? "int16" : "float32") + ")" +
+                             (options_.capture ? " recording \"" + in_device.name + "\"" : std::string()) + ": " +
+                             error_text(e));
+  if (options_.capture) {
+    capture_in_channels_ = in.channelCount;
+    input_name_ = in_device.name;
+  }
   Pa_SetStreamFinishedCallback(stream, &Trampoline::finished);
   const PaStreamInfo* info = Pa_GetStreamInfo(stream);
   stream_ = stream;
   device_ = device;
   requested_latency_s_ = p.suggestedLatency;
   latency_s_ = info ? info->outputLatency : p.suggestedLatency;
+  input_latency_s_ = info && options_.capture ? info->inputLatency : 0.0;
   // A measured figure (the operator's latency test, key T) beats the driver's report.
   if (config_.output_latency_ms >= 0) latency_s_ = config_.output_latency_ms * 1e-3;
   stream_rate_ = info ? info->sampleRate : sample_rate_;
@@ -208,6 +232,16 @@ double PortAudioOutput::output_latency_s() const {
   return latency_s_;
 }
 
+double PortAudioOutput::input_latency_s() const {
+  std::lock_guard lock(pa_mutex());
+  return input_latency_s_;
+}
+
+std::string PortAudioOutput::input_device_name() const {
+  std::lock_guard lock(pa_mutex());
+  return input_name_;
+}
+
 double PortAudioOutput::sample_rate_hz() const {
   std::lock_guard lock(pa_mutex());
   return stream_rate_;
@@ -228,12 +262,16 @@ OutputCounters PortAudioOutput::counters() const {
 }
 
 // The audio thread. See THE CALLBACK CONTRACT in the header.
-int PortAudioOutput::render(void* output, unsigned long frames, unsigned long status_flags) {
+int PortAudioOutput::render(const void* input, void* output, unsigned long frames, unsigned long status_flags) {
   if (status_flags & paOutputUnderflow) xruns_.fetch_add(1, std::memory_order_relaxed);
+  const Nanos now = monotonic_now();
+  if (capture_)
+    capture_->write(static_cast<const float*>(input), capture_in_channels_, frames, engine_.position(), now,
+                    (status_flags & (paInputOverflow | paInputUnderflow | paOutputUnderflow)) != 0);
   // This buffer is heard no sooner than one output latency from now. If the engine's clock
   // says earlier by more than a buffer, the stream lost time: re-anchor (FRAME 0'S TIME).
   // Never backwards: a callback may run early while the device's buffer fills.
-  const Nanos earliest = monotonic_now() + latency_ns_.load(std::memory_order_relaxed);
+  const Nanos earliest = now + latency_ns_.load(std::memory_order_relaxed);
   const Nanos planned = engine_.origin() + frames_to_ns(engine_.position(), sample_rate_);
   if (earliest - planned > frames_to_ns(static_cast<std::int64_t>(frames), sample_rate_) + 1'000'000) {
     engine_.set_origin(earliest - frames_to_ns(engine_.position(), sample_rate_));

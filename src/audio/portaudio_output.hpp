@@ -81,11 +81,13 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "audio/engine.hpp"
+#include "audio/stream_capture.hpp"
 #include "core/app_config.hpp"
 #include "core/result.hpp"
 
@@ -140,6 +142,10 @@ class PortAudioOutput {
     std::chrono::milliseconds first_retry{250};
     std::chrono::milliseconds max_retry{5000};
     std::chrono::milliseconds xrun_log_interval{10000};
+    //! Also record these input channels in the same (full-duplex) stream, for capture():
+    //! `mallet calibrate latency --photodiode`. The input device must be of the output's
+    //! host API; one that records fewer channels is refused (NoInput, duplex_measurement.hpp).
+    std::optional<CaptureSpec> capture;
   };
 
   //! Initialises PortAudio and opens (does not start) an output stream on
@@ -189,11 +195,19 @@ class PortAudioOutput {
 
   OutputCounters counters() const;
 
+  //! The recording the stream keeps when Options::capture asked for one (else null): armed
+  //! and read by the caller's thread, written by the callback. It lives as long as this.
+  StreamCapture* capture() { return capture_.get(); }
+  //! The stream's input latency as PortAudio reports it (0 without a capture), and its input
+  //! device's name.
+  double input_latency_s() const;
+  std::string input_device_name() const;
+
  private:
   class Session;      // RAII Pa_Initialize / Pa_Terminate
   struct Trampoline;  // the PortAudio callbacks (they need PortAudio's types)
 
-  int render(void* output, unsigned long frames, unsigned long status_flags);  // audio thread
+  int render(const void* input, void* output, unsigned long frames, unsigned long status_flags);  // audio thread
 
   // All below with pa_mutex held.
   void open_locked();  // the configured device, or the first of default_output_order that opens
@@ -221,6 +235,10 @@ class PortAudioOutput {
   void* stream_ = nullptr;  // PaStream*
   DeviceInfo device_;
   double latency_s_ = 0;
+  std::unique_ptr<StreamCapture> capture_;  //!< Options::capture's, preallocated
+  int capture_in_channels_ = 0;             //!< the input side's channel count
+  double input_latency_s_ = 0;
+  std::string input_name_;
   double requested_latency_s_ = 0;  //!< suggestedLatency of the open stream
   double grown_latency_s_ = 0;      //!< the floor set by buffer growths (0 = none yet)
   std::atomic<Nanos> latency_ns_{0};  //!< latency_s_ for the audio thread

@@ -110,5 +110,7 @@ inline std::filesystem::path calibration_path() { return state_dir() / "calibrat
 inline std::filesystem::path actuator_eq_path() { return state_dir() / "actuator_eq.toml"; }
 //! The sound card's latency as last measured (core/latency_record.hpp).
 inline std::filesystem::path latency_record_path() { return state_dir() / "latency.toml"; }
+//! The display's latency as last measured (core/display_latency_record.hpp).
+inline std::filesystem::path display_latency_path() { return state_dir() / "display_latency.toml"; }
 
 }  // namespace mallet

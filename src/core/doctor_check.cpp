@@ -192,6 +192,36 @@ DoctorCheck judge_latency(const std::string& path, const std::optional<LatencyMe
   return c;
 }
 
+DoctorCheck judge_display_latency(const std::string& path, const std::optional<DisplayLatencyMeasurement>& m,
+                                  const std::string& problem, std::int64_t now, double setting_ms) {
+  DoctorCheck c{"display", CheckLevel::ok, "", ""};
+  if (!problem.empty()) {
+    c.level = CheckLevel::warn;
+    c.found = problem;
+    c.fix = "measure again: `mallet calibrate latency --photodiode CH` (docs/operators.md)";
+    return c;
+  }
+  if (!m) {
+    c.found = fmt::format("never measured ({}); [timing] display_latency_ms: {:.1f} ms", path, setting_ms);
+    c.fix = "optional: a photodiode on the screen's corner and `mallet calibrate latency --photodiode CH` "
+            "(docs/operators.md)";
+    return c;
+  }
+  const std::optional<std::int64_t> made = parse_utc(m->measured_utc);
+  const std::int64_t days = made ? (now - *made) / 86400 : -1;
+  c.found = fmt::format("measured {} ({}): {:.1f} ms ({:.1f} to {:.1f} over {} of {} squares){}; [timing] "
+                        "display_latency_ms: {:.1f} ms",
+                        m->measured_utc, days >= 0 ? std::to_string(days) + " days ago" : "age unknown",
+                        m->display_latency_ms, m->min_ms, m->max_ms, m->squares_seen, m->squares,
+                        m->saved ? "" : ", not confirmed", setting_ms);
+  if (std::abs(setting_ms - m->display_latency_ms) > 2.0) {
+    c.level = CheckLevel::warn;
+    c.fix = "the setting is not what was measured: `mallet calibrate latency --photodiode CH` and confirm with "
+            "Enter on its page, then `systemctl reload mallet`";
+  }
+  return c;
+}
+
 DoctorCheck judge_calibration(const std::string& path, const std::optional<Calibration>& cal,
                               const std::string& problem, std::int64_t now, const std::optional<std::string>& remote) {
   DoctorCheck c{"calibration", CheckLevel::ok, "", ""};

@@ -9,6 +9,7 @@
 
 #include "core/actuator_eq_file.hpp"
 #include "core/calibration_file.hpp"
+#include "core/display_latency_record.hpp"
 #include "core/latency_record.hpp"
 #include "core/enum_names.hpp"
 
@@ -97,6 +98,13 @@ DoctorCheck judge_actuator_eq(const std::string& path, const std::optional<Actua
 //! a millisecond from the measurement warns; a file that does not read warns.
 DoctorCheck judge_latency(const std::string& path, const std::optional<LatencyMeasurement>& measured,
                           const std::string& problem, std::int64_t now_unix_s, double setting_ms);
+
+//! The display's latency: when `mallet calibrate latency --photodiode` last measured it
+//! (display_latency.toml), what it found, and what [timing] display_latency_ms says. Never
+//! measured is fine (ok, with how to); a setting more than 2 ms from the measurement warns; a
+//! file that does not read warns.
+DoctorCheck judge_display_latency(const std::string& path, const std::optional<DisplayLatencyMeasurement>& measured,
+                                  const std::string& problem, std::int64_t now_unix_s, double setting_ms);
 
 //! Seconds since the Unix epoch of an ISO 8601 UTC time ("2025-05-01T09:30:00Z"); none if
 //! it is not one.

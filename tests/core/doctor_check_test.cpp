@@ -157,5 +157,31 @@ TEST(DoctorCheck, Latency) {
   EXPECT_EQ(judge_latency("l.toml", m, "", now, -1).level, CheckLevel::warn);
 }
 
+TEST(DoctorCheck, DisplayLatency) {
+  const std::int64_t now = *parse_utc("2026-12-08T00:00:00Z");
+  const DoctorCheck never = judge_display_latency("d.toml", std::nullopt, "", now, 0);
+  EXPECT_EQ(never.level, CheckLevel::ok);
+  EXPECT_NE(never.found.find("never measured"), std::string::npos) << never.found;
+  EXPECT_EQ(judge_display_latency("d.toml", std::nullopt, "d.toml:3:1: bad", now, 0).level, CheckLevel::warn);
+  DisplayLatencyMeasurement m;
+  m.measured_utc = "2026-12-07T00:00:00Z";
+  m.display_latency_ms = 23.4;
+  m.min_ms = 22.9;
+  m.max_ms = 24.1;
+  m.squares_seen = 9;
+  m.squares = 10;
+  m.saved = true;
+  const DoctorCheck saved = judge_display_latency("d.toml", m, "", now, 23.4);
+  EXPECT_EQ(saved.level, CheckLevel::ok) << saved.found;
+  EXPECT_NE(saved.found.find("1 days ago): 23.4 ms (22.9 to 24.1 over 9 of 10 squares)"), std::string::npos)
+      << saved.found;
+  // Measured but never confirmed, and the setting still 0: said, with how to.
+  m.saved = false;
+  const DoctorCheck unset = judge_display_latency("d.toml", m, "", now, 0);
+  EXPECT_EQ(unset.level, CheckLevel::warn);
+  EXPECT_NE(unset.found.find("not confirmed"), std::string::npos) << unset.found;
+  EXPECT_NE(unset.fix.find("--photodiode"), std::string::npos) << unset.fix;
+}
+
 }  // namespace
 }  // namespace mallet

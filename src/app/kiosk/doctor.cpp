@@ -449,6 +449,20 @@ DoctorCheck check_latency(const AppConfig& config) {
                        config.audio.output_latency_ms);
 }
 
+DoctorCheck check_display_latency(const AppConfig& config) {
+  const fs::path path = display_latency_path();
+  std::string problem;
+  const std::optional<DisplayLatencyMeasurement> m = read_state_file(
+      path,
+      [](const fs::path& p) {
+        if (std::optional<DisplayLatencyMeasurement> r = load_display_latency(p)) return *r;
+        throw std::runtime_error(p.string() + ": removed while it was read");
+      },
+      problem);
+  return judge_display_latency(path.string(), m, problem, static_cast<std::int64_t>(std::time(nullptr)),
+                               config.timing.display_latency_ms);
+}
+
 //! Why the kiosk could not write into its state folder `dir`, tried as far as this process
 //! stands for the kiosk's user: a read-only file system always; a file created, written and
 //! removed again when it runs as root or as the folder's owner. Empty: nothing found.
@@ -623,6 +637,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
     checks.push_back(check_language(setup.config));
     checks.push_back(check_actuator(setup.config));
     checks.push_back(check_latency(setup.config));
+    checks.push_back(check_display_latency(setup.config));
   } catch (const std::exception& e) {
     // What the kiosk starts on meanwhile: the same route as its start (kiosk_setup.hpp).
     const Result<KioskSetup, std::string> fallback = start_setup(ko, state_dir() / kLastGoodSettings);

@@ -167,7 +167,7 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   const fs::path dir = test::scratch_dir();
   const test::CliResult r = test::run_mallet("doctor 2>/dev/null");
   const char* names[] = {"vulkan", "compositor", "audio", "wiimote", "camera", "settings", "models", "soundfont", "languages",
-                         "language", "actuator", "latency", "hidraw", "calibration", "disk", "service", "watchdog"};
+                         "language", "actuator", "latency", "display", "hidraw", "calibration", "disk", "service", "watchdog"};
   std::istringstream lines(r.output);
   std::string line;
   std::vector<std::string> seen;
