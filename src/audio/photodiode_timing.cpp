@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -15,21 +16,77 @@ constexpr Nanos kBaselineBefore = 300'000'000;  // the quiet before a square
 constexpr Nanos kBaselineGap = 10'000'000;       // ... ending this long before its present
 constexpr Nanos kSearchBefore = 5'000'000;
 constexpr Nanos kSearchAfter = 300'000'000;
+constexpr double kScheduleWindow = 0.5;  // s: the callbacks that time a sample, either side of it
 
-double frames_of(Nanos dt, int rate) { return static_cast<double>(dt) * rate / 1e9; }
+
+// The blocks that begin a host buffer. PortAudio may hand a host buffer (a JACK period, an
+// ALSA period) to the callback in several blocks, called one after the other at once: only
+// the first of them is called when its frames are due, the others early for theirs. A new
+// host buffer shows as a pause before its first block; a callback held up inside a buffer
+// (the machine busy) shows as one too, but not at the buffers' regular spacing. So the
+// spacing is the commonest distance, in frames, between pauses, and the buffers' first
+// blocks are those at the commonest place modulo it.
+std::vector<std::size_t> host_buffer_starts(const CaptureRecording& r) {
+  const double rate = r.sample_rate_hz;
+  std::vector<std::size_t> pauses = {0};
+  for (std::size_t i = 1; i < r.blocks.size(); ++i) {
+    const CaptureBlock& a = r.blocks[i - 1];
+    const CaptureBlock& b = r.blocks[i];
+    if (static_cast<double>(b.callback_ns - a.callback_ns) >= 0.5 * static_cast<double>(b.index - a.index) * 1e9 / rate)
+      pauses.push_back(i);
+  }
+  const auto commonest = [](const std::vector<std::size_t>& v) {
+    std::map<std::size_t, int> count;
+    for (std::size_t x : v) ++count[x];
+    std::size_t best = 0;
+    int most = 0;
+    for (const auto& [x, c] : count)
+      if (c > most) best = x, most = c;
+    return best;
+  };
+  std::vector<std::size_t> spacing;
+  for (std::size_t k = 1; k < pauses.size(); ++k)
+    spacing.push_back(r.blocks[pauses[k]].index - r.blocks[pauses[k - 1]].index);
+  const std::size_t period = spacing.empty() ? 0 : commonest(spacing);
+  if (period == 0) return pauses;
+  std::vector<std::size_t> phases;
+  for (std::size_t i : pauses) phases.push_back(r.blocks[i].index % period);
+  const std::size_t phase = commonest(phases);
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < r.blocks.size(); ++i)
+    if (r.blocks[i].index % period == phase) starts.push_back(i);
+  return starts.empty() ? pauses : starts;
+}
+
+// The callbacks' schedule at sample n: the monotonic time of the recording's first frame, as
+// the earliest any host buffer's first callback ran for its place, among the host buffer
+// holding n and those that follow it within kScheduleWindow. Never earlier ones: a host that
+// skipped time without skipping frames (JACK's dummy driver on a loaded machine does) runs
+// later for its place from then on, and a late callback is only ever late.
+double schedule_origin(const CaptureRecording& r, const std::vector<std::size_t>& starts, double n) {
+  if (starts.empty()) throw std::runtime_error("the recording has no block");
+  const CaptureBlock& first = r.blocks.front();
+  const double rate = r.sample_rate_hz;
+  double best = std::numeric_limits<double>::infinity();
+  double held = best;  // the offset of the host buffer holding n (the latest to start at or before it)
+  for (std::size_t i : starts) {
+    const CaptureBlock& b = r.blocks[i];
+    const double offset =
+        static_cast<double>(b.callback_ns) - static_cast<double>(b.position - first.position) * 1e9 / rate;
+    const double at = static_cast<double>(b.index);
+    if (at <= n) held = offset;
+    else if (at <= n + kScheduleWindow * rate) best = std::min(best, offset);
+    else break;
+  }
+  best = std::min(best, held);
+  return best - static_cast<double>(first.index) * 1e9 / rate;
+}
 
 }  // namespace
 
 Nanos capture_time(const CaptureRecording& r, double n) {
   if (r.blocks.empty()) throw std::runtime_error("the recording has no block");
-  const CaptureBlock& first = r.blocks.front();
-  // The callbacks' schedule: the earliest any block's callback ran, for its place.
-  double origin = std::numeric_limits<double>::infinity();
-  for (const CaptureBlock& b : r.blocks) {
-    const double place = static_cast<double>(b.position - first.position) * 1e9 / r.sample_rate_hz;
-    origin = std::min(origin, static_cast<double>(b.callback_ns) - place);
-  }
-  return static_cast<Nanos>(std::llround(origin + (n - static_cast<double>(first.index)) * 1e9 / r.sample_rate_hz));
+  return static_cast<Nanos>(std::llround(schedule_origin(r, host_buffer_starts(r), n) + n * 1e9 / r.sample_rate_hz));
 }
 
 PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel, double input_latency_s,
@@ -41,12 +98,17 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
   if (channel >= r.channels.size()) throw std::invalid_argument("no such channel in the recording");
   const std::vector<float>& x = r.channels[channel];
   const int rate = r.sample_rate_hz;
-  const Nanos zero = capture_time(r, 0);
   const auto input_latency = static_cast<Nanos>(std::llround(input_latency_s * 1e9));
-  // The recording's (fractional) sample at kiosk time t, and back.
-  const auto index_at = [&](Nanos t) { return frames_of(t - zero + input_latency, rate); };
+  // The recording's (fractional) sample at kiosk time t, and back: on the schedule of the
+  // callbacks near it (found from a first guess on the whole recording's).
+  if (r.blocks.empty()) throw std::runtime_error(label + ": nothing was recorded");
+  const std::vector<std::size_t> starts = host_buffer_starts(r);
+  const auto index_at = [&](Nanos t) {  // the recording's first schedule, then the one there
+    const double guess = (static_cast<double>(t + input_latency) - schedule_origin(r, starts, 0)) * rate / 1e9;
+    return (static_cast<double>(t + input_latency) - schedule_origin(r, starts, guess)) * rate / 1e9;
+  };
   const auto time_at = [&](double n) {
-    return zero - input_latency + static_cast<Nanos>(std::llround(n * 1e9 / rate));
+    return static_cast<Nanos>(std::llround(schedule_origin(r, starts, n) + n * 1e9 / rate)) - input_latency;
   };
   const auto clamp_index = [&](double n) {
     return static_cast<std::size_t>(std::clamp(n, 0.0, static_cast<double>(x.size())));

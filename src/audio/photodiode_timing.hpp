@@ -3,12 +3,15 @@
 // (the kiosk's PresentClock) its light reached the photodiode on the screen's corner.
 //
 // The recording is the kiosk's own output stream's (audio/stream_capture.hpp), so its
-// samples have a time on the kiosk's clock: a callback's block is due on the engine's frames
-// (the earliest of the callbacks' times less their frames' place, over the whole recording:
-// a callback can run late, never early, once the stream is under way), and a sample reached
-// the input that long before its block, by PortAudio's input latency:
+// samples have a time on the kiosk's clock. A host buffer's first callback runs once the
+// buffer is due, never early (later ones of the same buffer, when PortAudio splits it into
+// smaller blocks, run at once after it and are left out). So the earliest of those
+// callbacks' times less their frames' place, over the host buffer holding a sample and the
+// half second after it, is when the recording's first frame was due on the schedule the
+// sample is on (a host can skip time: never the buffers before), and the sample reached the
+// input that long before its place by PortAudio's input latency:
 //
-//     light(n) = min over blocks (callback − (position − position₀) / rate) + (n − index₀) / rate − input latency
+//     light(n) = min over host buffers from n's on (callback − place) + n / rate − input latency
 //
 // For each square the page showed, the light's onset is the first crossing of half the
 // largest swing from the 300 ms before the square's present (so a photodiode wired either

@@ -129,6 +129,11 @@ const char* to_string(CueAlign a);
 struct TimingConfig {
   CueAlign align = CueAlign::asap;
   double display_latency_ms = 0;        //!< from a present to light on the panel (measured, key T)
+  //! A photodiode on the screen's top-left corner, on input channel photodiode_channel (from
+  //! 1; 0 = none) of photodiode_input ("" = the default input): the latency test (T) then
+  //! measures display_latency_ms itself (app/kiosk/photodiode_latency.hpp).
+  int photodiode_channel = 0;
+  std::string photodiode_input;
   // [timing] audio_output_latency_ms is AudioConfig::output_latency_ms (the device's clock).
   //! Contact prediction ([timing] predict_horizon_ms, 0 = off; predict_confidence names the
   //! set of tests a prediction must pass; predict_clearance_m): see core/contact_predictor.hpp.

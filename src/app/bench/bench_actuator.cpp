@@ -13,6 +13,7 @@
 // trip `mallet calibrate latency` finds on a loopback delayed by a known amount. Targets (issue:
 // the actuator measured through the sound card): magnitude within 1 dB, delay within 1 sample,
 // B and f within 3 % after the inverse, the loopback's latency within 0.5 ms.
+#include <X11/keysym.h>
 #include <jack/jack.h>
 
 #include <algorithm>
@@ -21,6 +22,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
+#include <cstdlib>
+#include <utility>
+#include <string_view>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -35,7 +41,13 @@
 
 #include "app/bench/bench_commands.hpp"
 #include "app/bench/bench_latency_child.hpp"
+#include "app/bench/bench_kiosk_child.hpp"
 #include "app/bench/bench_latency_jack.hpp"
+#include "app/bench/bench_latency_rig.hpp"
+#include "app/bench/bench_latency_x11.hpp"
+#include "app/bench/bench_photodiode.hpp"
+#include "app/common/settings_source.hpp"
+#include "app/common/timing_drop_in.hpp"
 #include "app/common/programs.hpp"
 #include "audio/simulated_plant.hpp"
 #include "core/actuator_eq_file.hpp"
@@ -138,22 +150,36 @@ struct ActuatorBenchOptions {
   int delay_samples = 37;
   int period = 1024;  // 21 ms cycles: a busy machine (the sanitizer suite in parallel) keeps up
   int loopback_delay = 240;
+  double panel_lag_ms = 25;  // the bench's panel: light this long after the X server shows a frame
+  bool photodiode = true;
   std::filesystem::path out_dir;
+};
+
+
+// What a run of `mallet` has besides the plant: more of its environment (the bench's X
+// server), a look at each of its lines as it comes, and a call in each of the bench's polls
+// while it runs (from the bench's thread: the photodiode's wiring, the operator's key).
+struct RunExtras {
+  std::vector<std::pair<std::string, std::string>> env;
+  std::function<void(std::string_view)> on_line;
+  std::function<void()> each_poll;
 };
 
 // Runs `mallet ARGS` with the bench's JACK server, wiring the plant while it runs; its output
 // goes to ours. Returns its exit status.
 int run_mallet_once(const std::vector<std::string>& args, const std::string& server, const std::filesystem::path& state,
-               JackPlant& plant, std::vector<std::string>* lines = nullptr) {
+                    JackPlant& plant, std::vector<std::string>* lines, const RunExtras& extras) {
   const std::filesystem::path mallet = sibling_program("mallet");
   if (mallet.empty()) throw std::runtime_error("bench actuator: the program mallet is not installed beside mallet-bench");
   latency::ChildOptions o;
   o.argv = {mallet.string()};
   o.argv.insert(o.argv.end(), args.begin(), args.end());
   o.env = {{"JACK_DEFAULT_SERVER", server}, {"MALLET_STATE_DIR", state.string()}, {"JACK_NO_AUDIO_RESERVATION", "1"}};
+  o.env.insert(o.env.end(), extras.env.begin(), extras.env.end());
   std::mutex lines_mutex;
   o.on_line = [&](Nanos, std::string_view line) {
     std::printf("  | %.*s\n", static_cast<int>(line.size()), line.data());
+    if (extras.on_line) extras.on_line(line);
     std::lock_guard lock(lines_mutex);
     if (lines) lines->emplace_back(line);
   };
@@ -164,6 +190,7 @@ int run_mallet_once(const std::vector<std::string>& args, const std::string& ser
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (child.running()) {
     wired = plant.wire(2, 1, std::chrono::milliseconds(0)) || wired;
+    if (extras.each_poll) extras.each_poll();
     if (!wired && std::chrono::steady_clock::now() > give_up) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -179,12 +206,12 @@ int run_mallet_once(const std::vector<std::string>& args, const std::string& ser
 // dummy driver on a busy machine skips cycles, which PortAudio's stream does not see, and a
 // measurement that lost samples is not one. A real card's xruns reach the stream's own flags.
 int run_mallet(const std::vector<std::string>& args, const std::string& server, const std::filesystem::path& state,
-               JackPlant& plant, std::vector<std::string>* lines = nullptr) {
+               JackPlant& plant, std::vector<std::string>* lines = nullptr, const RunExtras& extras = {}) {
   int status = 0;
   for (int attempt = 1; attempt <= 3; ++attempt) {
     const std::uint64_t before = plant.xruns();
     if (lines) lines->clear();
-    status = run_mallet_once(args, server, state, plant, lines);
+    status = run_mallet_once(args, server, state, plant, lines, extras);
     const std::uint64_t xruns = plant.xruns() - before;
     if (xruns == 0) break;
     std::printf("  (the JACK server ran late %llu time(s) during that run%s)\n", static_cast<unsigned long long>(xruns),
@@ -192,6 +219,95 @@ int run_mallet(const std::vector<std::string>& args, const std::string& server, 
     std::fflush(stdout);
   }
   return status;
+}
+
+// A frame's scan-out at 60 Hz: the issue's bound on the display latency's error.
+constexpr double kFrameMs = 1000.0 / 60;
+
+struct SquareSeen {
+  Nanos present = 0;
+  double latency_ms = 0;
+};
+
+// `mallet calibrate latency --loopback 2 --photodiode 3` on the bench's own X server: the kiosk
+// shows its latency test's squares, the photodiode client lights capture 3 `panel_lag_ms`
+// after the X server shows each, and the bench answers the page's question with Enter.
+// Writes its rows into `out`.
+void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& server, const std::filesystem::path& settings,
+                         JackPlant& plant, std::ofstream& out) {
+  latency::require_x_and_jack("bench actuator");
+  latency::VirtualDisplay x(latency::kWidth, latency::kHeight);
+  const Nanos lag = static_cast<Nanos>(std::llround(o.panel_lag_ms * 1e6));
+  latency::JackPhotodiode diode(server, x.name(), {2, 2, 6, 6}, lag);
+  latency::FakePointer keyboard(x.name());
+  std::printf("\nmallet calibrate latency --loopback 2 --photodiode 3 (the kiosk on the bench's X server %s; a panel "
+              "lighting %.1f ms after the X server shows a frame):\n",
+              x.name().c_str(), o.panel_lag_ms);
+  std::fflush(stdout);
+  std::mutex mutex;
+  std::vector<SquareSeen> squares;
+  std::atomic<bool> measured{false}, answered{false};
+  double recovered = -1;
+  RunExtras extras;
+  extras.env = {{"DISPLAY", x.name()}};
+  if (const std::optional<std::string> preload = latency::child_preload()) extras.env.emplace_back("LD_PRELOAD", *preload);
+  extras.on_line = [&](std::string_view line) {
+    const std::string l(line);
+    if (const std::size_t at = l.find("PortAudio's input latency "); at != std::string::npos)
+      diode.set_input_latency(static_cast<Nanos>(std::llround(std::atof(l.c_str() + at + 26) * 1e6)));
+    if (const std::size_t at = l.find("photodiode: square "); at != std::string::npos) {
+      const std::size_t t = l.find("present t=", at), ms = l.find(", light ", at);
+      if (t != std::string::npos && ms != std::string::npos)
+        if (const std::optional<Nanos> present = latency::parse_log_seconds(l.substr(t + 10, ms - t - 10))) {
+          std::lock_guard lock(mutex);
+          squares.push_back({*present, std::atof(l.c_str() + ms + 8)});
+        }
+    }
+    if (l.find("photodiode: display latency ") != std::string::npos) measured = true;
+    std::sscanf(l.c_str(), "display latency: %lf ms", &recovered);
+  };
+  bool wired = false;
+  extras.each_poll = [&] {
+    wired = wired || diode.wire(2);
+    if (measured && !answered) {  // the operator reads the page's result, then Enter saves it
+      latency::sleep_ms(300);
+      keyboard.press_key(XK_Return);
+      answered = true;
+    }
+  };
+  std::vector<std::string> lines;
+  const std::vector<std::string> args = {"calibrate", "latency", "--loopback", "2", "--photodiode", "3",
+                                         "--config", settings.string(), "--input", "system"};
+  if (const int status = run_mallet(args, server, o.out_dir, plant, &lines, extras); status != 0)
+    throw std::runtime_error(fmt::format("bench actuator: mallet calibrate latency --photodiode ended with {}", status));
+  const std::filesystem::path drop_in = drop_in_dir_for(settings, std::nullopt) / kDisplayLatencyDropIn;
+  if (!std::filesystem::exists(drop_in))
+    throw std::runtime_error("bench actuator: Enter on the page did not save " + drop_in.string());
+
+  // Each square against the truth: when the X server showed it, plus the panel's lag.
+  const std::vector<Nanos> white = diode.turned_white();
+  std::vector<double> truth_ms, errors_ms;
+  double worst = 0;
+  for (const SquareSeen& s : squares) {
+    const auto near = std::min_element(white.begin(), white.end(), [&](Nanos a, Nanos b) {
+      return std::llabs(a - s.present) < std::llabs(b - s.present);
+    });
+    if (near == white.end() || std::llabs(*near - s.present) > 100'000'000) continue;
+    const double truth = static_cast<double>(*near + lag - s.present) / 1e6;
+    truth_ms.push_back(truth);
+    errors_ms.push_back(s.latency_ms - truth);
+    if (std::abs(s.latency_ms - truth) > std::abs(worst)) worst = s.latency_ms - truth;
+  }
+  if (truth_ms.empty()) throw std::runtime_error("bench actuator: no square of the kiosk's was seen on the X server");
+  std::sort(truth_ms.begin(), truth_ms.end());
+  const double truth = truth_ms[truth_ms.size() / 2];
+  std::printf("  display latency: %.3f ms recovered (%zu squares); the truth %.3f ms (the panel's %.1f ms and the X "
+              "server's own %.3f ms after the present, the median): error %+.3f ms, worst square %+.3f ms (target: "
+              "within one frame's scan-out, %.1f ms); %llu of the photodiode's changes late, %llu polls of the corner\n",
+              recovered, squares.size(), truth, o.panel_lag_ms, truth - o.panel_lag_ms, recovered - truth, worst,
+              kFrameMs, static_cast<unsigned long long>(diode.late()), static_cast<unsigned long long>(diode.polls()));
+  out << fmt::format("display_latency_ms,{:.4f},{:.4f},{:.4f},{:.1f}\n", recovered, truth, recovered - truth, kFrameMs);
+  out << fmt::format("display_square_worst_ms,{:.4f},0,{:.4f},{:.1f}\n", worst, worst, kFrameMs);
 }
 
 void run_bench_actuator(const ActuatorBenchOptions& o) {
@@ -204,7 +320,7 @@ void run_bench_actuator(const ActuatorBenchOptions& o) {
   spec.delay_samples = o.delay_samples;
   spec.sample_rate_hz = rate;
   const std::string server = fmt::format("mallet-actuator-{}", getpid());
-  latency::JackServer jack(server, rate, o.period);
+  latency::JackServer jack(server, rate, o.period, 3);  // sensor, loopback, photodiode
   JackPlant plant(server, spec);
   std::filesystem::create_directories(o.out_dir);
   const std::filesystem::path settings = o.out_dir / "mallet.toml";
@@ -290,6 +406,7 @@ void run_bench_actuator(const ActuatorBenchOptions& o) {
               round_trip, injected, 1000.0 * (round_trip - injected) / rate);
   out << fmt::format("loopback_round_trip_ms,{:.4f},{:.4f},{:.4f},0.5\n", 1000.0 * round_trip / rate,
                      1000.0 * injected / rate, 1000.0 * (round_trip - injected) / rate);
+  if (o.photodiode) run_photodiode_step(o, server, settings, plant, out);
   if (!out) throw std::runtime_error("bench actuator: cannot write " + csv.string());
   std::printf("\nwrote %s\n", csv.string().c_str());
 }
@@ -318,6 +435,10 @@ Needs jackd (jackd2) and mallet beside mallet-bench.)");
   cmd->add_option("--loopback-delay", o->loopback_delay, "The loopback's own delay for `calibrate latency`, samples")
       ->capture_default_str()
       ->check(CLI::Range(0, JackPlant::kMaxLoopDelay));
+  cmd->add_option("--panel-lag", o->panel_lag_ms, "The bench's panel: light this many ms after the X server shows a frame")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 150.0));
+  cmd->add_flag("!--no-photodiode", o->photodiode, "Leave out the display's latency (the kiosk on an X server of the bench's)");
   cmd->add_option("--period", o->period, "JACK's period in frames")->capture_default_str()->check(CLI::IsMember({64, 128, 256, 512, 1024}));
   cmd->add_option("--out", o->out_dir, "Folder for the settings and the calibration written");
   cmd->callback([o] { run_bench_actuator(*o); });

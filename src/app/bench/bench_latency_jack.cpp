@@ -29,11 +29,12 @@ jack_client_t* open_client(const char* client_name, const std::string& server) {
 
 }  // namespace
 
-JackServer::JackServer(const std::string& name, int rate, int period) : name_(name) {
+JackServer::JackServer(const std::string& name, int rate, int period, int capture) : name_(name) {
   silence_libjack();
   ChildOptions o;
   o.argv = {"jackd", "--no-realtime", "-n", name, "-d", "dummy"};
   o.argv.insert(o.argv.end(), {"-r", std::to_string(rate), "-p", std::to_string(period)});
+  if (capture > 0) o.argv.insert(o.argv.end(), {"-C", std::to_string(capture)});
   // No D-Bus device reservation (there is no card to reserve), nothing preloaded (the
   // sanitizer tests preload the Vulkan driver into the bench).
   o.env = {{"JACK_NO_AUDIO_RESERVATION", "1"}, {"LD_PRELOAD", ""}};

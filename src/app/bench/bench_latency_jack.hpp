@@ -37,11 +37,12 @@ namespace mallet::app::latency {
 //! by length, then name): where the kiosk's PortAudio stream is found on a bench's server.
 std::map<std::string, std::vector<std::string>> ports_by_client(jack_client_t* self, unsigned long flags);
 
-//! jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD, up and accepting clients.
+//! jackd --no-realtime -n NAME -d dummy -r RATE -p PERIOD [-C CAPTURE], up and accepting clients.
 class JackServer {
  public:
   //! Starts it and waits (bounded) until a client can connect; throws when it cannot.
-  JackServer(const std::string& name, int rate, int period);
+  //! `capture`: the system's capture channels (0: the dummy driver's own 2).
+  JackServer(const std::string& name, int rate, int period, int capture = 0);
   const std::string& name() const { return name_; }
   Child& server() { return *server_; }
 

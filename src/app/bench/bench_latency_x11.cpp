@@ -130,6 +130,14 @@ Nanos FakePointer::move_to(int x, int y) {
   return monotonic_now();
 }
 
+void FakePointer::press_key(unsigned long keysym) {
+  Display* d = display_.get();
+  const KeyCode code = XKeysymToKeycode(d, static_cast<KeySym>(keysym));
+  XTestFakeKeyEvent(d, code, True, CurrentTime);
+  XTestFakeKeyEvent(d, code, False, CurrentTime);
+  XFlush(d);
+}
+
 ScreenReader::ScreenReader(const std::string& display) : display_(open_display(display)) {}
 
 bool ScreenReader::grab(const PixelBox& box, Grab& out) {

@@ -57,6 +57,8 @@ class FakePointer {
   std::optional<PixelBox> find_window(int width, int height);
   //! The pointer to (x, y) screen pixels; returns when the request was flushed to the server.
   Nanos move_to(int x, int y);
+  //! A key pressed and released (an X keysym, e.g. XK_Return), as a keyboard's would arrive.
+  void press_key(unsigned long keysym);
   //! The viewable top-level window of width × height resized to to_width × to_height, as a
   //! screen turned to portrait or an operator's drag would; false when there is none.
   bool resize_window(int width, int height, int to_width, int to_height);

@@ -26,6 +26,15 @@ struct KioskOptions {
   std::string device;                           //!< Vulkan device (substring of its name)
   bool no_frame_cap = false;                    //!< window: frames as fast as they come (for measuring)
   VisitorSessions visitor_sessions;             //!< window: the study's ([study] visitor_protocol); empty: none
+  //! `mallet calibrate latency --photodiode CH`: [timing] photodiode_channel and
+  //! photodiode_input overridden, the operator page open and its latency test (T) run at
+  //! once, and the kiosk ends once the operator answered (0), or when nothing usable was
+  //! measured (2).
+  struct DisplayLatencyRun {
+    int photodiode_channel = 1;  //!< from 1
+    std::string input;           //!< "" = the default input
+  };
+  std::optional<DisplayLatencyRun> measure_display_latency;
 };
 
 //! Returns the process exit status.

@@ -15,6 +15,8 @@ void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engin
   // The first instant far enough ahead that its sound can still be scheduled on time.
   for (int i = 0; i < kPulses; ++i) instants_.push_back(now + (i + 1) * kNanosPerSecond);
   all_ = instants_;
+  squares_.clear();
+  for (Nanos t : all_) squares_.push_back({t, 0});
   for (Nanos t : instants_) {
     Impact pulse;  // a firm strike on the first bar: a sharp onset on both channels
     pulse.t_ns = t;
@@ -30,9 +32,13 @@ void LatencyTest::start(Nanos now, const Scene& scene, audio::AudioEngine& engin
 
 bool LatencyTest::square_shown(Nanos present) {
   std::erase_if(instants_, [present](Nanos t) { return present >= t + kShown; });
+  bool shown = false;
   for (Nanos t : instants_)
-    if (present >= t) return true;
-  return false;
+    if (present >= t) shown = true;
+  if (shown)
+    for (audio::PhotodiodeSquare& s : squares_)
+      if (s.present == 0 && present >= s.instant && present < s.instant + kShown) s.present = present;
+  return shown;
 }
 
 std::string LatencyTest::status(Nanos now) const {

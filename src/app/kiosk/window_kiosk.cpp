@@ -32,6 +32,9 @@
 #include "app/kiosk/kiosk_health.hpp"
 #include "app/kiosk/kiosk_stage.hpp"
 #include "app/kiosk/latency_test.hpp"
+#include "app/kiosk/photodiode_latency.hpp"
+#include "app/common/settings_source.hpp"
+#include "app/common/timing_drop_in.hpp"
 #include "app/kiosk/operator_page.hpp"
 #include "app/strike/mouse_pointer.hpp"
 #include "app/strike/remote_pointer.hpp"
@@ -150,6 +153,16 @@ class WindowKiosk {
   std::string notice_;                             //!< the last calibration's outcome ...
   Nanos notice_until_ = 0;                         //!< ... shown until then
   LatencyTest latency_test_;  //!< the operator page's T
+  //! T's photodiode, when the stream records one ([timing] photodiode_channel)
+  std::optional<PhotodiodeLatency> photodiode_;
+  //! The operator page's latency test, with its photodiode's measurement when there is one.
+  void start_latency_test(Nanos now);
+  //! The photodiode's answer (Enter: saved; Esc: kept as measured only), and a run of
+  //! `calibrate latency --photodiode` then ends.
+  void answer_photodiode(bool save);
+  //! `calibrate latency --photodiode`: when its test starts, and its exit status once it ended.
+  Nanos display_run_starts_ = 0;
+  std::optional<int> display_run_status_;
   struct Key {
     int key;
     int mods;
@@ -289,7 +302,9 @@ void WindowKiosk::run_visitor_session() {
   // The swapchain's images hold the study's frames: a new renderer draws them whole.
   stage_->renderer = make_renderer(*stage_);
   stage_->route->reset();
-  if (sound) stage_->output = audio::start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status);
+  if (sound)
+    stage_->output = audio::start_output(*stage_->rig.engine, stage_->config.audio, stage_->audio_status,
+                                         photodiode_capture(stage_->config.timing));
   offer_->session_ended(monotonic_now());
   offer_since_ = 0;
 }
@@ -299,6 +314,10 @@ void WindowKiosk::build(KioskSetup setup) {
   const std::string last_good = last_good_text(setup);
   stage->refused = std::move(setup.refused);
   stage->config = std::move(setup.config);
+  if (const auto& run = options_.measure_display_latency) {
+    stage->config.timing.photodiode_channel = run->photodiode_channel;
+    stage->config.timing.photodiode_input = run->input;
+  }
   stage->file_scene = std::move(setup.scene);
   stage->laid_out_for_aspect = win_.aspect.get();
   stage->scene = laid_out(stage->file_scene, layout_for(stage->file_scene, stage->laid_out_for_aspect));
@@ -345,7 +364,11 @@ void WindowKiosk::build(KioskSetup setup) {
   if (stage_) stop_ir_tracker(*stage_);
   if (stage_ && stage_->evdev) stage_->evdev->stop();
   // Null: the scene plays silently.
-  stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status);
+  stage->output = audio::start_output(*stage->rig.engine, c.audio, stage->audio_status, photodiode_capture(c.timing));
+  if (c.timing.photodiode_channel > 0) photodiode_.emplace(c.timing.photodiode_channel, c.timing.photodiode_input);
+  else photodiode_.reset();
+  // `calibrate latency --photodiode`: its test once the stream has run a while.
+  if (options_.measure_display_latency && !display_run_status_) display_run_starts_ = monotonic_now() + 2 * kNanosPerSecond;
   if (stage->visitor)
     if (const std::string why = study::undeliverable_cues(*stage->visitor, stage->output != nullptr); !why.empty()) {
       stage->visitor_problems.push_back("visitor study off: " + why);
@@ -512,8 +535,52 @@ void WindowKiosk::apply_volume() {
 
 void WindowKiosk::on_key(int key, int mods, bool repeat) { keys_.push_back({key, mods, repeat}); }
 
+void WindowKiosk::start_latency_test(Nanos now) {
+  latency_test_.start(now, stage_->scene, *stage_->rig.engine);
+  if (photodiode_) photodiode_->start(stage_->output.get());
+}
+
+void WindowKiosk::answer_photodiode(bool save) {
+  if (photodiode_->phase() == PhotodiodeLatency::Phase::asking) {
+    const DisplayLatencyMeasurement m = photodiode_->measurement(save);
+    try {
+      const std::filesystem::path written =
+          keep_display_latency(m, drop_in_dir_for(options_.config, options_.config_dir));
+      if (save) {
+        journal::notice("operator: display latency {:.3f} ms saved in {}; the kiosk reloads with it", m.display_latency_ms,
+                        written.c_str());
+        g_reload.store(true);
+      } else {
+        journal::notice("operator: display latency {:.3f} ms not saved ([timing] display_latency_ms stays {:.1f} ms)",
+                        m.display_latency_ms, stage_->config.timing.display_latency_ms);
+      }
+      health_.state().wrote("display latency", {});
+    } catch (const std::exception& e) {  // the state folder or the settings' folder: said, and the kiosk plays on
+      journal::error("display latency: {}", e.what());
+      health_.state().wrote("display latency", refused(e.what()));
+    }
+    if (options_.measure_display_latency) display_run_status_ = 0;
+  } else if (options_.measure_display_latency) {
+    display_run_status_ = 2;  // nothing usable measured: its line was said
+  }
+  photodiode_->answered();
+}
+
 void WindowKiosk::handle_keys(Nanos now) {
   for (const auto& [key, mods, repeat] : keys_) {
+    // The photodiode's question (or its failure) takes Enter and Esc while it is on the page.
+    if (photodiode_ && !repeat && states_->state() == KioskState::operator_page &&
+        (photodiode_->phase() == PhotodiodeLatency::Phase::asking ||
+         photodiode_->phase() == PhotodiodeLatency::Phase::failed)) {
+      if ((key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) && photodiode_->phase() == PhotodiodeLatency::Phase::asking) {
+        answer_photodiode(true);
+        continue;
+      }
+      if (key == GLFW_KEY_ESCAPE) {
+        answer_photodiode(false);
+        continue;
+      }
+    }
     if (key == GLFW_KEY_ESCAPE && !repeat && states_->state() == KioskState::calibration) {
       states_->calibration_cancelled(now);  // Esc stops it: the previous calibration stays (calibration_frame)
       continue;
@@ -559,7 +626,7 @@ void WindowKiosk::handle_keys(Nanos now) {
         use_visitor_language(language_.next());
         journal::notice("operator: language {}", visitor_language().c_str());
         break;
-      case OperatorAction::latency_test: latency_test_.start(now, stage_->scene, *stage_->rig.engine); break;
+      case OperatorAction::latency_test: start_latency_test(now); break;
       case OperatorAction::doctor:
         if (doctor_.empty()) doctor_asked_ = true;
         else doctor_.clear();  // D again: back to the page
@@ -752,6 +819,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
   if (states_->quit_asked()) lines.push_back({PageTone::warning, tr("Q again quits the kiosk (any other key: stay)")});
   if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back({PageTone::status, test});
+  if (photodiode_)
+    for (PageLine& l : photodiode_->page_lines(stage_->config.timing.display_latency_ms)) lines.push_back(std::move(l));
   for (const std::string& p : stage_->problems) lines.push_back({PageTone::warning, p});
   for (const std::string& p : stage_->visitor_problems) lines.push_back({PageTone::warning, p});
   if (health_.state().failing()) lines.push_back({PageTone::warning, health_.state().problem()});
@@ -827,6 +896,24 @@ int WindowKiosk::run() {
       break;
     }
     if (states_->should_quit() || (quit_after > 0 && now - health_.started() >= quit_after)) break;
+    if (photodiode_) {
+      photodiode_->poll(now, latency_test_, stage_->output.get());
+      if (options_.measure_display_latency) {
+        // `calibrate latency --photodiode`: the page stays open (its timer restarted) until
+        // the answer; the test starts once the stream has run a while.
+        if (states_->state() != KioskState::operator_page) states_->operator_chord(now);
+        states_->operator_key(now);
+        if (display_run_starts_ > 0 && now >= display_run_starts_) {
+          display_run_starts_ = 0;
+          start_latency_test(now);
+        }
+        if (photodiode_->phase() == PhotodiodeLatency::Phase::failed && !display_run_status_) {
+          std::fprintf(stderr, "mallet: %s\n", photodiode_->problem().c_str());
+          display_run_status_ = 2;
+        }
+        if (display_run_status_) break;
+      }
+    }
 
     // The mouse's samples since the last frame: from its reading thread (evdev), else the
     // window system's cursor events, each stamped as it was read.
@@ -925,7 +1012,7 @@ int WindowKiosk::run() {
                    win_.ctx->first_validation_message().c_str());
     return 1;
   }
-  return 0;
+  return display_run_status_.value_or(0);
 }
 
 }  // namespace

@@ -164,6 +164,9 @@ AppConfig read_app_config(const toml::table& root, const std::string& file) {
     TimingConfig& g = c.timing;
     g.align = t->choice_or("align", kCueAlignNames, g.align);
     t->read("display_latency_ms", g.display_latency_ms, 0, 200);
+    g.photodiode_channel = static_cast<int>(t->integer_or("photodiode_channel", g.photodiode_channel));
+    t->require_range("photodiode_channel", g.photodiode_channel, 0, 64);
+    g.photodiode_input = t->string_or("photodiode_input", g.photodiode_input);
     double& audio = c.audio.output_latency_ms;
     audio = t->number_or("audio_output_latency_ms", audio);
     if (audio >= 0) t->require_range("audio_output_latency_ms", audio, 0, 500);
