@@ -1,4 +1,5 @@
-// `mallet bench actuator`: `mallet calibrate actuator` run against a known actuator chain, so
+// `mallet bench actuator`: `mallet calibrate actuator` (and `calibrate latency`, loopback and
+// photodiode: bench_photodiode.hpp) run against a known actuator chain and a known display, so
 // that what it recovers can be set against the truth. On a JACK server of the bench's own
 // (the dummy driver: no sound card), a plant client stands where the amplifier, voice coil,
 // stick and sensor would be: it takes the kiosk's actuator output port, filters it through
@@ -10,9 +11,11 @@
 // Prints: the recovered magnitude against the plant's exact response over the usable band,
 // the recovered delay against the injected one (the sound card's round trip, measured by
 // the loopback, taken off), the felt-signal table before and after the inverse, and the round
-// trip `mallet calibrate latency` finds on a loopback delayed by a known amount. Targets (issue:
+// trip `mallet calibrate latency` finds on a loopback delayed by a known amount, and the display
+// latency its photodiode finds for the kiosk on an X server of the bench's own. Targets (issue:
 // the actuator measured through the sound card): magnitude within 1 dB, delay within 1 sample,
-// B and f within 3 % after the inverse, the loopback's latency within 0.5 ms.
+// B and f within 3 % after the inverse, the loopback's latency within 0.5 ms, the display's
+// within one frame's scan-out.
 #include <X11/keysym.h>
 #include <jack/jack.h>
 
@@ -425,8 +428,14 @@ capture 1, a loopback on capture 2) and then `--verify`, and prints what was rec
 the plant: the magnitude over the usable band, the delay (the round trip taken off), the
 resonance, and the felt-signal table. Then delays the loopback by --loopback-delay samples and
 runs `mallet calibrate latency --loopback 2`: the round trip it finds against one JACK period
-plus that delay. Writes actuator.csv (quantity,recovered,injected,error,target) in --out.
-Needs jackd (jackd2) and mallet beside mallet-bench.)");
+plus that delay. Last (unless --no-photodiode), `mallet calibrate latency --loopback 2
+--photodiode 3` with the kiosk on an X server of the bench's own (Xvfb): a photodiode client
+watches the screen's top-left corner (XGetImage, about 1 ms apart) and lights capture 3
+--panel-lag ms after the corner turns white, as a panel that late would; the bench presses
+Enter when the operator page asks, and sets each square's display latency against the truth
+(when the X server showed it, plus the panel's lag, less the frame's present). Writes
+actuator.csv (quantity,recovered,injected,error,target) in --out.
+Needs jackd (jackd2), Xvfb (for the photodiode) and mallet beside mallet-bench.)");
   cmd->add_option("--kind", o->kind, "The plant's resonance")->check(CLI::IsMember({"low-pass", "high-pass"}))->capture_default_str();
   cmd->add_option("--resonance", o->resonance_hz, "Hz")->capture_default_str()->check(CLI::Range(40.0, 1000.0));
   cmd->add_option("--q", o->q, "The resonance's Q")->capture_default_str()->check(CLI::Range(0.5, 20.0));
