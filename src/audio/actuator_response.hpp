@@ -12,8 +12,11 @@
 // with an intercept (a sensor wired the other way round adds π). H_min comes from the
 // magnitude by the real cepstrum, from the magnitude measured up to a sixth of an octave
 // below the sweep's top and continued along its slope beyond (extended_magnitude). What the
-// chain does above the sweep is not known: against the simulated plants this leaves a
-// constant bias of +0.4 to +1.1 samples (audio/simulated_plant.hpp; measured).
+// chain does beyond the sweep is not known: a zero on the unit circle out there (a digital
+// filter's at the Nyquist frequency, an accelerometer's at DC) holds half a sample of delay
+// that no magnitude within the sweep shows (the cookbook low-pass's two gave +1.1 samples).
+// Against the simulated plants (audio/simulated_plant.hpp; `mallet bench actuator`, measured):
+// +0.23 samples for the low-pass (a resonance of poles only), +0.35 for the high-pass.
 #include <complex>
 #include <span>
 #include <vector>

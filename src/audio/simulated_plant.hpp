@@ -1,6 +1,6 @@
 #pragma once
 // A known actuator chain, for the tests and for `mallet-bench actuator`'s JACK plant: a
-// resonance (the audio EQ cookbook's second-order sections), the stick's roll-off (a
+// resonance (the audio EQ cookbook's poles; its zeros for the high-pass), the stick's roll-off (a
 // one-pole low-pass: the second pole), and a pure delay of whole samples. Its exact response
 // is known, so what a measurement recovers can be compared with the truth.
 //   low_pass:  the voice coil's excursion as a sensor on the stick reads it (a piezo disc):
@@ -33,16 +33,18 @@ class SimulatedPlant {
     const double w0 = 2 * std::numbers::pi * spec.resonance_hz / spec.sample_rate_hz;
     const double alpha = std::sin(w0) / (2 * spec.q);
     const double a0 = 1 + alpha;
+    a1_ = -2 * std::cos(w0) / a0;
+    a2_ = (1 - alpha) / a0;
     if (spec.kind == PlantKind::high_pass) {
       b0_ = (1 + std::cos(w0)) / 2 / a0;
       b1_ = -(1 + std::cos(w0)) / a0;
+      b2_ = b0_;
     } else {
-      b0_ = (1 - std::cos(w0)) / 2 / a0;
-      b1_ = (1 - std::cos(w0)) / a0;
+      // The cookbook's poles without its two zeros at the Nyquist frequency: a mass and a
+      // spring have none, and those zeros would add a sample of delay above any sweep
+      // (b0 sets the gain at DC to 1).
+      b0_ = 1 + a1_ + a2_;
     }
-    b2_ = b0_;
-    a1_ = -2 * std::cos(w0) / a0;
-    a2_ = (1 - alpha) / a0;
     pole_ = std::exp(-2 * std::numbers::pi * spec.rolloff_hz / spec.sample_rate_hz);
   }
 
