@@ -112,5 +112,9 @@ inline std::filesystem::path actuator_eq_path() { return state_dir() / "actuator
 inline std::filesystem::path latency_record_path() { return state_dir() / "latency.toml"; }
 //! The display's latency as last measured (core/display_latency_record.hpp).
 inline std::filesystem::path display_latency_path() { return state_dir() / "display_latency.toml"; }
+//! Settings the kiosk measured and the operator confirmed (the display's latency): drop-ins
+//! in its own, writable, state folder, merged with the settings' drop-ins in the order of
+//! their names (app/common/settings_source.hpp).
+inline std::filesystem::path measured_settings_dir() { return state_dir() / "measured.d"; }
 
 }  // namespace mallet

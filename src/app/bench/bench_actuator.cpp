@@ -49,7 +49,6 @@
 #include "app/bench/bench_latency_rig.hpp"
 #include "app/bench/bench_latency_x11.hpp"
 #include "app/bench/bench_photodiode.hpp"
-#include "app/common/settings_source.hpp"
 #include "app/common/timing_drop_in.hpp"
 #include "app/common/programs.hpp"
 #include "audio/simulated_plant.hpp"
@@ -256,8 +255,14 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
   if (const std::optional<std::string> preload = latency::child_preload()) extras.env.emplace_back("LD_PRELOAD", *preload);
   extras.on_line = [&](std::string_view line) {
     const std::string l(line);
-    if (const std::size_t at = l.find("PortAudio's input latency "); at != std::string::npos)
+    if (const std::size_t at = l.find("PortAudio's input latency "); at != std::string::npos) {
+      // A measurement starts (again, when the bench runs it again): what the last one saw is forgotten.
       diode.set_input_latency(static_cast<Nanos>(std::llround(std::atof(l.c_str() + at + 26) * 1e6)));
+      std::lock_guard lock(mutex);
+      squares.clear();
+      measured = false;
+      answered = false;
+    }
     if (const std::size_t at = l.find("photodiode: square "); at != std::string::npos) {
       const std::size_t t = l.find("present t=", at), ms = l.find(", light ", at);
       if (t != std::string::npos && ms != std::string::npos)
@@ -269,9 +274,8 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
     if (l.find("photodiode: display latency ") != std::string::npos) measured = true;
     std::sscanf(l.c_str(), "display latency: %lf ms", &recovered);
   };
-  bool wired = false;
   extras.each_poll = [&] {
-    wired = wired || diode.wire(2);
+    diode.wire(2);  // each run's stream is a JACK client of its own, wired as it appears
     if (measured && !answered) {  // the operator reads the page's result, then Enter saves it
       latency::sleep_ms(300);
       keyboard.press_key(XK_Return);
@@ -283,7 +287,7 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
                                          "--config", settings.string(), "--input", "system"};
   if (const int status = run_mallet(args, server, o.out_dir, plant, &lines, extras); status != 0)
     throw std::runtime_error(fmt::format("bench actuator: mallet calibrate latency --photodiode ended with {}", status));
-  const std::filesystem::path drop_in = drop_in_dir_for(settings, std::nullopt) / kDisplayLatencyDropIn;
+  const std::filesystem::path drop_in = o.out_dir / "measured.d" / kDisplayLatencyDropIn;  // its state folder's
   if (!std::filesystem::exists(drop_in))
     throw std::runtime_error("bench actuator: Enter on the page did not save " + drop_in.string());
 

@@ -152,8 +152,9 @@ circuit) on input channel CH of --input. Runs the kiosk on this screen with its 
 open and its latency test (T): ten white squares in the corner, one a second. The kiosk's own
 stream records the photodiode, and each square's light is timed against the present of the
 frame that showed it; the page shows the median and its spread and asks: Enter saves it as
-[timing] display_latency_ms (the drop-in 61-measured-display-latency.toml; with --loopback,
-the output latency too, as --save would), Esc keeps the setting. Either way it is kept in the
+[timing] display_latency_ms (the drop-in 61-measured-display-latency.toml in the state
+folder's measured.d, which the settings merge with their own drop-ins in the order of the
+files' names; with --loopback, the output latency too, as --save would), Esc keeps the setting. Either way it is kept in the
 state folder (display_latency.toml: `mallet doctor` shows it). Needs the screen: run it in the
 kiosk's session with the kiosk stopped. The same measurement runs in the kiosk itself, on the
 operator page's T, when [timing] photodiode_channel is set.

@@ -1,5 +1,6 @@
 #include "app/common/settings_source.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "app/common/command_support.hpp"
@@ -27,7 +28,14 @@ std::filesystem::path drop_in_dir_for(const std::optional<std::filesystem::path>
 
 config::LoadedSettings operator_settings(const std::optional<std::filesystem::path>& file,
                                          const std::optional<std::filesystem::path>& drop_in_dir) {
-  return config::load_settings(file, config::drop_in_files(drop_in_dir_for(file, drop_in_dir)));
+  // The operator's drop-ins and those the kiosk measured (the state folder's: the kiosk may
+  // not write /etc), in the order of their names, as systemd orders a unit's.
+  std::vector<std::filesystem::path> drop_ins = config::drop_in_files(drop_in_dir_for(file, drop_in_dir));
+  for (const std::filesystem::path& m : config::drop_in_files(measured_settings_dir())) drop_ins.push_back(m);
+  std::stable_sort(drop_ins.begin(), drop_ins.end(), [](const std::filesystem::path& a, const std::filesystem::path& b) {
+    return a.filename().string() < b.filename().string();
+  });
+  return config::load_settings(file, drop_ins);
 }
 
 void say_settings(const config::LoadedSettings& s, const std::string& info_prefix, const std::string& warning_prefix) {

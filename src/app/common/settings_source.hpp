@@ -22,7 +22,9 @@ std::filesystem::path drop_in_dir_for(const std::optional<std::filesystem::path>
                                       const std::optional<std::filesystem::path>& drop_in_dir);
 
 //! Loads the settings (a bad settings file throws ConfigError, as before; a bad drop-in is
-//! refused alone and listed in `refused`).
+//! refused alone and listed in `refused`): the file, then the drop-ins of its folder and those
+//! the kiosk measured (the state folder's measured.d: data_paths.hpp), in the order of their
+//! names.
 config::LoadedSettings operator_settings(const std::optional<std::filesystem::path>& file,
                                          const std::optional<std::filesystem::path>& drop_in_dir);
 

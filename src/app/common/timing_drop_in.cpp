@@ -2,9 +2,10 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "core/atomic_file.hpp"
 #include "core/data_paths.hpp"
-#include "core/toml_text.hpp"
 
 namespace mallet::app {
 
@@ -17,17 +18,17 @@ std::filesystem::path write_timing_drop_in(const std::filesystem::path& dir, con
     text += "# " + why.substr(at, end - at) + "\n";
     at = end + 1;
   }
-  text += std::string("[timing]\n") + key + " = " + toml_text::exact_number(value) + "\n";
+  text += std::string("[timing]\n") + key + " = " + fmt::format("{}", value) + "\n";  // the shortest that reads back the same
   write_file_atomically(dir / name, text);
   return dir / name;
 }
 
-std::filesystem::path keep_display_latency(const DisplayLatencyMeasurement& m, const std::filesystem::path& drop_in_dir) {
+std::filesystem::path keep_display_latency(const DisplayLatencyMeasurement& m) {
   const std::filesystem::path record = display_latency_path();
   std::filesystem::create_directories(record.parent_path());
   write_file_atomically(record, format_display_latency(m));
   if (!m.saved) return {};
-  return write_timing_drop_in(drop_in_dir, kDisplayLatencyDropIn,
+  return write_timing_drop_in(measured_settings_dir(), kDisplayLatencyDropIn,
                               "Written by mallet's latency test at " + m.measured_utc +
                                   ", confirmed on the operator page:\nthe display's latency, measured by a "
                                   "photodiode on the screen's corner (median of " +

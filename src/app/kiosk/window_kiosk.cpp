@@ -33,7 +33,6 @@
 #include "app/kiosk/kiosk_stage.hpp"
 #include "app/kiosk/latency_test.hpp"
 #include "app/kiosk/photodiode_latency.hpp"
-#include "app/common/settings_source.hpp"
 #include "app/common/timing_drop_in.hpp"
 #include "app/kiosk/operator_page.hpp"
 #include "app/strike/mouse_pointer.hpp"
@@ -544,8 +543,7 @@ void WindowKiosk::answer_photodiode(bool save) {
   if (photodiode_->phase() == PhotodiodeLatency::Phase::asking) {
     const DisplayLatencyMeasurement m = photodiode_->measurement(save);
     try {
-      const std::filesystem::path written =
-          keep_display_latency(m, drop_in_dir_for(options_.config, options_.config_dir));
+      const std::filesystem::path written = keep_display_latency(m);
       if (save) {
         journal::notice("operator: display latency {:.3f} ms saved in {}; the kiosk reloads with it", m.display_latency_ms,
                         written.c_str());

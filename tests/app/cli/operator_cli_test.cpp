@@ -55,6 +55,29 @@ TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
   EXPECT_EQ(std::system(check.c_str()), 0);
 }
 
+TEST(ConfigShow, TheKiosksMeasuredDropInsMergeWithTheOperatorsByName) {
+  // The display latency the operator confirmed on the page lives in the state folder (the
+  // kiosk's service may not write /etc); an operator's drop-in named later still wins.
+  const fs::path dir = test::scratch_dir();
+  write_text(dir / "mallet.toml", "[timing]\ndisplay_latency_ms = 0.0\n");
+  write_text(dir / "state" / "measured.d" / "61-measured-display-latency.toml", "[timing]\ndisplay_latency_ms = 23.4\n");
+  const std::string show = "MALLET_STATE_DIR=" + (dir / "state").string() + " " + MALLET_TEST_BINARY +
+                           " config show --config " + (dir / "mallet.toml").string() + " 2>/dev/null";
+  const test::CliResult measured = test::run_command(show);
+  ASSERT_EQ(measured.status, 0) << measured.output;
+  EXPECT_NE(measured.output.find("display_latency_ms = 23.4  # from " +
+                                 (dir / "state" / "measured.d" / "61-measured-display-latency.toml").string()),
+            std::string::npos)
+      << measured.output;
+  write_text(dir / "mallet.toml.d" / "70-mine.toml", "[timing]\ndisplay_latency_ms = 30.0\n");
+  write_text(dir / "mallet.toml.d" / "50-early.toml", "[timing]\ndisplay_latency_ms = 10.0\n");
+  const test::CliResult later = test::run_command(show);
+  ASSERT_EQ(later.status, 0) << later.output;
+  EXPECT_NE(later.output.find("display_latency_ms = 30.0  # from " + (dir / "mallet.toml.d" / "70-mine.toml").string()),
+            std::string::npos)
+      << later.output;
+}
+
 TEST(ConfigShow, ABadDropInIsNamedWithItsLineAndExitsTwoWhileTheRestIsShown) {
   const fs::path dir = test::scratch_dir();
   write_text(dir / "mallet.toml", "[audio]\nvolume = 0.8\n");
@@ -204,15 +227,16 @@ TEST(Doctor, SaysWhatThisMachineLacksOneLineEachAndExitsOneOnAFailure) {
   EXPECT_NE(r.output.find("ok    languages    en, de, fr, ja, zh, ko, ar, he, hi: catalogues in "), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("ok    language     en: the texts as written"), std::string::npos) << r.output;
-  // No actuator calibration and no latency measured here: both fine, each saying how.
+  // No actuator calibration and no latency measured here: each fine, saying how.
   EXPECT_NE(r.output.find("ok    actuator     not measured ("), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ok    latency      never measured ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok    display      never measured ("), std::string::npos) << r.output;
   // The JSON says the same, and Python's parser reads it.
   const test::CliResult j = test::run_mallet("doctor --json > " + (dir / "d.json").string() + " 2>/dev/null; exit $?");
   EXPECT_EQ(j.status, r.status);
   const std::string check =
       "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
-      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','language','actuator','latency','hidraw',"
+      "assert [x['name'] for x in c]==['vulkan','compositor','audio','wiimote','camera','settings','models','soundfont','languages','language','actuator','latency','display','hidraw',"
       "'calibration','disk','service','watchdog'];"
       "assert all(x['status'] in ('ok','warn','fail') for x in c);"
       "assert d['fail']==sum(x['status']=='fail' for x in c) and d['ok']+d['warn']+d['fail']==len(c)\" " +
