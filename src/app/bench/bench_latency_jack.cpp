@@ -122,18 +122,21 @@ JackRecorder::~JackRecorder() {
   jack_client_close(client_);
 }
 
-void JackRecorder::measure_clock() {
-  Nanos best_span = kNanosPerSecond;
+Nanos jack_clock_offset_ns() {
+  Nanos best_span = kNanosPerSecond, offset = 0;
   for (int i = 0; i < 50; ++i) {
     const Nanos a = monotonic_now();
     const jack_time_t j = jack_get_time();
     const Nanos b = monotonic_now();
     if (b - a < best_span) {
       best_span = b - a;
-      clock_offset_ns_ = static_cast<Nanos>(j) * 1000 - (a + b) / 2;
+      offset = static_cast<Nanos>(j) * 1000 - (a + b) / 2;
     }
   }
+  return offset;
 }
+
+void JackRecorder::measure_clock() { clock_offset_ns_ = jack_clock_offset_ns(); }
 
 int JackRecorder::process(std::uint32_t frames, void* self) {
   auto* r = static_cast<JackRecorder*>(self);

@@ -33,17 +33,7 @@ JackPhotodiode::JackPhotodiode(const std::string& server, const std::string& dis
     throw std::runtime_error("bench photodiode: cannot register its port");
   }
   rate_ = static_cast<int>(jack_get_sample_rate(client_));
-  // JACK's clock against the monotonic one: the tightest of a few readings.
-  Nanos best_span = kNanosPerSecond;
-  for (int i = 0; i < 50; ++i) {
-    const Nanos a = monotonic_now();
-    const jack_time_t j = jack_get_time();
-    const Nanos b = monotonic_now();
-    if (b - a < best_span) {
-      best_span = b - a;
-      clock_offset_ns_ = static_cast<Nanos>(j) * 1000 - (a + b) / 2;
-    }
-  }
+  clock_offset_ns_ = jack_clock_offset_ns();
   jack_set_process_callback(client_, &JackPhotodiode::process, this);
   if (jack_activate(client_) != 0) {
     jack_client_close(client_);

@@ -420,6 +420,16 @@ auto read_state_file(const fs::path& path, Load load, std::string& problem) -> s
   }
 }
 
+//! A state file's loader that says "none" for an absent file, as one that throws instead:
+//! read_state_file has looked for the file already, so absent now means removed meanwhile.
+template <typename T>
+auto present(std::optional<T> (*load)(const fs::path&)) {
+  return [load](const fs::path& p) -> T {
+    if (std::optional<T> r = load(p)) return *r;
+    throw std::runtime_error(p.string() + ": removed while it was read");
+  };
+}
+
 DoctorCheck check_calibration(const std::optional<std::string>& remote) {
   const fs::path path = calibration_path();
   std::string problem;
@@ -438,13 +448,7 @@ DoctorCheck check_actuator(const AppConfig& config) {
 DoctorCheck check_latency(const AppConfig& config) {
   const fs::path path = latency_record_path();
   std::string problem;
-  const std::optional<LatencyMeasurement> m = read_state_file(
-      path,
-      [](const fs::path& p) {
-        if (std::optional<LatencyMeasurement> r = load_latency_record(p)) return *r;
-        throw std::runtime_error(p.string() + ": removed while it was read");
-      },
-      problem);
+  const std::optional<LatencyMeasurement> m = read_state_file(path, present(load_latency_record), problem);
   return judge_latency(path.string(), m, problem, static_cast<std::int64_t>(std::time(nullptr)),
                        config.audio.output_latency_ms);
 }
@@ -452,13 +456,7 @@ DoctorCheck check_latency(const AppConfig& config) {
 DoctorCheck check_display_latency(const AppConfig& config) {
   const fs::path path = display_latency_path();
   std::string problem;
-  const std::optional<DisplayLatencyMeasurement> m = read_state_file(
-      path,
-      [](const fs::path& p) {
-        if (std::optional<DisplayLatencyMeasurement> r = load_display_latency(p)) return *r;
-        throw std::runtime_error(p.string() + ": removed while it was read");
-      },
-      problem);
+  const std::optional<DisplayLatencyMeasurement> m = read_state_file(path, present(load_display_latency), problem);
   return judge_display_latency(path.string(), m, problem, static_cast<std::int64_t>(std::time(nullptr)),
                                config.timing.display_latency_ms);
 }
