@@ -78,15 +78,7 @@ std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioCo
   try {
     PortAudioOutput::Options options;
     options.capture = capture;
-    std::unique_ptr<PortAudioOutput> output;
-    try {
-      output = std::make_unique<PortAudioOutput>(engine, config, options);
-    } catch (const std::exception& e) {
-      if (!capture) throw;
-      // A photodiode's input that does not open never silences the kiosk: it plays, unrecorded.
-      journal::error("{}; the stream plays without recording the photodiode", e.what());
-      output = std::make_unique<PortAudioOutput>(engine, config);
-    }
+    auto output = std::make_unique<PortAudioOutput>(engine, config, options);
     output->start();
     status = fmt::format("audio: {}, {:.1f} ms", output->device().name.c_str(),
                          output->output_latency_s() * 1e3);

@@ -114,41 +114,54 @@ void PortAudioOutput::open_device_locked(const DeviceInfo& device) {
   p.hostApiSpecificStreamInfo = nullptr;
   const unsigned long fpb = config_.frames_per_buffer > 0 ? static_cast<unsigned long>(config_.frames_per_buffer)
                                                           : paFramesPerBufferUnspecified;
-  // The capture's input side: the same stream, so that its frames are the played ones'.
-  PaStreamParameters in{};
-  DeviceInfo in_device;
-  if (options_.capture) {
-    in_device = resolve_input_locked(options_.capture->input_device);
-    const int needed = *std::max_element(options_.capture->input_channels.begin(), options_.capture->input_channels.end()) + 1;
-    if (in_device.max_input_channels < needed)
-      throw NoInput("this sound card has no input: \"" + in_device.name + "\" records " +
-                    std::to_string(in_device.max_input_channels) + " channel(s), channel " + std::to_string(needed) +
-                    " was asked for");
-    in.device = in_device.index;
-    in.channelCount = needed;
-    in.sampleFormat = paFloat32;
-    in.suggestedLatency = std::max(in_device.default_low_input_latency_s, p.suggestedLatency);
-  }
+  // The capture's input side: the same stream, so that its frames are the played ones'. An
+  // input that does not open never silences the kiosk: the stream then only plays (said once).
   PaStream* stream = nullptr;
-  const PaError e = Pa_OpenStream(&stream, options_.capture ? &in : nullptr, &p, sample_rate_, fpb,
-                                  paClipOff | paDitherOff, &Trampoline::callback, this);
-  if (e != paNoError)
-    throw std::runtime_error("audio: cannot open \"" + device.name + "\" (" + std::to_string(channels_) + " ch, " +
-                             std::to_string(sample_rate_) + " Hz, " +
-                             (options_.format == StreamFormat::int16 ? "int16" : "float32") + ")" +
-                             (options_.capture ? " recording \"" + in_device.name + "\"" : std::string()) + ": " +
-                             error_text(e));
+  capture_in_channels_ = 0;
+  input_name_.clear();
   if (options_.capture) {
-    capture_in_channels_ = in.channelCount;
-    input_name_ = in_device.name;
+    try {
+      const DeviceInfo in_device = resolve_input_locked(options_.capture->input_device);
+      const int needed =
+          *std::max_element(options_.capture->input_channels.begin(), options_.capture->input_channels.end()) + 1;
+      if (in_device.max_input_channels < needed)
+        throw NoInput("this sound card has no input: \"" + in_device.name + "\" records " +
+                      std::to_string(in_device.max_input_channels) + " channel(s), channel " + std::to_string(needed) +
+                      " was asked for");
+      PaStreamParameters in{};
+      in.device = in_device.index;
+      in.channelCount = needed;
+      in.sampleFormat = paFloat32;
+      in.suggestedLatency = std::max(in_device.default_low_input_latency_s, p.suggestedLatency);
+      if (const PaError e = Pa_OpenStream(&stream, &in, &p, sample_rate_, fpb, paClipOff | paDitherOff,
+                                          &Trampoline::callback, this);
+          e != paNoError)
+        throw std::runtime_error("audio: cannot open \"" + device.name + "\" recording \"" + in_device.name +
+                                 "\": " + error_text(e));
+      capture_in_channels_ = needed;
+      input_name_ = in_device.name;
+      capture_problem_said_ = false;
+    } catch (const std::exception& e) {
+      stream = nullptr;
+      if (!capture_problem_said_) journal::error("{}; the stream plays without recording it", e.what());
+      capture_problem_said_ = true;  // once: a lost device's reopening retries come every few seconds
+    }
   }
+  if (!stream)
+    if (const PaError e = Pa_OpenStream(&stream, nullptr, &p, sample_rate_, fpb, paClipOff | paDitherOff,
+                                        &Trampoline::callback, this);
+        e != paNoError)
+      throw std::runtime_error("audio: cannot open \"" + device.name + "\" (" + std::to_string(channels_) + " ch, " +
+                               std::to_string(sample_rate_) + " Hz, " +
+                               (options_.format == StreamFormat::int16 ? "int16" : "float32") + "): " + error_text(e));
+  capturing_.store(capture_in_channels_ > 0, std::memory_order_relaxed);
   Pa_SetStreamFinishedCallback(stream, &Trampoline::finished);
   const PaStreamInfo* info = Pa_GetStreamInfo(stream);
   stream_ = stream;
   device_ = device;
   requested_latency_s_ = p.suggestedLatency;
   latency_s_ = info ? info->outputLatency : p.suggestedLatency;
-  input_latency_s_ = info && options_.capture ? info->inputLatency : 0.0;
+  input_latency_s_ = info && capture_in_channels_ > 0 ? info->inputLatency : 0.0;
   // A measured figure (the operator's latency test, key T) beats the driver's report.
   if (config_.output_latency_ms >= 0) latency_s_ = config_.output_latency_ms * 1e-3;
   stream_rate_ = info ? info->sampleRate : sample_rate_;
@@ -265,7 +278,7 @@ OutputCounters PortAudioOutput::counters() const {
 int PortAudioOutput::render(const void* input, void* output, unsigned long frames, unsigned long status_flags) {
   if (status_flags & paOutputUnderflow) xruns_.fetch_add(1, std::memory_order_relaxed);
   const Nanos now = monotonic_now();
-  if (capture_)
+  if (capture_ && input)
     capture_->write(static_cast<const float*>(input), capture_in_channels_, frames, engine_.position(), now,
                     (status_flags & (paInputOverflow | paInputUnderflow | paOutputUnderflow)) != 0);
   // This buffer is heard no sooner than one output latency from now. If the engine's clock

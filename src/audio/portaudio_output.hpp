@@ -144,7 +144,8 @@ class PortAudioOutput {
     std::chrono::milliseconds xrun_log_interval{10000};
     //! Also record these input channels in the same (full-duplex) stream, for capture():
     //! `mallet calibrate latency --photodiode`. The input device must be of the output's
-    //! host API; one that records fewer channels is refused (NoInput, duplex_measurement.hpp).
+    //! host API; one that does not open (or records fewer channels) leaves the stream playing
+    //! only, said once in the journal.
     std::optional<CaptureSpec> capture;
   };
 
@@ -195,9 +196,10 @@ class PortAudioOutput {
 
   OutputCounters counters() const;
 
-  //! The recording the stream keeps when Options::capture asked for one (else null): armed
-  //! and read by the caller's thread, written by the callback. It lives as long as this.
-  StreamCapture* capture() { return capture_.get(); }
+  //! The recording the stream keeps when Options::capture asked for one and its input opened
+  //! (else null; why is in the journal): armed and read by the caller's thread, written by the
+  //! callback. It lives as long as this.
+  StreamCapture* capture() { return capturing_.load(std::memory_order_relaxed) ? capture_.get() : nullptr; }
   //! The stream's input latency as PortAudio reports it (0 without a capture), and its input
   //! device's name.
   double input_latency_s() const;
@@ -236,7 +238,9 @@ class PortAudioOutput {
   DeviceInfo device_;
   double latency_s_ = 0;
   std::unique_ptr<StreamCapture> capture_;  //!< Options::capture's, preallocated
-  int capture_in_channels_ = 0;             //!< the input side's channel count
+  int capture_in_channels_ = 0;             //!< the input side's channel count (0: it did not open)
+  std::atomic<bool> capturing_{false};      //!< the open stream records
+  bool capture_problem_said_ = false;
   double input_latency_s_ = 0;
   std::string input_name_;
   double requested_latency_s_ = 0;  //!< suggestedLatency of the open stream

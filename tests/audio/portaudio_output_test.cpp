@@ -237,6 +237,22 @@ TEST_F(PortAudioOutputTest, AnUnknownDeviceIsAClearErrorListingWhatExists) {
   }
 }
 
+TEST_F(PortAudioOutputTest, APhotodiodesInputThatDoesNotOpenLeavesTheStreamPlaying) {
+  // [timing] photodiode_input naming no input: the kiosk's stream plays on, recording nothing.
+  AppConfig c = config();
+  AudioRig rig = make_audio_rig(percussion(), c, kRate, false);
+  PortAudioOutput::Options o = int16();
+  o.capture = CaptureSpec{"no-such-input", {0}, 2.0};
+  PortAudioOutput out(*rig.engine, c.audio, o);
+  EXPECT_EQ(out.capture(), nullptr);
+  EXPECT_EQ(out.input_latency_s(), 0.0);
+  EXPECT_EQ(out.input_device_name(), "");
+  out.start();
+  EXPECT_TRUE(wait_until([&] { return out.counters().frames >= static_cast<std::uint64_t>(kRate / 10); }));
+  out.stop();
+  EXPECT_EQ(out.counters().device_losses, 0u);
+}
+
 TEST_F(PortAudioOutputTest, Float32StreamRunsTheEngine) {
   AppConfig c = config();
   AudioRig rig = make_audio_rig(percussion(), c, kRate, true);

@@ -553,7 +553,7 @@ void WindowKiosk::answer_photodiode(bool save) {
                         m.display_latency_ms, stage_->config.timing.display_latency_ms);
       }
       health_.state().wrote("display latency", {});
-    } catch (const std::exception& e) {  // the state folder or the settings' folder: said, and the kiosk plays on
+    } catch (const std::exception& e) {  // the state folder: said, and the kiosk plays on
       journal::error("display latency: {}", e.what());
       health_.state().wrote("display latency", refused(e.what()));
     }
