@@ -53,6 +53,7 @@
 #include "app/common/programs.hpp"
 #include "audio/simulated_plant.hpp"
 #include "core/actuator_eq_file.hpp"
+#include "render/image.hpp"
 
 namespace mallet::app {
 
@@ -154,6 +155,7 @@ struct ActuatorBenchOptions {
   int loopback_delay = 240;
   double panel_lag_ms = 25;  // the bench's panel: light this long after the X server shows a frame
   bool photodiode = true;
+  std::filesystem::path page_shot;  // the operator page asking, as a PNG (empty: none)
   std::filesystem::path out_dir;
 };
 
@@ -231,6 +233,24 @@ struct SquareSeen {
   double latency_ms = 0;
 };
 
+// The X server's whole screen as a PNG: what the operator sees.
+void write_screen(const std::string& display, const std::filesystem::path& file) {
+  latency::ScreenReader reader(display);
+  latency::Grab g;
+  if (!reader.grab({0, 0, latency::kWidth, latency::kHeight}, g))
+    throw std::runtime_error("bench actuator: cannot read the screen for " + file.string());
+  render::Image image(latency::kWidth, latency::kHeight);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint32_t p = g.rgb[static_cast<std::size_t>(y * image.width + x)];
+      std::uint8_t* px = image.at(x, y);
+      px[0] = static_cast<std::uint8_t>(p >> 16), px[1] = static_cast<std::uint8_t>(p >> 8);
+      px[2] = static_cast<std::uint8_t>(p), px[3] = 255;
+    }
+  render::write_png(image, file);
+  std::printf("  (the operator page asking: %s)\n", file.string().c_str());
+}
+
 // `mallet calibrate latency --loopback 2 --photodiode 3` on the bench's own X server: the kiosk
 // shows its latency test's squares, the photodiode client lights capture 3 `panel_lag_ms`
 // after the X server shows each, and the bench answers the page's question with Enter.
@@ -278,6 +298,7 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
     diode.wire(2);  // each run's stream is a JACK client of its own, wired as it appears
     if (measured && !answered) {  // the operator reads the page's result, then Enter saves it
       latency::sleep_ms(300);
+      if (!o.page_shot.empty()) write_screen(x.name(), o.page_shot);
       keyboard.press_key(XK_Return);
       answered = true;
     }
@@ -306,8 +327,10 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
     if (std::abs(s.latency_ms - truth) > std::abs(worst)) worst = s.latency_ms - truth;
   }
   if (truth_ms.empty()) throw std::runtime_error("bench actuator: no square of the kiosk's was seen on the X server");
+  // Their median as the kiosk takes its own (the middle two's mean for an even count).
   std::sort(truth_ms.begin(), truth_ms.end());
-  const double truth = truth_ms[truth_ms.size() / 2];
+  const std::size_t n = truth_ms.size();
+  const double truth = n % 2 ? truth_ms[n / 2] : (truth_ms[n / 2 - 1] + truth_ms[n / 2]) / 2;
   std::printf("  display latency: %.3f ms recovered (%zu squares); the truth %.3f ms (the panel's %.1f ms and the X "
               "server's own %.3f ms after the present, the median): error %+.3f ms, worst square %+.3f ms (target: "
               "within one frame's scan-out, %.1f ms); %llu of the photodiode's changes late, %llu polls of the corner\n",
@@ -452,6 +475,7 @@ Needs jackd (jackd2), Xvfb (for the photodiode) and mallet beside mallet-bench.)
       ->capture_default_str()
       ->check(CLI::Range(0.0, 150.0));
   cmd->add_flag("!--no-photodiode", o->photodiode, "Leave out the display's latency (the kiosk on an X server of the bench's)");
+  cmd->add_option("--page-shot", o->page_shot, "Also write the operator page asking for the answer, as a PNG");
   cmd->add_option("--period", o->period, "JACK's period in frames")->capture_default_str()->check(CLI::IsMember({64, 128, 256, 512, 1024}));
   cmd->add_option("--out", o->out_dir, "Folder for the settings and the calibration written");
   cmd->callback([o] { run_bench_actuator(*o); });
