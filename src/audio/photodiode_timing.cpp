@@ -91,10 +91,8 @@ Nanos capture_time(const CaptureRecording& r, double n) {
 
 PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel, double input_latency_s,
                                  const std::vector<PhotodiodeSquare>& squares, const std::string& label) {
-  if (r.xruns > 0 || !r.continuous)
-    throw std::runtime_error(fmt::format("{}: the stream over- or underran while it recorded (measure again on a "
-                                         "quieter machine, or with a larger [audio] suggested_latency_ms)",
-                                         label));
+  if (!r.continuous)
+    throw std::runtime_error(fmt::format("{}: the stream skipped frames while it recorded: press T again", label));
   if (channel >= r.channels.size()) throw std::invalid_argument("no such channel in the recording");
   const std::vector<float>& x = r.channels[channel];
   const int rate = r.sample_rate_hz;
@@ -126,6 +124,15 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
     const std::size_t s0 = clamp_index(index_at(sq.present - kSearchBefore));
     const std::size_t s1 = clamp_index(index_at(sq.present + kSearchAfter));
     if (b1 <= b0 + 16 || s1 <= s0 + 1) continue;  // outside the recording
+    // A square near an over- or underrun is left out: samples were lost or repeated there, and
+    // the schedule that times it comes from the half second after it.
+    const double last = static_cast<double>(s1) + kScheduleWindow * rate;
+    if (std::any_of(r.blocks.begin(), r.blocks.end(), [&](const CaptureBlock& b) {
+          return b.xrun && static_cast<double>(b.index) >= static_cast<double>(b0) && static_cast<double>(b.index) <= last;
+        })) {
+      ++out.near_xruns;
+      continue;
+    }
     double mean = 0;
     for (std::size_t i = b0; i < b1; ++i) mean += x[i];
     mean /= static_cast<double>(b1 - b0);
@@ -152,9 +159,13 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
   out.seen = static_cast<int>(seen_ms.size());
   if (out.seen * 2 < static_cast<int>(squares.size()) || out.seen == 0)
     throw std::runtime_error(fmt::format(
-        "{}: the light was seen at {} of {} squares: check that the photodiode faces the screen's top-left "
+        "{}: the light was seen at {} of {} squares{}: check that the photodiode faces the screen's top-left "
         "corner, that its circuit is powered, and the input's level",
-        label, out.seen, squares.size()));
+        label, out.seen, squares.size(),
+        out.near_xruns ? fmt::format(" ({} left out: the stream over- or underran near them; a busy kiosk may need a "
+                                     "larger [audio] suggested_latency_ms)",
+                                     out.near_xruns)
+                       : std::string()));
   std::vector<double> sorted = seen_ms;
   std::sort(sorted.begin(), sorted.end());
   const std::size_t m = sorted.size();

@@ -44,12 +44,13 @@ struct PhotodiodeTiming {
   double display_latency_ms = 0;  //!< the median of the latencies seen
   double min_ms = 0, max_ms = 0;
   double noise_to_swing = 0;      //!< the worst seen square's: the 300 ms before, rms, over its swing
+  int near_xruns = 0;             //!< squares left out: the stream over- or underran near them
 };
 
-//! Times each square's light in channel `channel` of `recording`. Throws std::runtime_error
-//! with one line (naming input channel `channel_label`) when the recording is broken (an
-//! over- or underrun, a block skipped) or fewer than half of the squares show a swing ten
-//! times the noise before it.
+//! Times each square's light in channel `channel` of `recording`, leaving out a square near an
+//! over- or underrun. Throws std::runtime_error with one line (naming input channel
+//! `channel_label`) when the recording skipped frames or fewer than half of the squares show
+//! a swing ten times the noise before it.
 PhotodiodeTiming time_photodiode(const CaptureRecording& recording, std::size_t channel,
                                  double input_latency_s, const std::vector<PhotodiodeSquare>& squares,
                                  const std::string& channel_label);

@@ -34,7 +34,7 @@ void StreamCapture::write(const float* in, int in_channels, unsigned long frames
     const CaptureBlock& last = blocks_[block_count_ - 1];
     if (position != last.position + static_cast<std::int64_t>(at - last.index)) continuous_ = false;
   }
-  if (block_count_ < blocks_.size()) blocks_[block_count_++] = CaptureBlock{at, position, now};
+  if (block_count_ < blocks_.size()) blocks_[block_count_++] = CaptureBlock{at, position, now, xrun};
   if (xrun) xruns_.fetch_add(1, std::memory_order_relaxed);
   const std::size_t n = std::min<std::size_t>(frames, frames_ - at);
   const std::size_t k = picks_.size();

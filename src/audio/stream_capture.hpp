@@ -33,6 +33,7 @@ struct CaptureBlock {
   std::size_t index = 0;       //!< its first frame in the recording
   std::int64_t position = 0;   //!< the engine's frame position of its first frame
   Nanos callback_ns = 0;       //!< monotonic, as the callback began
+  bool xrun = false;           //!< the stream flagged it as over- or underflowing
 };
 
 struct CaptureRecording {

@@ -3,6 +3,7 @@
 // run late by known amounts and a screen whose light comes a known time after each present.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -26,6 +27,7 @@ struct Host {
   int split = 1;
   std::size_t jump_at = 0;
   Nanos jump = 0;
+  std::vector<std::size_t> xruns;  //!< the blocks the stream flags as over- or underflowing
 };
 
 template <typename Light, typename Late>
@@ -49,7 +51,7 @@ CaptureRecording simulate(double seconds, Nanos input_latency, Light light, Late
     // of that buffer right after it.
     if (b % static_cast<std::size_t>(host.split) == 0) called = due + late(b);
     else called += b % 7 == 3 ? 4'000'000 : 20'000;  // now and then held up (a busy machine)
-    cap.write(in.data(), 2, kBlock, pos, called, false);
+    cap.write(in.data(), 2, kBlock, pos, called, std::find(host.xruns.begin(), host.xruns.end(), b) != host.xruns.end());
     pos += kBlock;
   }
   return cap.recording();
@@ -193,6 +195,31 @@ TEST(PhotodiodeTiming, APhotodiodeThatSeesNothingIsOneLineNamingItsChannel) {
     FAIL() << "no light, and no error";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()).rfind("photodiode (input channel 3): the light was seen at 0 of 10 squares", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST(PhotodiodeTiming, ASquareNearAnOverrunIsLeftOutAndTooManyLeftOutIsSaid) {
+  const Screen screen = ten_squares(20'000'000);
+  const auto at_second = [](double s) { return static_cast<std::size_t>((1.0 + s) * kRate / kBlock); };
+  Host host;
+  host.xruns = {at_second(2.05), at_second(6.2)};  // during the third square's light, and the seventh's
+  const CaptureRecording r = simulate(12.0, 0, screen, [](std::size_t) { return Nanos{0}; }, 0, 0, host);
+  EXPECT_EQ(r.xruns, 2u);
+  const PhotodiodeTiming t = time_photodiode(r, 1, 0, screen.squares, "photodiode");
+  EXPECT_EQ(t.seen, 8);
+  EXPECT_EQ(t.near_xruns, 2);
+  EXPECT_FALSE(t.pulses[2].light);
+  EXPECT_FALSE(t.pulses[6].light);
+  EXPECT_NEAR(t.display_latency_ms, 20.0, 1000.0 / kRate + 0.011);
+  for (double s = 0; s < 10; s += 1.0) host.xruns.push_back(at_second(s + 0.1));  // every square's
+  const CaptureRecording busy = simulate(12.0, 0, screen, [](std::size_t) { return Nanos{0}; }, 0, 0, host);
+  try {
+    time_photodiode(busy, 1, 0, screen.squares, "photodiode");
+    FAIL() << "no square usable, and no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("seen at 0 of 10 squares (10 left out: the stream over- or underran"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -5,7 +5,6 @@
 // screen, its operator page's latency test timed by a photodiode on the screen's corner
 // (app/kiosk/photodiode_latency.hpp); the operator's Enter on the page saves it.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -76,8 +75,8 @@ void run_latency(const LatencyOptions& o) {
         "--loopback and --photodiode are both input channel {}: each needs an input of its own", *o.loopback)));
   if (o.photodiode && !render::WindowSystem::display_available())
     refuse_measurement(MeasurementRefused(
-        "--photodiode needs the kiosk's screen: DISPLAY and WAYLAND_DISPLAY are unset (run it in the kiosk's "
-        "session, with the kiosk stopped: docs/operators.md)"));
+        "--photodiode needs the kiosk's screen, the one the photodiode is on: DISPLAY and WAYLAND_DISPLAY are "
+        "unset (on a kiosk, the operator page's T measures it with [timing] photodiode_channel: docs/operators.md)"));
   const AppConfig config = command_settings(o.config, o.config_dir, "calibrate latency");
   if (!o.loopback) {
     bool saved = false;
@@ -154,10 +153,10 @@ stream records the photodiode, and each square's light is timed against the pres
 frame that showed it; the page shows the median and its spread and asks: Enter saves it as
 [timing] display_latency_ms (the drop-in 61-measured-display-latency.toml in the state
 folder's measured.d, which the settings merge with their own drop-ins in the order of the
-files' names; with --loopback, the output latency too, as --save would), Esc keeps the setting. Either way it is kept in the
-state folder (display_latency.toml: `mallet doctor` shows it). Needs the screen: run it in the
-kiosk's session with the kiosk stopped. The same measurement runs in the kiosk itself, on the
-operator page's T, when [timing] photodiode_channel is set.
+files' names; with --loopback, the output latency too, as --save would), Esc keeps the
+setting. Either way it is kept in the state folder (display_latency.toml: `mallet doctor`
+shows it). Needs the screen the photodiode is on (DISPLAY or WAYLAND_DISPLAY). On a packaged
+kiosk the operator page's T measures the same, with [timing] photodiode_channel set.
 Exit status: 0 done; 2 with one line: neither --loopback nor --photodiode, no input ("this sound
 card has no input: ..."), a loopback that records silence or clips, a photodiode that sees no
 light, no screen, bad settings; 1 a device or a file that fails.)");

@@ -1,5 +1,8 @@
 #include "app/kiosk/photodiode_latency.hpp"
 
+#include <cmath>
+#include <stdexcept>
+
 #include <fmt/format.h>
 #include <fmt/printf.h>
 
@@ -21,6 +24,7 @@ std::optional<audio::CaptureSpec> photodiode_capture(const TimingConfig& timing)
 }
 
 void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
+  if (phase_ == Phase::recording) throw std::logic_error("the photodiode is recording already");
   timing_.reset();
   problem_.clear();
   const std::string label = fmt::format("photodiode (input channel {})", channel_);

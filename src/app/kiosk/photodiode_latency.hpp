@@ -37,7 +37,7 @@ class PhotodiodeLatency {
   PhotodiodeLatency(int channel, std::string input) : channel_(channel), input_(std::move(input)) {}
 
   //! The latency test starts now: the stream's recording with it. `output` null or one that
-  //! does not record (its input would not open): failed, with why.
+  //! does not record (its input would not open): failed, with why. Not while recording.
   void start(audio::PortAudioOutput* output);
   //! Each frame: once the test's last square is past and the recording complete, times the
   //! squares (one journal line each, then the result) and asks, or fails.

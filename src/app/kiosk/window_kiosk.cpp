@@ -535,6 +535,9 @@ void WindowKiosk::apply_volume() {
 void WindowKiosk::on_key(int key, int mods, bool repeat) { keys_.push_back({key, mods, repeat}); }
 
 void WindowKiosk::start_latency_test(Nanos now) {
+  // T again while the photodiode records: the test under way goes on (its recording is the
+  // stream's, and its squares are the ones being timed).
+  if (photodiode_ && photodiode_->phase() == PhotodiodeLatency::Phase::recording) return;
   latency_test_.start(now, stage_->scene, *stage_->rig.engine);
   if (photodiode_) photodiode_->start(stage_->output.get());
 }
