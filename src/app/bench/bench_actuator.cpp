@@ -314,7 +314,7 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
 
   // Each square against the truth: when the X server showed it, plus the panel's lag.
   const std::vector<Nanos> white = diode.turned_white();
-  std::vector<double> truth_ms, errors_ms;
+  std::vector<double> truth_ms;
   double worst = 0;
   for (const SquareSeen& s : squares) {
     const auto near = std::min_element(white.begin(), white.end(), [&](Nanos a, Nanos b) {
@@ -323,7 +323,6 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
     if (near == white.end() || std::llabs(*near - s.present) > 100'000'000) continue;
     const double truth = static_cast<double>(*near + lag - s.present) / 1e6;
     truth_ms.push_back(truth);
-    errors_ms.push_back(s.latency_ms - truth);
     if (std::abs(s.latency_ms - truth) > std::abs(worst)) worst = s.latency_ms - truth;
   }
   if (truth_ms.empty()) throw std::runtime_error("bench actuator: no square of the kiosk's was seen on the X server");
