@@ -16,8 +16,7 @@ constexpr Nanos kBaselineBefore = 300'000'000;  // the quiet before a square
 constexpr Nanos kBaselineGap = 10'000'000;       // ... ending this long before its present
 constexpr Nanos kSearchBefore = 5'000'000;
 constexpr Nanos kSearchAfter = 300'000'000;
-constexpr double kScheduleWindow = 0.5;  // s: the callbacks that time a sample, either side of it
-
+constexpr double kScheduleWindow = 0.5;  // s: the host buffers after a sample that time it
 
 // The blocks that begin a host buffer. PortAudio may hand a host buffer (a JACK period, an
 // ALSA period) to the callback in several blocks, called one after the other at once: only
@@ -97,11 +96,11 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
   const std::vector<float>& x = r.channels[channel];
   const int rate = r.sample_rate_hz;
   const auto input_latency = static_cast<Nanos>(std::llround(input_latency_s * 1e9));
-  // The recording's (fractional) sample at kiosk time t, and back: on the schedule of the
-  // callbacks near it (found from a first guess on the whole recording's).
   if (r.blocks.empty()) throw std::runtime_error(label + ": nothing was recorded");
   const std::vector<std::size_t> starts = host_buffer_starts(r);
-  const auto index_at = [&](Nanos t) {  // the recording's first schedule, then the one there
+  // The recording's (fractional) sample at kiosk time t, and back, each on the schedule at that
+  // sample (index_at: guessed on the recording's first schedule, then taken on the one there).
+  const auto index_at = [&](Nanos t) {
     const double guess = (static_cast<double>(t + input_latency) - schedule_origin(r, starts, 0)) * rate / 1e9;
     return (static_cast<double>(t + input_latency) - schedule_origin(r, starts, guess)) * rate / 1e9;
   };
@@ -166,12 +165,11 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
                                      "larger [audio] suggested_latency_ms)",
                                      out.near_xruns)
                        : std::string()));
-  std::vector<double> sorted = seen_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t m = sorted.size();
-  out.display_latency_ms = m % 2 ? sorted[m / 2] : (sorted[m / 2 - 1] + sorted[m / 2]) / 2;
-  out.min_ms = sorted.front();
-  out.max_ms = sorted.back();
+  std::sort(seen_ms.begin(), seen_ms.end());
+  const std::size_t m = seen_ms.size();
+  out.display_latency_ms = m % 2 ? seen_ms[m / 2] : (seen_ms[m / 2 - 1] + seen_ms[m / 2]) / 2;
+  out.min_ms = seen_ms.front();
+  out.max_ms = seen_ms.back();
   return out;
 }
 

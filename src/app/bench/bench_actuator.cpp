@@ -24,20 +24,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <optional>
 #include <cstdlib>
-#include <utility>
-#include <string_view>
-#include <functional>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
-#include <mutex>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -45,6 +45,7 @@
 #include "app/bench/bench_commands.hpp"
 #include "app/bench/bench_latency_child.hpp"
 #include "app/bench/bench_kiosk_child.hpp"
+#include "app/bench/bench_latency.hpp"
 #include "app/bench/bench_latency_jack.hpp"
 #include "app/bench/bench_latency_rig.hpp"
 #include "app/bench/bench_latency_x11.hpp"
@@ -314,8 +315,7 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
 
   // Each square against the truth: when the X server showed it, plus the panel's lag.
   const std::vector<Nanos> white = diode.turned_white();
-  std::vector<double> truth_ms;
-  double worst = 0;
+  std::vector<double> truth_ms, error_ms;
   for (const SquareSeen& s : squares) {
     const auto near = std::min_element(white.begin(), white.end(), [&](Nanos a, Nanos b) {
       return std::llabs(a - s.present) < std::llabs(b - s.present);
@@ -323,13 +323,12 @@ void run_photodiode_step(const ActuatorBenchOptions& o, const std::string& serve
     if (near == white.end() || std::llabs(*near - s.present) > 100'000'000) continue;
     const double truth = static_cast<double>(*near + lag - s.present) / 1e6;
     truth_ms.push_back(truth);
-    if (std::abs(s.latency_ms - truth) > std::abs(worst)) worst = s.latency_ms - truth;
+    error_ms.push_back(s.latency_ms - truth);
   }
   if (truth_ms.empty()) throw std::runtime_error("bench actuator: no square of the kiosk's was seen on the X server");
-  // Their median as the kiosk takes its own (the middle two's mean for an even count).
-  std::sort(truth_ms.begin(), truth_ms.end());
-  const std::size_t n = truth_ms.size();
-  const double truth = n % 2 ? truth_ms[n / 2] : (truth_ms[n / 2 - 1] + truth_ms[n / 2]) / 2;
+  // The truths' median as the kiosk takes its own; the square whose error is largest, its sign kept.
+  const double truth = *latency::summarise(truth_ms).median;
+  const double worst = *latency::summarise(error_ms).max;
   std::printf("  display latency: %.3f ms recovered (%zu squares); the truth %.3f ms (the panel's %.1f ms and the X "
               "server's own %.3f ms after the present, the median): error %+.3f ms, worst square %+.3f ms (target: "
               "within one frame's scan-out, %.1f ms); %llu of the photodiode's changes late, %llu polls of the corner\n",

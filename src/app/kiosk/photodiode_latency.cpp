@@ -23,14 +23,15 @@ std::optional<audio::CaptureSpec> photodiode_capture(const TimingConfig& timing)
   return spec;
 }
 
+std::string PhotodiodeLatency::label() const { return fmt::format("photodiode (input channel {})", channel_); }
+
 void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
   if (phase_ == Phase::recording) throw std::logic_error("the photodiode is recording already");
   timing_.reset();
   problem_.clear();
-  const std::string label = fmt::format("photodiode (input channel {})", channel_);
   if (!output || !output->capture()) {
     phase_ = Phase::failed;
-    problem_ = label + ": the sound card's stream does not record it (the log says why it did not open with "
+    problem_ = label() + ": the sound card's stream does not record it (the log says why it did not open with "
                        "its input); the test shows its squares without timing them";
     journal::warning("{}", problem_.c_str());
     return;
@@ -38,23 +39,22 @@ void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
   input_name_ = output->input_device_name();
   output->capture()->arm();
   phase_ = Phase::recording;
-  journal::notice("{}: recording \"{}\" while the squares show (PortAudio's input latency {:.3f} ms)", label.c_str(),
+  journal::notice("{}: recording \"{}\" while the squares show (PortAudio's input latency {:.3f} ms)", label().c_str(),
                   input_name_.c_str(), output->input_latency_s() * 1e3);
 }
 
 void PhotodiodeLatency::poll(Nanos now, const LatencyTest& test, audio::PortAudioOutput* output) {
   if (phase_ != Phase::recording) return;
-  const std::string label = fmt::format("photodiode (input channel {})", channel_);
   if (!output || !output->capture()) {  // the stream closed meanwhile (a reload, a lost device)
     phase_ = Phase::failed;
-    problem_ = label + ": the sound card's stream closed while it recorded: press T again";
+    problem_ = label() + ": the sound card's stream closed while it recorded: press T again";
     journal::warning("{}", problem_.c_str());
     return;
   }
   if (!test.finished(now) || !output->capture()->complete()) return;
   try {
     timing_ = audio::time_photodiode(output->capture()->recording(), 0, output->input_latency_s(), test.squares(),
-                                     label);
+                                     label());
   } catch (const std::exception& e) {
     phase_ = Phase::failed;
     problem_ = e.what();

@@ -55,6 +55,9 @@ class PhotodiodeLatency {
   std::vector<PageLine> page_lines(double setting_ms) const;
 
  private:
+  //! "photodiode (input channel N)", as its lines name it.
+  std::string label() const;
+
   int channel_;
   std::string input_;
   std::string input_name_;  //!< the device the stream opened
