@@ -1,5 +1,6 @@
 #include "core/catalogue_file.hpp"
 
+#include <algorithm>
 #include <csetjmp>
 #include <cstdint>
 #include <fstream>
@@ -7,12 +8,20 @@
 
 #include <gettext-po.h>
 
+#include "core/file_error.hpp"
+
 namespace mallet {
 namespace {
 
 std::uint32_t word(const std::string& b, std::size_t at, bool swapped) {
   const auto u = [&](std::size_t i) { return std::uint32_t{static_cast<unsigned char>(b[at + i])}; };
   return swapped ? (u(0) << 24) | (u(1) << 16) | (u(2) << 8) | u(3) : (u(3) << 24) | (u(2) << 16) | (u(1) << 8) | u(0);
+}
+
+//! One problem as one line: FileError's form, with a control character quoted from the file
+//! (a msgid's newline, a parser's message) written as an escape.
+std::string problem_line(const std::string& file, std::uint32_t line, std::uint32_t column, const std::string& why) {
+  return FileError(file, line, column, why).what();
 }
 
 bool is_mo(const std::string& b) {
@@ -25,7 +34,7 @@ bool is_mo(const std::string& b) {
 //! offset) pairs. Every length and offset is checked against the file.
 void read_mo(const std::string& name, const std::string& b, Catalogue& out, std::vector<std::string>& problems) {
   const auto fail = [&](std::size_t at, const std::string& why) {
-    problems.push_back(name + ": byte " + std::to_string(at) + ": " + why);
+    problems.push_back(problem_line(name, 0, 0, "byte " + std::to_string(at) + ": " + why));
     out = {};
     out.read = false;
   };
@@ -62,18 +71,17 @@ thread_local bool po_failed = false;
 
 void po_error(int severity, po_message_t, const char* filename, std::size_t line, std::size_t column, int,
               const char* text) {
-  std::string where = filename ? filename : *po_name;
-  if (filename && line != static_cast<std::size_t>(-1)) {
-    where += ":" + std::to_string(line);
-    if (column != static_cast<std::size_t>(-1)) where += ":" + std::to_string(column);
-  }
+  const bool placed = filename && line != static_cast<std::size_t>(-1);
+  const auto place = [](std::size_t n) { return static_cast<std::uint32_t>(std::min<std::size_t>(n, UINT32_MAX)); };
+  const std::uint32_t at_line = placed ? place(line) : 0;
+  const std::uint32_t at_column = placed && column != static_cast<std::size_t>(-1) ? place(column) : 0;
   std::string message = text ? text : "unreadable";
   while (!message.empty() && message.back() == '\n') message.pop_back();
   for (char& c : message)
     if (c == '\n') c = ' ';
   // The closing "found N fatal errors" repeats the errors said: not a problem of its own.
   if (severity == PO_SEVERITY_ERROR || (severity == PO_SEVERITY_FATAL_ERROR && !po_failed))
-    po_problems->push_back(where + ": " + message);
+    po_problems->push_back(problem_line(filename ? filename : *po_name, at_line, at_column, message));
   if (severity != PO_SEVERITY_WARNING) po_failed = true;
   if (severity == PO_SEVERITY_FATAL_ERROR) std::longjmp(*po_escape, 1);
 }
@@ -153,7 +161,7 @@ Catalogue read_catalogue(const std::filesystem::path& file, std::vector<std::str
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
   if (!in) {
-    problems.push_back(name + ": cannot open the catalogue");
+    problems.push_back(problem_line(name, 0, 0, "cannot open the catalogue"));
     out.read = false;
     return out;
   }
@@ -164,9 +172,10 @@ Catalogue read_catalogue(const std::filesystem::path& file, std::vector<std::str
     read_po(name, out, problems);
   for (auto it = out.texts.begin(); it != out.texts.end();) {
     if (printf_conversions(it->first) != printf_conversions(it->second)) {
-      problems.push_back(name + ": the translation of \"" + it->first +
-                         "\" has other printf directives than the text (\"" + printf_conversions(it->second) +
-                         "\" instead of \"" + printf_conversions(it->first) + "\"): shown in English");
+      problems.push_back(problem_line(name, 0, 0,
+                                      "the translation of \"" + it->first + "\" has other printf directives than the text (\"" +
+                                          printf_conversions(it->second) + "\" instead of \"" +
+                                          printf_conversions(it->first) + "\"): shown in English"));
       it = out.texts.erase(it);
     } else {
       ++it;

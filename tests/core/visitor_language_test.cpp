@@ -1,6 +1,7 @@
 // The visitor's language: the texts come from the catalogues msgfmt built from po/*.po
 // (MALLET_LOCALE_DIR, set by the test runner), English is the code's own text, a language
 // switches live, and a catalogue that is missing or malformed is a one-line problem.
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/catalogue_file.hpp"
 #include "core/config/app_config_loader.hpp"
 #include "core/file_error.hpp"
 #include "core/kiosk_states.hpp"
@@ -128,6 +130,33 @@ TEST(CatalogueTexts, AMissingOrMalformedCatalogueIsOneLineNamingItsFileAndByte) 
       << problems[1];
   EXPECT_NE(problems[2].find("ja/LC_MESSAGES/mallet.mo: cannot open the catalogue"), std::string::npos)
       << problems[2];
+}
+
+// A msgid holding a newline whose translation has another directive: the problem quotes the
+// text with its newline escaped, so it stays one line (found by fuzz_catalogue).
+TEST(CatalogueTexts, AProblemQuotingATextWithANewlineIsStillOneLine) {
+  const std::string id = "two\nlines %d", text = "zwei\nZeilen %s";
+  // A .mo file of one entry: the header (7 words), the tables (one pair each), the strings.
+  std::string mo;
+  const auto put = [&](std::uint32_t w) {
+    for (int i = 0; i < 4; ++i) mo += static_cast<char>((w >> (8 * i)) & 0xff);
+  };
+  const std::uint32_t strings = 28 + 16;
+  for (const std::uint32_t w : {0x950412deu, 0u, 1u, 28u, 36u, 0u, 0u}) put(w);
+  put(static_cast<std::uint32_t>(id.size()));
+  put(strings);
+  put(static_cast<std::uint32_t>(text.size()));
+  put(strings + static_cast<std::uint32_t>(id.size()) + 1);
+  mo += id + '\0' + text + '\0';
+  const std::filesystem::path file = test::scratch_dir() / "nl.mo";
+  std::ofstream(file, std::ios::binary) << mo;
+  std::vector<std::string> problems;
+  const Catalogue c = read_catalogue(file, problems);
+  EXPECT_TRUE(c.read);
+  EXPECT_TRUE(c.texts.empty());  // shown in English
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0], file.string() + ": the translation of \"two\\nlines %d\" has other printf directives "
+                                         "than the text (\"s\" instead of \"d\"): shown in English");
 }
 
 // A language added without rebuilding: an operator drops eo.po into the drop-in folder,
