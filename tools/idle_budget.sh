@@ -6,14 +6,22 @@
 # its own Xvfb (lavapipe), its sound on its own JACK server, % of one core in the attract mode
 # (nobody there), in play and still, with the frame budget (docs/researchers.md, "The kiosk's
 # CPU"). docs/bench-report/idle-budget.tsv records it with the commit it was measured at.
-# This script builds that commit's `mallet` and this tree's (release, each in its own folder;
-# once when their sources are the same), runs the benchmark with each in turn, and prints both
-# figures and their ratio. It is a benchmark that prints, never a test that fails: a ratio of
+# This script builds that commit's `mallet` and this tree's with the Debian package's compiler
+# flags (dpkg-buildflags with debian/rules' hardening=+all, CMake build type None, as
+# dh_auto_configure: the code a museum runs; each in its own folder, once when their code is
+# the same), runs the benchmark with each in turn, and prints both figures and their ratio. It is a benchmark that prints, never a test that fails: a ratio of
 # 1.5 or more is said on a line of its own beginning "idle budget: REGRESSION", which .ci/run
 # repeats as its last line. It exits 0 whatever it measured; 2 when it could not measure.
 #
-#   tools/idle_budget.sh            compare (needs Xvfb, jackd, git, the recorded commit)
+#   tools/idle_budget.sh            compare (needs Xvfb, jackd, git, dpkg-buildflags, the
+#                                   recorded commit)
 #   tools/idle_budget.sh --record   also append this tree's figures to the record (commit first)
+#   tools/idle_budget.sh --package-build DIR
+#                                   this tree's `mallet` is the one packaging/tests/
+#                                   build_package.sh built in DIR (the package tests'
+#                                   build/asan/packaging/package-test/deb, as .ci/run passes
+#                                   it): the same flags, not built again; taken only when its
+#                                   copy of the code is this tree's
 #
 # IDLE_BUDGET_SECONDS (10): seconds per phase; IDLE_BUDGET_RUNS (1): runs of each build, taken
 # in turn (this, recorded, this, ...) and averaged.
@@ -23,11 +31,23 @@ record_file=$root/docs/bench-report/idle-budget.tsv
 seconds=${IDLE_BUDGET_SECONDS:-10}
 runs=${IDLE_BUDGET_RUNS:-1}
 record=0
-[[ "${1:-}" == --record ]] && record=1
+package_build=
 say() { echo "idle budget: $*"; }
 fail() { say "$*" >&2; exit 2; }
+while (($#)); do
+  case "$1" in
+    --record) record=1 ;;
+    --package-build)
+      [[ $# -ge 2 ]] || fail "--package-build needs the folder build_package.sh wrote"
+      package_build=$2
+      shift
+      ;;
+    *) fail "unknown argument: $1 (see the head of $0)" ;;
+  esac
+  shift
+done
 
-for program in Xvfb jackd git cmake awk; do
+for program in Xvfb jackd git cmake dpkg-buildflags awk diff; do
   command -v "$program" >/dev/null || fail "needs $program"
 done
 [[ -f "$record_file" ]] || fail "no record: $record_file"
@@ -43,9 +63,14 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# Each build in a folder of its own, never the developer's build/release.
-build() {  # build SOURCE_DIR BUILD_DIR
-  cmake -S "$1" -B "$2" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMALLET_BUILD_TESTS=OFF >"$work/cmake.log" 2>&1 ||
+# Each build in a folder of its own, never the developer's build/release, with the package's
+# flags: dpkg-buildflags' CXXFLAGS and CPPFLAGS (-O2, the stack protector, _FORTIFY_SOURCE)
+# and LDFLAGS (relro, now), build type None, as dh_auto_configure passes them. Without debug
+# information (-g0: the package's -g1 changes no instruction, only what a debugger reads).
+deb_flags() { DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get "$1"; }
+build() {  # build SOURCE_DIR BUILD_DIR: prints the built mallet
+  CXXFLAGS="$(deb_flags CXXFLAGS) $(deb_flags CPPFLAGS) -g0" LDFLAGS="$(deb_flags LDFLAGS)" \
+    cmake -S "$1" -B "$2" -G Ninja -DCMAKE_BUILD_TYPE=None -DMALLET_BUILD_TESTS=OFF >"$work/cmake.log" 2>&1 ||
     { cat "$work/cmake.log" >&2; fail "cannot configure $1"; }
   # The kiosk, and the benchmarks' own program where the tree has one (`mallet bench` runs it;
   # before it, the benchmarks were inside mallet).
@@ -53,13 +78,34 @@ build() {  # build SOURCE_DIR BUILD_DIR
   grep -q 'add_executable(mallet-bench' "$1/src/CMakeLists.txt" && targets+=(mallet-bench)
   cmake --build "$2" --target "${targets[@]}" >"$work/build.log" 2>&1 ||
     { tail -n 30 "$work/build.log" >&2; fail "cannot build $1"; }
+  echo "$2/mallet"
+}
+program_in() {  # program_in OUT: the mallet build_package.sh built in OUT (OUT/src/obj-<triplet>/)
+  local obj
+  for obj in "$1"/src/obj-*/; do
+    [[ -x "$obj/mallet" ]] && { echo "${obj%/}/mallet"; return 0; }
+  done
+  return 1
 }
 # The code that makes the kiosk: sources, shaders, build files, shipped settings and models.
 code_paths=(src shaders cmake CMakeLists.txt config models)
-this_bin=$work/this/mallet
-recorded_bin=$work/recorded-build/mallet
+same_code() {  # same_code DIR: DIR holds this tree's code (a copy build_package.sh made)
+  local path
+  for path in "${code_paths[@]}"; do diff -rq "$root/$path" "$1/$path" >/dev/null 2>&1 || return 1; done
+}
 started=$SECONDS
-build "$root" "$work/this"
+this_bin=
+if [[ -n "$package_build" ]]; then
+  if ! this_bin=$(program_in "$package_build"); then
+    say "no package build in $package_build: building this tree"
+  elif ! same_code "$package_build/src"; then
+    say "the package build in $package_build is not of this tree's code: building this tree"
+    this_bin=
+  else
+    say "this tree's mallet: the package tests' build, $this_bin"
+  fi
+fi
+[[ -n "$this_bin" ]] || this_bin=$(build "$root" "$work/this")
 if ! git -C "$root" cat-file -e "$recorded_commit^{commit}" 2>/dev/null; then
   say "the recorded commit $recorded_commit is not in this clone: only the recorded figures are compared"
   recorded_bin=
@@ -69,7 +115,7 @@ elif git -C "$root" diff --quiet "$recorded_commit" -- "${code_paths[@]}"; then
 else
   git -C "$root" worktree add --detach "$work/recorded" "$recorded_commit" >/dev/null 2>&1 ||
     fail "cannot check out $recorded_commit"
-  build "$work/recorded" "$work/recorded-build"
+  recorded_bin=$(build "$work/recorded" "$work/recorded-build")
 fi
 say "built in $((SECONDS - started)) s"
 
