@@ -9,9 +9,9 @@
 # This script builds that commit's `mallet` and this tree's with the Debian package's compiler
 # flags (dpkg-buildflags with debian/rules' hardening=+all, CMake build type None, as
 # dh_auto_configure: the code a museum runs; each in its own folder, once when their code is
-# the same), runs the benchmark with each in turn, and prints both figures and their ratio. It is a benchmark that prints, never a test that fails: a ratio of
-# 1.5 or more is said on a line of its own beginning "idle budget: REGRESSION", which .ci/run
-# repeats as its last line. It exits 0 whatever it measured; 2 when it could not measure.
+# the same), runs the benchmark with each in turn, and prints both figures and their ratio.
+# It is a benchmark that prints, never a test that fails: a ratio of 1.5 or more is said on a
+# line of its own beginning "idle budget: REGRESSION", which .ci/run repeats as its last line. It exits 0 whatever it measured; 2 when it could not measure.
 #
 #   tools/idle_budget.sh            compare (needs Xvfb, jackd, git, dpkg-buildflags, the
 #                                   recorded commit)
