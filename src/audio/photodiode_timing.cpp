@@ -127,7 +127,7 @@ PhotodiodeTiming time_photodiode(const CaptureRecording& r, std::size_t channel,
     // the schedule that times it comes from the half second after it.
     const double last = static_cast<double>(s1) + kScheduleWindow * rate;
     if (std::any_of(r.blocks.begin(), r.blocks.end(), [&](const CaptureBlock& b) {
-          return b.xrun && static_cast<double>(b.index) >= static_cast<double>(b0) && static_cast<double>(b.index) <= last;
+          return b.xrun && b.index >= b0 && static_cast<double>(b.index) <= last;
         })) {
       ++out.near_xruns;
       continue;
