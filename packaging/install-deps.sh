@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package Mallet needs to build, test and run.
+# Installs every package Mallet needs to build, test and run, on Debian 12 ("bookworm") or
+# 13 ("trixie"): the lists' lines for the release it finds (packaging/deps-list.sh).
 # Idempotent and non-interactive: packages already present are left alone.
 #   packaging/install-deps.sh            build + run-time packages (the kiosk's and the benchmarks')
 #   packaging/install-deps.sh --runtime  the kiosk's run-time packages only
@@ -8,7 +9,11 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
 lists=("$here/deps-run.txt")
 [[ "${1:-}" == "--runtime" ]] || lists+=("$here/deps-build.txt" "$here/deps-bench.txt")
-mapfile -t packages < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "${lists[@]}" | grep -v '^$' | sort -u)
+# shellcheck disable=SC1091
+release=$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-an unknown system}: the lists' \"${VERSION_CODENAME:-?}\" lines")
+echo "install-deps: found $release"
+packages_text=$("$here/deps-list.sh" "${lists[@]}") || exit 1
+mapfile -t packages <<<"$packages_text"
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The .debs that dpkg-buildpackage built, looked at as dpkg sees them. The kiosk's, mallet: its
-# files and their modes, its control fields (Depends: every package of packaging/deps-run.txt,
+# files and their modes, its control fields (Depends: every package of packaging/deps-run.txt
+# for the release it is built on,
 # and no library only the benchmarks use), its conffiles (every file under /etc), its
 # maintainer scripts (run against stubs: they must survive a machine with no running systemd or
 # udev) and its systemd unit. The benchmarks', mallet-bench: its files, and Depends on this
@@ -101,7 +102,7 @@ for item in "${items[@]}"; do
   name=${name// /}
   depends[$name]=1
 done
-mapfile -t wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/deps-run.txt" | grep -v '^$')
+mapfile -t wanted < <("$src/packaging/deps-list.sh" "$src/packaging/deps-run.txt")
 ((${#wanted[@]} > 5)) || fail "deps-run.txt read as ${#wanted[@]} packages"
 for p in "${wanted[@]}"; do
   [[ -n ${depends[$p]+x} ]] || fail "Depends lacks $p (from deps-run.txt): $(field Depends)"
@@ -242,7 +243,7 @@ else
   bench_depends=$(dpkg-deb -f "$bench" Depends)
   grep -Eq "(^|, )mallet \(= $version\)(,|$)" <<<"$bench_depends" ||
     fail "mallet-bench does not depend on mallet (= $version): $bench_depends"
-  mapfile -t bench_wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$src/packaging/deps-bench.txt" | grep -v '^$')
+  mapfile -t bench_wanted < <("$src/packaging/deps-list.sh" "$src/packaging/deps-bench.txt")
   ((${#bench_wanted[@]} >= 3)) || fail "deps-bench.txt read as ${#bench_wanted[@]} packages"
   for p in "${bench_wanted[@]}"; do
     grep -Eq "(^|, )$p( |,|$)" <<<"$bench_depends" || fail "mallet-bench: Depends lacks $p (from deps-bench.txt): $bench_depends"

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -29,7 +30,7 @@ const std::vector<ModalPreset>& shipped_presets() {
   return presets;
 }
 
-const ModalPreset& shipped(const std::string& name) {
+const ModalPreset& shipped(std::string_view name) {  // by value: no reference to a temporary
   for (const ModalPreset& p : shipped_presets())
     if (p.name == name) return p;
   ADD_FAILURE() << "no preset " << name;

@@ -29,7 +29,9 @@ void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
   if (phase_ == Phase::recording) throw std::logic_error("the photodiode is recording already");
   timing_.reset();
   problem_.clear();
-  if (!output || !output->capture()) {
+  // capture() reads an atomic the stream's reopening writes: ask once, use that answer.
+  audio::StreamCapture* capture = output ? output->capture() : nullptr;
+  if (!capture) {
     phase_ = Phase::failed;
     problem_ = label() + ": the sound card's stream does not record it (the log says why it did not open with "
                        "its input); the test shows its squares without timing them";
@@ -37,7 +39,7 @@ void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
     return;
   }
   input_name_ = output->input_device_name();
-  output->capture()->arm();
+  capture->arm();
   phase_ = Phase::recording;
   journal::notice("{}: recording \"{}\" while the squares show (PortAudio's input latency {:.3f} ms)", label().c_str(),
                   input_name_.c_str(), output->input_latency_s() * 1e3);
@@ -45,15 +47,17 @@ void PhotodiodeLatency::start(audio::PortAudioOutput* output) {
 
 void PhotodiodeLatency::poll(Nanos now, const LatencyTest& test, audio::PortAudioOutput* output) {
   if (phase_ != Phase::recording) return;
-  if (!output || !output->capture()) {  // the stream closed meanwhile (a reload, a lost device)
+  // Asked once: a second capture() may answer null (the stream reopened between the two).
+  audio::StreamCapture* capture = output ? output->capture() : nullptr;
+  if (!capture) {  // the stream closed meanwhile (a reload, a lost device)
     phase_ = Phase::failed;
     problem_ = label() + ": the sound card's stream closed while it recorded: press T again";
     journal::warning("{}", problem_.c_str());
     return;
   }
-  if (!test.finished(now) || !output->capture()->complete()) return;
+  if (!test.finished(now) || !capture->complete()) return;
   try {
-    timing_ = audio::time_photodiode(output->capture()->recording(), 0, output->input_latency_s(), test.squares(),
+    timing_ = audio::time_photodiode(capture->recording(), 0, output->input_latency_s(), test.squares(),
                                      label());
   } catch (const std::exception& e) {
     phase_ = Phase::failed;

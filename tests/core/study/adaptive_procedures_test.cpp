@@ -1,6 +1,7 @@
 // The adaptive procedures (core/study/staircase.hpp, quest.hpp) against simulated observers
 // whose threshold is known: over many seeded runs their estimates converge where theory
 // puts them, within stated bounds. Fixed seeds: a computation, not a timing or flaky test.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>

@@ -3,6 +3,7 @@
 // the counts below are those sessions' rows, level by level. A maximum on the search's edge
 // is never an estimate, an interval holds its estimate and never leaves what the quantity
 // can be, and every reported fit is the likelihood's maximum, checked against a dense grid.
+#include <algorithm>
 #include <random>
 
 #include <gtest/gtest.h>
