@@ -25,9 +25,11 @@ fail() {
 # The stand-in cage: logs what it was given, then runs its client as cage does (with
 # DISPLAY set to its Xwayland's display) and ends with it.
 # FAKE_CAGE=abort-on-stop: it then stays up and, told to stop (SIGTERM), aborts as Debian 12's
-# cage 0.1.4 does at the end of every stop; FAKE_CAGE=abort: it aborts by itself.
+# cage 0.1.4 does at the end of every stop; FAKE_CAGE=abort: it aborts by itself. `cage -v`
+# says FAKE_CAGE_VERSION (default 0.1.4, Debian 12's).
 cat >"$scratch/fakebin/cage" <<'CAGE'
 #!/bin/sh
+[ "$1" = -v ] && { echo "Cage version ${FAKE_CAGE_VERSION:-0.1.4}"; exit 0; }
 echo "XDG_RUNTIME_DIR=$XDG_RUNTIME_DIR WLR_RENDERER=${WLR_RENDERER:-} args=$*" >> "$FAKE_LOG"
 [ "$1" = -- ] && shift
 DISPLAY=:7 "$@"
@@ -85,16 +87,23 @@ run WLR_RENDERER=gles2 FAKE_RENDERER=pixman || fail "mallet-session exits $? wit
 grep -q "WLR_RENDERER=gles2 args" "$scratch/log" || fail "the operator's WLR_RENDERER was overridden: $(cat "$scratch/log")"
 ! grep -q '^mallet doctor' "$scratch/log" || fail "the doctor was asked although WLR_RENDERER was set"
 
-# cage aborting at the end of a stop (cage 0.1.4): a clean stop, said in a line; cage aborting
-# with no stop asked: its status (134) is the unit's.
-run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort-on-stop &
-runner=$!
-for _ in $(seq 100); do [[ -e $scratch/run/display ]] && break; /bin/sleep 0.05; done
-/bin/sleep 0.2
-pkill -TERM -f "^/bin/sh $session\$" || fail "no mallet-session to stop"
-wait "$runner" && status=0 || status=$?
-((status == 0)) || fail "mallet-session stopped while cage aborts on its stop exits $status: $(cat "$scratch/out")"
-grep -q 'cage aborted while stopping' "$scratch/out" || fail "the stop's abort was not explained: $(cat "$scratch/out")"
+# cage 0.1.x aborting at the end of a stop (Debian 12's 0.1.4): a clean stop, said in a line;
+# a later cage (Debian 13's 0.2.0, fixed) aborting at a stop, or any cage aborting with no stop
+# asked: its status (134) is the unit's.
+stop_aborting() {  # VERSION: mallet-session's status when a cage of VERSION aborts on its stop
+  run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort-on-stop FAKE_CAGE_VERSION="$1" &
+  local runner=$!
+  for _ in $(seq 100); do [[ -e $scratch/run/display ]] && break; /bin/sleep 0.05; done
+  /bin/sleep 0.2
+  pkill -TERM -f "^/bin/sh $session\$" || fail "no mallet-session to stop"
+  wait "$runner" && status=0 || status=$?
+}
+stop_aborting 0.1.4
+((status == 0)) || fail "mallet-session stopped while cage 0.1.4 aborts on its stop exits $status: $(cat "$scratch/out")"
+grep -q 'cage 0.1.4 aborted while stopping' "$scratch/out" || fail "the stop's abort was not explained: $(cat "$scratch/out")"
+stop_aborting 0.2.0
+((status == 134)) || fail "mallet-session stopped while cage 0.2.0 aborts on its stop exits $status, expected 134"
+grep -q 'cage 0.2.0 aborted while stopping' "$scratch/out" || fail "cage 0.2.0's abort was not said: $(cat "$scratch/out")"
 run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort && status=0 || status=$?
 ((status == 134)) || fail "cage aborting by itself: mallet-session exits $status, expected 134"
 
