@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# The package's system test: builds the Debian package, installs it into a Debian 12 disk
-# image made by mmdebstrap, boots that in QEMU with a display (virtio-vga), a sound card
+# The package's system test: builds the Debian package, installs it into a Debian 12 or 13
+# disk image made by mmdebstrap, boots that in QEMU with a display (virtio-vga), a sound card
 # (Intel HDA into a WAV file), a USB mouse and keyboard and the guest agent, and checks each
 # deployment scenario there (system_test.py lists them). One line per scenario, `ok` or
 # `FAIL: why`, then the timings. Needs root (mmdebstrap, chroot), qemu-system-x86,
 # qemu-utils, mmdebstrap and e2fsprogs (packaging/deps-build.txt).
 #
-#   packaging/tests/system/run.sh [--keep] [--only SCENARIO[,SCENARIO…]]
+#   packaging/tests/system/run.sh [--keep] [--only SCENARIO[,SCENARIO…]] [--suite bookworm|trixie]
 #       [--deb-dir DIR] [--out DIR] [--cache DIR] [--accel auto|kvm|tcg] [--screens DIR]
 #
 #   --keep      keep the machine's disk (out/disk.qcow2) and image for a look afterwards
 #   --only      run these scenarios (first-boot always runs first)
+#   --suite     the guest's Debian: bookworm (12, the default) or trixie (13); the package
+#               must be built on the same release (--deb-dir's, or this machine's when built here)
 #   --deb-dir   take mallet_*.deb from DIR instead of building it (CTest passes the one
 #               the package tests built)
 #   --out       logs, screens, the WAV, the disk (default: build/system-test)
@@ -20,11 +22,12 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 src=$(cd "$here/../../.." && pwd)
-keep=0 only="" deb_dir="" out="$src/build/system-test" cache=/var/cache/mallet-system-test accel=auto screens=""
+keep=0 only="" suite=bookworm deb_dir="" out="$src/build/system-test" cache=/var/cache/mallet-system-test accel=auto screens=""
 while (($#)); do
   case $1 in
   --keep) keep=1 ;;
   --only) only=$2; shift ;;
+  --suite) suite=$2; shift ;;
   --deb-dir) deb_dir=$2; shift ;;
   --out) out=$2; shift ;;
   --cache) cache=$2; shift ;;
@@ -35,6 +38,10 @@ while (($#)); do
   esac
   shift
 done
+case $suite in
+bookworm | trixie) ;;
+*) echo "system: unknown suite '$suite' (bookworm or trixie)" >&2; exit 2 ;;
+esac
 [[ $(id -u) -eq 0 ]] || { echo "system: run as root (mmdebstrap and the image's chroot need it)" >&2; exit 1; }
 for tool in qemu-system-x86_64 qemu-img mmdebstrap mke2fs python3 dpkg-deb; do
   command -v "$tool" >/dev/null || { echo "system: $tool not found (packaging/install-deps.sh installs it)" >&2; exit 1; }
@@ -46,6 +53,12 @@ stamp() { echo "system: $1 ($(($(date +%s) - begin)) s so far)"; }
 
 # 1. The package.
 if [[ -z $deb_dir ]]; then
+  host_suite=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
+  if [[ $host_suite != "$suite" ]]; then
+    echo "system: a package built here is Debian ${host_suite:-?}'s, not $suite's: build it on $suite" \
+      "(tools/debian_root.sh --suite $suite) and pass its folder with --deb-dir" >&2
+    exit 2
+  fi
   deb_dir=$out/deb
   stamp "building the package (dpkg-buildpackage)"
   bash "$src/packaging/tests/build_package.sh" "$src" "$deb_dir"
@@ -68,8 +81,8 @@ dpkg-deb -Zgzip -b "$work/newer" "$work/guest-newer/mallet_${version}+update1_$(
 rm -rf "$work/newer"
 
 # 3. The image (the base cached by its package list).
-stamp "making the disk image"
-GUEST_EXTRA="$work/guest-newer" bash "$here/build_image.sh" "$deb" "$cache" "$out/image"
+stamp "making the disk image (Debian $suite)"
+GUEST_EXTRA="$work/guest-newer" bash "$here/build_image.sh" "$deb" "$cache" "$out/image" "$suite"
 
 # 4. kvm where it works: a kernel that prints its banner within 20 s. On some machines
 #    /dev/kvm exists but a guest hangs in it, so the probe is never waited for: it is killed
@@ -94,7 +107,7 @@ fi
 # 5. The machine and its scenarios.
 stamp "booting the image"
 rm -f "$out/disk.qcow2" "$out/audio.wav" "$out/console.log" "$out/qemu.log"
-args=(--image "$out/image" --out "$out" --accel "$accel" --reference "$here/first-boot.signature.json")
+args=(--image "$out/image" --out "$out" --accel "$accel" --suite "$suite" --reference "$here/first-boot.signature.json")
 [[ -n $only ]] && args+=(--only "$only")
 [[ -n $screens ]] && args+=(--screens "$screens")
 status=0

@@ -4,7 +4,9 @@ deployment scenario checked, one line each (`ok NAME (seconds): what was seen` o
 `FAIL NAME: why`), then the timings. run.sh builds the package and the image and calls this.
 
   system_test.py --image DIR --out DIR [--only NAME[,NAME…]] [--accel tcg|kvm]
-                 [--reference FILE] [--screens DIR] [--attach]
+                 [--suite bookworm|trixie] [--reference FILE] [--screens DIR] [--attach]
+
+--suite: the Debian release the image is (first-boot checks the guest's /etc/os-release).
 
 --attach drives a machine already running with its sockets in --out (one that run.sh --keep
 left, restarted by hand): for working on a scenario without booting again.
@@ -138,6 +140,13 @@ class Test:
         self.timings.append(("guest: kernel start → mallet.service started", start_us / 1e6))
         self.timings.append(("guest: mallet.service started → first kiosk frame (READY=1)", (ready_us - start_us) / 1e6))
         problems = []
+        # The release the image was made of, and its cage (0.1.4 on Debian 12, whose abort at
+        # a stop mallet-session takes for a clean stop; 0.2.0 on Debian 13).
+        release = self.out(". /etc/os-release && echo \"$VERSION_CODENAME $VERSION_ID\"").split()
+        cage = self.out("cage -v 2>&1 | head -n 1").replace("Cage version ", "cage ")
+        if self.args.suite and (not release or release[0] != self.args.suite):
+            problems.append(f"the guest is Debian {' '.join(release) or '?'}, not {self.args.suite}")
+        system = f"Debian {release[1] if len(release) > 1 else '?'} ({release[0] if release else '?'}), {cage}"
         # The display is a logind seat session of the kiosk's user, active on seat0.
         sessions = self.out("loginctl list-sessions --no-legend")
         if not re.search(r"\bmallet\b.*\bseat0\b", sessions):
@@ -194,7 +203,7 @@ class Test:
                 json.dump(sig, f)
         if problems:
             raise VmError("; ".join(problems))
-        return (f"active after {waited:.0f} s of waiting, {u['MainPID']} is the kiosk; screen {width}x{height}, "
+        return (f"{system}; active after {waited:.0f} s of waiting, {u['MainPID']} is the kiosk; screen {width}x{height}, "
                 f"{'distance %.1f from the reference' % distance if distance is not None else 'reference written'}; "
                 f"{renderer[-1] if renderer else 'no renderer line'}; {paced[-1] if paced else 'no pace line'}")
 
@@ -524,6 +533,8 @@ def main():
     parser.add_argument("--out", required=True, help="folder for the logs, screens and the WAV")
     parser.add_argument("--only", default="", help="comma-separated scenarios (first-boot always runs)")
     parser.add_argument("--accel", default="tcg", choices=["tcg", "kvm"])
+    parser.add_argument("--suite", choices=["bookworm", "trixie"],
+                        help="the image's Debian release (first-boot checks the guest's)")
     parser.add_argument("--reference", help="first boot's screen signature (JSON); written when missing")
     parser.add_argument("--screens", help="also write the screens (PNG) here")
     parser.add_argument("--attach", action="store_true", help="drive the machine already running (its sockets in --out)")

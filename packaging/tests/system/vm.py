@@ -1,4 +1,4 @@
-"""The test machine: a Debian 12 guest in QEMU, driven only through what a museum has.
+"""The test machine: a Debian 12 or 13 guest in QEMU, driven only through what a museum has.
 
 - the screen: QMP `screendump` (PPM, read here; written out as PNG for people to look at);
 - the mouse and the keyboard: QMP `input-send-event` to a USB mouse and keyboard;
