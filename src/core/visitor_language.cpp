@@ -1,9 +1,6 @@
 #include "core/visitor_language.hpp"
 
-#include <libintl.h>
-
 #include <algorithm>
-#include <clocale>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -12,18 +9,12 @@
 
 #include "core/catalogue_file.hpp"
 
-// glibc's libintl: bumping it makes every cached lookup stale, so that a changed LANGUAGE
-// takes effect at the next gettext call (the GNU gettext manual, "Being a gettext grok").
-extern "C" int _nl_msg_cat_cntr;  // NOLINT(bugprone-reserved-identifier)
-
 #ifndef MALLET_CATALOGUE_LANGUAGES
 #define MALLET_CATALOGUE_LANGUAGES ""
 #endif
 
 namespace mallet {
 namespace {
-
-constexpr const char* kDomain = "mallet";
 
 std::string& current() {
   static std::string language = "en";
@@ -89,6 +80,34 @@ const Dropped* dropped(std::string_view language) {
   for (const auto& d : drop_ins().now)
     if (d->language == language) return d.get();
   return nullptr;
+}
+
+//! The shipped catalogues, read by read_catalogue (the drop-ins' reader) from the folder
+//! bind_visitor_catalogues named, each the first time its language is shown. Never freed:
+//! tr() hands out pointers into them. glibc's gettext is not used: since glibc 2.39 (Debian
+//! 13) it ignores LANGUAGE under the C.UTF-8 locale, and every text came back in English.
+struct Shipped {
+  std::filesystem::path locale_dir;
+  std::map<std::string, std::unique_ptr<const Catalogue>, std::less<>> read;  //!< by language
+};
+
+Shipped& shipped() {
+  static Shipped s;
+  return s;
+}
+
+const Catalogue* shipped_catalogue(const std::string& language) {
+  Shipped& s = shipped();
+  if (s.locale_dir.empty() || language == "en") return nullptr;
+  auto it = s.read.find(language);
+  if (it == s.read.end()) {
+    // Its problems are the startup's to report (catalogue_texts reads every one of them).
+    std::vector<std::string> problems;
+    auto c = std::make_unique<const Catalogue>(
+        read_catalogue(s.locale_dir / language / "LC_MESSAGES" / "mallet.mo", problems));
+    it = s.read.emplace(language, std::move(c)).first;
+  }
+  return it->second.get();
 }
 
 }  // namespace
@@ -162,20 +181,19 @@ std::string visitor_languages_text() {
   return text;
 }
 
-std::string bind_visitor_catalogues(const std::filesystem::path& locale_dir) {
-  bindtextdomain(kDomain, locale_dir.c_str());
-  bind_textdomain_codeset(kDomain, "UTF-8");
-  // gettext ignores LANGUAGE under the "C" locale; C.UTF-8 is built into glibc >= 2.35 and
-  // needs no generated locale. Only LC_MESSAGES changes: numbers keep reading with '.'.
-  const bool ok = std::setlocale(LC_MESSAGES, "C.UTF-8") != nullptr;
+void bind_visitor_catalogues(const std::filesystem::path& locale_dir) {
+  Shipped& s = shipped();
+  if (s.locale_dir != locale_dir) {  // another folder: its catalogues are read anew (the old kept)
+    static std::vector<std::unique_ptr<const Catalogue>> kept;
+    for (auto& [language, c] : s.read) kept.push_back(std::move(c));
+    s.read.clear();
+    s.locale_dir = locale_dir;
+  }
   use_visitor_language("en");
-  return ok ? "" : "the C.UTF-8 locale is missing: every text is shown in English";
 }
 
 void use_visitor_language(std::string_view language) {
   current() = is_visitor_language(language) ? std::string(language) : "en";
-  setenv("LANGUAGE", current().c_str(), 1);
-  ++_nl_msg_cat_cntr;
 }
 
 const std::string& visitor_language() { return current(); }
@@ -185,7 +203,11 @@ const char* tr(const char* msgid) {
     const auto it = d->catalogue.texts.find(std::string_view(msgid));
     if (it != d->catalogue.texts.end()) return it->second.c_str();
   }
-  return dgettext(kDomain, msgid);
+  if (const Catalogue* c = shipped_catalogue(current())) {
+    const auto it = c->texts.find(std::string_view(msgid));
+    if (it != c->texts.end()) return it->second.c_str();
+  }
+  return msgid;
 }
 
 std::string catalogue_texts(const std::filesystem::path& locale_dir, std::vector<std::string>& problems) {

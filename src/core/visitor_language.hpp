@@ -1,14 +1,16 @@
 #pragma once
 // The visitor's language. Every text a visitor or an operator reads on the screen is looked
-// up by gettext (glibc's libintl) in the "mallet" domain: one catalogue per language,
-// po/<lang>.po compiled by Debian's msgfmt into <locale>/<lang>/LC_MESSAGES/mallet.mo.
+// up in the "mallet" domain's catalogue of the language: po/<lang>.po compiled by Debian's
+// msgfmt into <locale>/<lang>/LC_MESSAGES/mallet.mo, read by core/catalogue_file (the reader
+// of the operators' drop-ins too), not by glibc's gettext, whose answer depends on the
+// process's locale (glibc 2.39 and later ignore LANGUAGE under C.UTF-8: Debian 13).
 // English is the texts as written in the code (the msgids): it needs no catalogue.
 //
 // Marking: tr("text") translates where it stands; N_("text") only marks a text that is
 // translated later (xgettext takes both keywords, see po/CMakeLists.txt).
 //
-// gettext's language is the process's: bind, use and tr belong to the main thread (the one
-// that draws the text). A language can be switched at any time (the operator page, the
+// The language is the process's: bind, use and tr belong to the main thread (the one that
+// draws the text). A language can be switched at any time (the operator page, the
 // attract mode's cycle); the next tr() answers in it.
 #include <filesystem>
 #include <string>
@@ -45,9 +47,9 @@ bool is_visitor_language(std::string_view language);
 //! "en, de, fr, ja": for messages that list what is allowed.
 std::string visitor_languages_text();
 
-//! Points gettext at <locale_dir>/<lang>/LC_MESSAGES/mallet.mo and shows English. Returns
-//! a problem to report ("" if none): the C.UTF-8 locale gettext needs is missing.
-std::string bind_visitor_catalogues(const std::filesystem::path& locale_dir);
+//! Takes the shipped catalogues from <locale_dir>/<lang>/LC_MESSAGES/mallet.mo (each read
+//! the first time its language is shown) and shows English. Needs no locale.
+void bind_visitor_catalogues(const std::filesystem::path& locale_dir);
 
 //! Every later tr() answers in `language` (one of visitor_languages(); another shows English).
 void use_visitor_language(std::string_view language);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <system_error>
 #include <utility>
 
@@ -59,6 +60,31 @@ bool never_write(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
+//! tinygltf 2.8 and later ask a part's size before reading it (Debian 13's 2.9.5). A part
+//! that cannot be read answers 0, so that read_part says why, in the words Debian 12's loader
+//! gives ("File read error : PATH : is a directory, not a file"), whichever tinygltf runs.
+bool size_without_opening(std::size_t* size, std::string*, const std::string& path, void*) {
+  std::error_code ec;
+  *size = unreadable_reason(path) ? 0 : static_cast<std::size_t>(fs::file_size(path, ec));
+  if (ec) *size = 0;
+  return true;
+}
+
+//! Debian 12's tinygltf 2.7 has no size callback, and its SetFsCallbacks returns nothing;
+//! Debian 13's 2.9 wants every callback set, else it keeps its own (which open a FIFO and
+//! wait for ever), and says so only through its return value.
+template <class Callbacks>
+void hand_over(tinygltf::TinyGLTF& reader, Callbacks callbacks) {
+  if constexpr (requires { callbacks.GetFileSizeInBytes = &size_without_opening; }) {
+    callbacks.GetFileSizeInBytes = &size_without_opening;
+    std::string err;
+    if (!reader.SetFsCallbacks(callbacks, &err))
+      throw std::logic_error("tinygltf refused the guarded file callbacks: " + err);
+  } else {
+    reader.SetFsCallbacks(callbacks);
+  }
+}
+
 }  // namespace
 
 std::vector<unsigned char> read_gltf_file(const fs::path& file) {
@@ -74,7 +100,7 @@ void use_guarded_files(tinygltf::TinyGLTF& reader) {
   callbacks.ReadWholeFile = &read_part;
   callbacks.WriteWholeFile = &never_write;
   callbacks.user_data = nullptr;
-  reader.SetFsCallbacks(callbacks);
+  hand_over(reader, callbacks);
 }
 
 std::string_view gltf_json_text(std::span<const unsigned char> bytes, bool binary) {

@@ -29,7 +29,7 @@ class VisitorLanguage : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_FALSE(built_catalogues().empty()) << "run through ctest: it sets MALLET_LOCALE_DIR";
-    EXPECT_EQ(bind_visitor_catalogues(built_catalogues()), "");
+    bind_visitor_catalogues(built_catalogues());
   }
   void TearDown() override { use_visitor_language("en"); }
 };
