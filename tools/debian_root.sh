@@ -3,24 +3,26 @@
 # root of another release (Debian 13 from a Debian 12 machine, or the reverse), as a newcomer
 # on that release would run it. The root is made by mmdebstrap the first time (the buildd
 # variant: a compiler and apt, nothing of Mallet's), then kept; each run clones HEAD afresh
-# into ROOT/work/mallet and runs COMMAND there with bash, as root, in a mount namespace of its
+# into ROOT/work/NAME (mallet unless --clone says) and runs COMMAND there with bash, as root, in a mount namespace of its
 # own (/proc, /sys, /dev and a fresh /tmp, gone when it ends). Needs root and mmdebstrap.
 #
-#   tools/debian_root.sh [--suite trixie] [--root DIR] [--keep-clone] -- COMMAND
+#   tools/debian_root.sh [--suite trixie] [--root DIR] [--clone NAME] [--keep-clone] -- COMMAND
 #
 #   --suite       the release (default trixie)
 #   --root        where the root lives (default /var/tmp/mallet-root-SUITE)
+#   --clone       the clone's folder under ROOT/work (default mallet): two at once in one root
 #   --keep-clone  run in the clone the last run left (after a first command built in it)
 #
 # Example: the README's two commands on Debian 13
 #   tools/debian_root.sh -- 'packaging/install-deps.sh && cmake --workflow --preset release && build/release/mallet run'
 #   tools/debian_root.sh --keep-clone -- 'cmake --workflow --preset check'
 set -euo pipefail
-suite=trixie root= keep=0
+suite=trixie root= keep=0 clone=mallet
 while (($#)); do
   case "$1" in
     --suite) suite=$2; shift ;;
     --root) root=$2; shift ;;
+    --clone) clone=$2; shift ;;
     --keep-clone) keep=1 ;;
     --) shift; break ;;
     *) echo "debian_root: unknown argument $1 (see the head of $0)" >&2; exit 2 ;;
@@ -37,18 +39,18 @@ if [[ ! -x "$root/usr/bin/apt-get" ]]; then
   mmdebstrap --variant=buildd --include=ca-certificates,git,locales "$suite" "$root"
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"  # apt inside reaches the same archive
-if ((!keep)) || [[ ! -d "$root/work/mallet/.git" ]]; then
-  rm -rf "$root/work/mallet"
+if ((!keep)) || [[ ! -d "$root/work/$clone/.git" ]]; then
+  rm -rf "${root:?}/work/$clone"
   mkdir -p "$root/work"
-  git clone -q "$checkout" "$root/work/mallet"
-  echo "debian_root: cloned $(git -C "$checkout" rev-parse --short HEAD) into $root/work/mallet"
+  git clone -q "$checkout" "$root/work/$clone"
+  echo "debian_root: cloned $(git -C "$checkout" rev-parse --short HEAD) into $root/work/$clone"
 fi
 # shellcheck disable=SC2016
-exec unshare --mount --propagation private env ROOT="$root" COMMAND="$1" bash -c '
+exec unshare --mount --propagation private env ROOT="$root" CLONE="$clone" COMMAND="$1" bash -c '
   set -e
   mount --rbind /dev "$ROOT/dev"
   mount -t proc proc "$ROOT/proc"
   mount -t sysfs sysfs "$ROOT/sys"
   mount -t tmpfs tmpfs "$ROOT/tmp"
   exec chroot "$ROOT" env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    LANG=C.UTF-8 TERM=dumb bash -c "cd /work/mallet && $COMMAND"'
+    LANG=C.UTF-8 TERM=dumb bash -c "cd /work/$CLONE && $COMMAND"'
