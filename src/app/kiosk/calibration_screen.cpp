@@ -30,7 +30,13 @@ std::optional<std::string> CalibrationScreen::sensitivity_request() {
 }
 
 void CalibrationScreen::frame(const IrFrame& f) {
-  if (!tuning()) return;
+  // Until the kiosk takes the preset asked for (once per pass of its loop, after that pass's
+  // frames), the camera runs the previous one. A pass lasts as long as the frame it draws:
+  // seconds under a CPU rasteriser in a slow guest, more than a preset's 110 reports. Counted,
+  // those frames judged a preset the camera never ran, and a tuner that chose in one pass
+  // merged its first preset's request with the chosen one's: one switch, not two (the VM
+  // test's emulated remote waited for its second, and the calibration never began).
+  if (!tuning() || request_) return;
   switch (tuner_->observe(f)) {
     case TunerStep::observing: return;
     case TunerStep::next_preset: request_ = std::string(tuner_->preset()); return;

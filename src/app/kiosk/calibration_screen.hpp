@@ -41,7 +41,8 @@ class CalibrationScreen {
   //! Starts with the sensitivity phase; `configured` is the preset to put back on failure.
   void tune_sensitivity(SensitivityTunerConfig config, std::string configured);
   bool tuning() const { return tuner_.has_value() && !tuner_->done(); }
-  //! One IR frame (every report) during the sensitivity phase.
+  //! One IR frame (every report) during the sensitivity phase; ignored while a preset asked
+  //! for waits to be taken by sensitivity_request(): the camera still runs the previous one.
   void frame(const IrFrame& frame);
   //! A preset the camera must switch to now (once per change), then nothing.
   std::optional<std::string> sensitivity_request();

@@ -144,6 +144,38 @@ TEST(RemoteKiosk, TheScreenFirstPicksTheSensitivityThatShowsOneCleanDot) {
   EXPECT_EQ(kiosk_device_config(rig.config, saved).ir.sensitivity.name, "wii1");
 }
 
+TEST(RemoteKiosk, FramesTakenBeforeThePresetReachesTheCameraAreNotJudgedAsItsOwn) {
+  Rig rig(/*every_frame=*/true);
+  CalibrationScreen screen(session_config(), std::nullopt, "00:1f:32:aa:bb:cc");
+  screen.tune_sensitivity({}, "wii3");
+  std::vector<std::string> requested;
+  // The kiosk's poll of the remote, in its order: the samples since the last pass, then the
+  // preset asked for handed to the device.
+  auto poll = [&] {
+    for (const RemoteSample& s : rig.pointer.take())
+      if (s.frame) screen.frame(*s.frame);
+    if (auto preset = screen.sensitivity_request()) {
+      requested.push_back(*preset);
+      rig.device.request_sensitivity(*preset);
+    }
+  };
+  // The pass that opened the screen draws its first frame before the next poll: seconds
+  // under a CPU rasteriser in a slow guest, and 3 s of reports (the configured preset still)
+  // wait meanwhile, more than one preset's whole observation.
+  rig.hold({500, 380}, 300);
+  rig.play_script();
+  poll();
+  EXPECT_TRUE(screen.tuning());  // none of them was taken with wii1
+  EXPECT_EQ(requested, (std::vector<std::string>{"wii1"}));
+  // wii1's own frames, once its start-up is done: kept, and set once more.
+  rig.hold({500, 380}, 300);
+  rig.play_script();
+  poll();
+  EXPECT_FALSE(screen.tuning());
+  EXPECT_EQ(screen.sensitivity(), "wii1");
+  EXPECT_EQ(requested, (std::vector<std::string>{"wii1", "wii1"}));  // two start-ups: tried, then chosen
+}
+
 TEST(RemoteKiosk, WithoutAChosenSensitivityTheKioskStartsWithTheConfiguredOne) {
   AppConfig config;
   config.wiimote.sensitivity = "marcan";
