@@ -39,11 +39,28 @@ expect_file() {  # PATH [MODE]
     fail "$1 has mode ${mode[$1]}, expected $2"
   fi
 }
+# The udev rule and the units: under /lib on Debian 12 (its debhelper's places), under /usr/lib
+# on Debian 13 (udev's udevdir moved there, and debian/rules runs dh_movetousr). Either is
+# taken, exactly one of the two must be there; its path is in located[NAME].
+declare -A located
+expect_lib_file() {  # NAME (lib/... without the leading /) MODE
+  local at=()
+  [[ -n ${mode[/$1]+x} ]] && at+=("/$1")
+  [[ -n ${mode[/usr/$1]+x} ]] && at+=("/usr/$1")
+  if ((${#at[@]} == 0)); then
+    fail "missing /$1 (nor /usr/$1)"
+  elif ((${#at[@]} == 2)); then
+    fail "both /$1 and /usr/$1"
+  else
+    located[$1]=${at[0]}
+    expect_file "${at[0]}" "$2"
+  fi
+}
 expect_file /usr/bin/mallet -rwxr-xr-x
 expect_file /usr/libexec/mallet/mallet-session -rwxr-xr-x
-expect_file /lib/udev/rules.d/70-mallet-wiimote.rules -rw-r--r--
-expect_file /lib/systemd/system/mallet.service -rw-r--r--
-expect_file /lib/systemd/system/mallet-session.service -rw-r--r--
+expect_lib_file lib/udev/rules.d/70-mallet-wiimote.rules -rw-r--r--
+expect_lib_file lib/systemd/system/mallet.service -rw-r--r--
+expect_lib_file lib/systemd/system/mallet-session.service -rw-r--r--
 expect_file /etc/pam.d/mallet -rw-r--r--
 expect_file /usr/share/man/man1/mallet.1.gz -rw-r--r--
 expect_file /usr/share/doc/mallet/copyright -rw-r--r--
@@ -71,6 +88,8 @@ for path in "${!mode[@]}"; do
   /usr/bin/mallet | /usr/libexec/mallet/* | /usr/share/mallet/* | /etc/mallet/* | /etc/pam.d/mallet | \
     /lib/udev/rules.d/70-mallet-wiimote.rules | /lib/systemd/system/mallet.service | \
     /lib/systemd/system/mallet-session.service | \
+    /usr/lib/udev/rules.d/70-mallet-wiimote.rules | /usr/lib/systemd/system/mallet.service | \
+    /usr/lib/systemd/system/mallet-session.service | \
     /usr/share/man/man1/mallet.1.gz | /usr/share/doc/mallet/* | /usr/share/lintian/overrides/mallet | \
     /usr/share/locale/*/LC_MESSAGES/mallet.mo) ;;
   *) fail "unexpected file $path" ;;
@@ -178,8 +197,8 @@ grep -q 'deb-systemd-invoke try-restart mallet.service' "$work/control/postinst"
 # --- The units ------------------------------------------------------------------------------
 # mallet.service is the kiosk itself (its main process, so that its sd_notify and its lines
 # are the unit's); mallet-session.service is its display, the seat's session with cage.
-unit=$work/root/lib/systemd/system/mallet.service
-session=$work/root/lib/systemd/system/mallet-session.service
+unit=$work/root${located[lib/systemd/system/mallet.service]:-/lib/systemd/system/mallet.service}
+session=$work/root${located[lib/systemd/system/mallet-session.service]:-/lib/systemd/system/mallet-session.service}
 setting() { sed -n "s/^$1=//p" "${2:-$unit}"; }
 [[ $(setting ExecStart) == "/usr/bin/mallet run" ]] || fail "ExecStart=$(setting ExecStart)"
 [[ $(setting ExecStartPre) == "/usr/libexec/mallet/mallet-session --wait 120" ]] ||

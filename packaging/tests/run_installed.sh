@@ -62,9 +62,16 @@ run run --headless --seconds 0.1 --size 160x90 --out "$scratch/bad-settings"
 mv "$settings.orig" "$settings"
 
 # The udev rule the package ships is the one `mallet wiimote list` tells to install. The
-# package has it in /lib/udev/rules.d (dh_installudev), which is /usr/lib/udev/rules.d on
-# Debian 12's merged /usr: the path the hint names.
-rule=$(grep -v '^#' "$root/lib/udev/rules.d/70-mallet-wiimote.rules" | grep -v '^$')
+# package has it in /lib/udev/rules.d on Debian 12 (dh_installudev), which is
+# /usr/lib/udev/rules.d on its merged /usr, and in /usr/lib/udev/rules.d on Debian 13: the
+# path the hint names.
+rule_file=
+for f in "$root/lib/udev/rules.d/70-mallet-wiimote.rules" "$root/usr/lib/udev/rules.d/70-mallet-wiimote.rules"; do
+  [[ -f $f ]] && rule_file=$f
+done
+[[ -n $rule_file ]] || fail "the package has no /lib/udev/rules.d/70-mallet-wiimote.rules (nor /usr/lib/udev/rules.d/...)"
+rule=$(grep -v '^#' "${rule_file:-/dev/null}" | grep -v '^$' || true)
+[[ -n $rule ]] || fail "the packaged udev rule file holds no rule"
 [[ $(wc -l <<<"$rule") == 1 ]] || fail "the udev rule file holds $(wc -l <<<"$rule") rules"
 run wiimote list
 if [[ $output == *"No Wii Remote found"* ]]; then
