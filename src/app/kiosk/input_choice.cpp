@@ -153,12 +153,16 @@ IrLink ir_link(const KioskStage& s) {
     link.up = c.connected;
     if (!c.mode.device.empty()) link.identity = camera_identity(c.mode);
     link.problem = c.problem;
+    link.drops = c.losses;
+    link.last_drop = c.last_loss;
   } else if (s.device) {
     const input::wiimote::WiimoteState w = s.device->state();
     link.present = true;
     link.up = w.link == input::wiimote::LinkState::running;
     link.identity = remote_identity(w.device);
     link.problem = w.problem;
+    link.drops = w.disconnects;
+    link.last_drop = w.last_drop;
   }
   return link;
 }

@@ -29,14 +29,7 @@ struct InputDevices {
 //! remote's device and pointer or the mouse's. A bad replay file throws (FileError).
 void choose_input(KioskStage& stage, const InputDevices& devices);
 
-//! The IR tracker's link (the remote or the camera): the kiosk's states, log and metrics
-//! treat both alike.
-struct IrLink {
-  bool present = false;  //!< the stage has a remote or a camera
-  bool up = false;       //!< it runs (the remote's IR start-up done; the camera streams)
-  std::string identity;  //!< "Wii Remote 00:1f:…" / "camera USB Camera (usb-…)": the calibration's owner
-  std::string problem;   //!< why it is not up
-};
+//! The IR tracker's link now (link_watch.hpp's IrLink).
 IrLink ir_link(const KioskStage& stage);
 //! "camera USB Camera": a calibration's owner (not its /dev/videoN, which a replug may change).
 std::string camera_identity(const input::camera::CameraMode& mode);

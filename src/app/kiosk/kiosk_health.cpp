@@ -89,7 +89,7 @@ void KioskHealth::feed_metrics(Nanos now, const KioskStage& stage, const KioskSt
   }
   metrics_.observe_state(states.state(), states.since(), states.last_movement());
   // Lost only where it matters: a visitor plays, the remote runs, its camera sees no LED.
-  metrics_.observe_tracking((stage.device || stage.camera) && stage.link_up && states.visitor_plays() && !states.tracking(), now);
+  metrics_.observe_tracking((stage.device || stage.camera) && stage.link.up() && states.visitor_plays() && !states.tracking(), now);
   if (metrics_file_.due(now)) write_metrics(now, stage, win);
 }
 
@@ -101,7 +101,7 @@ void KioskHealth::write_metrics(Nanos now, const KioskStage& stage, const render
   metrics_.audio_output_latency_s = stage.output ? stage.output->output_latency_s() : kUnknown;
   metrics_.vulkan_device_memory_bytes = static_cast<double>(render::device_memory_bytes());
   metrics_.render_devices_lost = win.devices_lost();
-  metrics_.remote_connected = (stage.device || stage.camera) && stage.link_up;
+  metrics_.remote_connected = (stage.device || stage.camera) && stage.link.up();
   metrics_.remote_battery_ratio = kUnknown;
   if (stage.device)
     if (const std::optional<std::uint8_t> b = stage.device->state().remote.battery)

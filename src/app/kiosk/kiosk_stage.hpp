@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/kiosk/link_watch.hpp"
 #include "app/kiosk/metrics_file.hpp"
 #include "app/strike/mouse_pointer.hpp"
 #include "app/strike/remote_pointer.hpp"
@@ -73,7 +74,7 @@ struct KioskStage {
   //! The settings the camera's strike route runs on: the stage's, with contact prediction
   //! tuned for the camera (core/camera_prediction.hpp). `remote` holds it by reference.
   std::optional<AppConfig> camera_route_config;
-  bool link_up = false;
+  LinkWatch link;  //!< the IR tracker's link as the main loop last saw it
   bool checked_calibration = false;  //!< against the first connected remote's identity
   // The mouse read at its source (input.mouse = auto | evdev): its reading thread feeds
   // `mouse`, which posts strikes itself. Without it the window system's cursor events

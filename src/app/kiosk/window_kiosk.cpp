@@ -438,15 +438,15 @@ void WindowKiosk::poll_remote(Nanos now) {
   const IrLink link = ir_link(s);
   const bool up = link.up;
   const char* what = s.camera ? "" : "Wii Remote ";
-  if (up != s.link_up) {
-    s.link_up = up;
-    states_->remote_connected(now, up);
-    if (up) journal::notice("{}{} connected", what, link.identity.c_str());
+  // Every loss is told, also one the reading thread reopened from before this look.
+  for (const LinkChange& change : s.link.look(link)) {
+    states_->remote_connected(now, change.connected);
+    if (change.connected) journal::notice("{}{} connected", what, link.identity.c_str());
     else journal::warning("{}{} lost: {}", what, link.identity.empty() ? "camera" : link.identity.c_str(),
-                          link.problem.c_str());
+                          change.why.c_str());
     // A recording's timeline on the kiosk's clock (`mallet bench latency` maps its strokes' true
     // contacts with it).
-    if (up && s.replay)
+    if (change.connected && s.replay)
       journal::info("replay: the recording's time 0 is t={}", format_seconds(s.replay->last_origin()).c_str());
   }
   if (up && !s.checked_calibration && live_ir_tracker(s.source)) {

@@ -60,6 +60,8 @@ void CameraDevice::publish(bool connected, const std::string& problem) {
   status_.last_bad_frame = tracker_.bad_frame();
   if (status_.mode.stamping.empty()) status_.mode.stamping = grabber_->stamping();
   status_.reconnects = reconnects_;
+  status_.losses = losses_;
+  status_.last_loss = last_loss_;
 }
 
 bool CameraDevice::connect() {
@@ -107,6 +109,8 @@ void CameraDevice::run() {
       // fails at once is not reopened in a busy loop.
       next_attempt = clock_.now() + config_.reopen_interval_ns;
       sample = tracker_.lose(clock_.now());
+      ++losses_;
+      last_loss_ = got.error().message;
       publish(false, got.error().message);
     } else if (*got) {
       rate_.add(frame.t_ns);

@@ -46,6 +46,8 @@ struct CameraStatus {
   CameraTrackerCounters counters;
   std::string last_bad_frame;   //!< why the last unreadable frame was (counters.bad_frames)
   std::uint64_t reconnects = 0;
+  std::uint64_t losses = 0;     //!< times the open camera failed or went away (not stop())
+  std::string last_loss;        //!< why it last did, kept after the reopening
 };
 
 class CameraDevice {
@@ -83,6 +85,8 @@ class CameraDevice {
   CameraTracker tracker_;
   evdev::RateMeter rate_{4096};
   std::uint64_t reconnects_ = 0;
+  std::uint64_t losses_ = 0;
+  std::string last_loss_;
   bool ever_connected_ = false;
   // Shared.
   mutable std::mutex mutex_;

@@ -175,6 +175,7 @@ void WiimoteDevice::disconnect(Nanos now, std::string why) {
   transport_.reset();
   startup_.reset();
   ++disconnects_;
+  last_drop_ = why;
   problem_ = std::move(why);
   link_ = LinkState::searching;
   rumbling_ = false;
@@ -284,6 +285,7 @@ void WiimoteDevice::publish(Nanos now) {
   s.link = link_;
   s.device = device_;
   s.problem = problem_;
+  s.last_drop = last_drop_;
   s.startup = startup_.step();
   s.tracking = reports_.tracker().tracking();
   s.point = reports_.tracker().last_point();

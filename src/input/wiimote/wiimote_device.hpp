@@ -76,6 +76,7 @@ struct WiimoteState {
   LinkState link = LinkState::searching;
   HidDeviceInfo device;  //!< the open remote (or the last one)
   std::string problem;   //!< why the last attempt failed or the link dropped; cleared once running
+  std::string last_drop; //!< why the link last dropped (`disconnects`), kept once running again
   IrStartupStep startup = IrStartupStep::idle;
   bool tracking = false;
   std::optional<IrPoint> point;  //!< the last accepted LED position (kept after `lost`)
@@ -178,6 +179,7 @@ class WiimoteDevice {
   LinkState link_ = LinkState::searching;
   HidDeviceInfo device_;
   std::string problem_;
+  std::string last_drop_;
   Nanos last_rx_ns_ = 0;
   std::optional<Nanos> next_attempt_ns_;  //!< nothing: attempt now
   Nanos backoff_ns_;

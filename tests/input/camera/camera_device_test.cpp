@@ -86,6 +86,10 @@ TEST(CameraDevice, ACameraThatGoesAwayIsLostThenOpenedAgain) {
   device.stop();
   EXPECT_EQ(grabber->opens(), 2);
   EXPECT_EQ(device.status().reconnects, 1u);
+  // The loss is counted with its reason, kept after the reopening (and stop() is no loss):
+  // the kiosk tells a loss it did not see because the camera was back before it looked.
+  EXPECT_EQ(device.status().losses, 1u);
+  EXPECT_EQ(device.status().last_loss, "/dev/video7: No such device");
   // 10 frames, `lost` when it went away, the 10 frames after the reopen (after them a
   // camera that sends nothing more loses the LED too: not counted here).
   int lost = 0, regained = 0;
