@@ -395,8 +395,13 @@ class Test:
                                      lambda: self.journal(since, grep="camera .* connected").strip(), 300)
             since2 = self.guest_time()
             self.out(f"python3 /opt/mallet-test/v4l2_disconnect.py {node}")
-            lost, _ = self.wait("'camera … lost' after vivid's Disconnect",
-                                lambda: self.journal(since2, grep="camera .* lost").strip(), 180)
+            try:
+                lost, _ = self.wait("'camera … lost' after vivid's Disconnect",
+                                    lambda: self.journal(since2, grep="camera .* lost").strip(), 180)
+            except VmError as e:
+                # What the driver did (its disconnect, and its reconnect once the last handle closed).
+                kernel = self.sh(f"journalctl -k --since @{since2} -o short-monotonic --no-pager | grep -i vivid")[1]
+                raise VmError(f"{e}; the kernel said: {kernel.strip()[-600:] or 'nothing of vivid'}") from None
             back, _ = self.wait("'camera … connected' again",
                                 lambda: self.journal(since2, grep="camera .* connected").strip(), 300)
             if self.unit()["ActiveState"] != "active":
