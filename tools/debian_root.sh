@@ -7,6 +7,7 @@
 # own (/proc, /sys, /dev and a fresh /tmp, gone when it ends). Needs root and mmdebstrap.
 #
 #   tools/debian_root.sh [--suite trixie] [--root DIR] [--clone NAME] [--keep-clone] -- COMMAND
+#   tools/debian_root.sh --help
 #
 #   --suite       the release (default trixie)
 #   --root        where the root lives (default /var/tmp/mallet-root-SUITE)
@@ -25,7 +26,8 @@ while (($#)); do
     --clone) clone=$2; shift ;;
     --keep-clone) keep=1 ;;
     --) shift; break ;;
-    *) echo "debian_root: unknown argument $1 (see the head of $0)" >&2; exit 2 ;;
+    -h | --help) sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "debian_root: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
