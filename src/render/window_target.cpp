@@ -60,6 +60,11 @@ WindowTarget::WindowTarget(const Context& ctx, const WindowOptions& options, Pre
     : ctx_(ctx), options_(options), clock_(clock ? clock : &own_clock_) {
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  // GLFW centres the cursor in a new fullscreen window by warping it there, and from then on
+  // takes any motion that ends exactly where it warped for its own: a visitor's (or a touch
+  // screen's, a remote desktop's) move to the screen's very centre was never seen. The
+  // cursor is left where it is (the kiosk asks where: seed_window_cursor).
+  glfwWindowHint(GLFW_CENTER_CURSOR, GLFW_FALSE);
   GLFWmonitor* monitor = nullptr;
   int width = options.width, height = options.height;
   int monitor_count = 0;

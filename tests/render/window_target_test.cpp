@@ -153,6 +153,49 @@ void resize_and_check(VkSampleCountFlagBits samples, bool put_changes) {
   EXPECT_EQ(w.ctx->validation_messages(), 0u) << w.ctx->first_validation_message();
 }
 
+//! Moves the X pointer to (x, y) of the root window and waits (bounded) for the window's
+//! cursor callback to say so; false if it never does.
+bool pointer_reaches(GLFWwindow* window, int x, int y) {
+  Display* d = glfwGetX11Display();
+  XWarpPointer(d, 0, DefaultRootWindow(d), 0, 0, 0, 0, x, y);
+  XSync(d, False);
+  for (int i = 0; i < 200; ++i) {
+    glfwWaitEventsTimeout(0.01);
+    const auto* heard = static_cast<const double*>(glfwGetWindowUserPointer(window));
+    if (heard[0] == x && heard[1] == y) return true;
+  }
+  return false;
+}
+
+// A fullscreen kiosk hears the pointer at the screen's exact centre: GLFW, which warped its
+// new fullscreen window's cursor there, took a later move to that point for its own and
+// dropped it (a touch screen's or a remote desktop's tap at the centre did nothing).
+TEST(WindowTarget, AFullscreenWindowHearsThePointerAtTheScreensExactCentre) {
+  WindowSystem system;
+  ContextOptions co;
+  co.device_name = "llvmpipe";
+  co.instance_extensions = WindowSystem::instance_extensions();
+  co.swapchain = true;
+  Context ctx(co);
+  WindowOptions wo;
+  wo.fullscreen = true;
+  WindowTarget target(ctx, wo);
+  int w = 0, h = 0;
+  glfwGetWindowSize(target.window(), &w, &h);
+  ASSERT_GT(w, 2);
+  double at[2] = {-1, -1};  // the last position the callback gave
+  glfwSetWindowUserPointer(target.window(), at);
+  glfwSetCursorPosCallback(target.window(), [](GLFWwindow* win, double x, double y) {
+    auto* p = static_cast<double*>(glfwGetWindowUserPointer(win));
+    p[0] = x;
+    p[1] = y;
+  });
+  ASSERT_TRUE(pointer_reaches(target.window(), w / 4, h / 4));
+  EXPECT_TRUE(pointer_reaches(target.window(), w / 2, h / 2)) << "the move to the centre was not heard";
+  glfwSetCursorPosCallback(target.window(), nullptr);
+  glfwSetWindowUserPointer(target.window(), nullptr);
+}
+
 class BothWays : public testing::TestWithParam<bool> {};
 INSTANTIATE_TEST_SUITE_P(WindowTarget, BothWays, testing::Values(true, false),
                          [](const testing::TestParamInfo<bool>& i) { return i.param ? "PutChanges" : "Swapchain"; });

@@ -668,8 +668,8 @@ void WindowKiosk::next_scene() {
 void WindowKiosk::seed_window_cursor() {
   // Where the window system's cursor already is: the mallet starts there, and the first move
   // from it is a visitor's. A move to where the cursor already is sends no event (the X
-  // server starts it at the screen's centre), so without this the mallet and the mouse
-  // calibration's centre target would wait for one.
+  // server starts it at the screen's centre; the window does not move it: WindowTarget), so
+  // without this the mallet and the mouse calibration's centre target would wait for one.
   double x = 0, y = 0;
   int w = 1, h = 1;
   glfwGetCursorPos(win_.window->window(), &x, &y);
