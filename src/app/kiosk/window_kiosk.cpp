@@ -611,15 +611,20 @@ void WindowKiosk::handle_keys(Nanos now) {
         journal::notice("operator: recalibrate");
         states_->recalibrate(now);
         break;
+      // A knob at its end stays there, and the journal gets no second line for it.
       case OperatorAction::volume_up:
       case OperatorAction::volume_down:
-        volume_ = knob_step(volume_, kVolumeKnob, action == OperatorAction::volume_up);
-        journal::notice("operator: volume {:.0f} %", volume_ * 100);
+        if (const double v = knob_step(volume_, kVolumeKnob, action == OperatorAction::volume_up); v != volume_) {
+          volume_ = v;
+          journal::notice("operator: volume {:.0f} %", volume_ * 100);
+        }
         break;
       case OperatorAction::gain_up:
       case OperatorAction::gain_down:
-        gain_ = knob_step(gain_, kGainKnob, action == OperatorAction::gain_up);
-        journal::notice("operator: actuator gain {:.2f}", gain_);
+        if (const double g = knob_step(gain_, kGainKnob, action == OperatorAction::gain_up); g != gain_) {
+          gain_ = g;
+          journal::notice("operator: actuator gain {:.2f}", gain_);
+        }
         break;
       case OperatorAction::next_material: next_wall_material(); break;
       case OperatorAction::next_scene: next_scene(); break;
