@@ -131,7 +131,7 @@ class Test:
         self.timings.append(("power-on → guest agent (booted)", seconds))
         u, waited = self.wait_active(900)
         to_active = time.monotonic() - self.vm.started
-        self.timings.append(("power-on → mallet.service active (READY=1 after the first frame)", to_active))
+        self.timings.append(("power-on → mallet.service active (READY=1 after the second frame)", to_active))
         mono = dict(line.split("=", 1) for line in self.out(
             "systemctl show mallet -p ExecMainStartTimestampMonotonic -p ActiveEnterTimestampMonotonic "
             "-p InactiveExitTimestampMonotonic").splitlines())

@@ -45,7 +45,8 @@ last-good-settings.toml at each start or reload that loaded), else on the shippe
 and says so (an error line naming the file and line, the operator page, `mallet doctor`).
 A state folder that cannot be written is said once; the kiosk plays on. Each strike and a
 heartbeat a minute are logged on stderr (journald priorities);
-under systemd: READY=1 after the first frame, WATCHDOG=1 while input, audio and render run.
+under systemd: READY=1 after the second frame (the first drawn over the cached background),
+WATCHDOG=1 while input, audio and render run.
 Without a display (DISPLAY and WAYLAND_DISPLAY unset) or with --headless: the same loop runs
 offscreen on a simulated 60 Hz clock for --seconds, the attract loop playing into a WAV file,
 and writes DIR/screenshot.png (the last frame), DIR/audio.wav (channels as [audio.routing])

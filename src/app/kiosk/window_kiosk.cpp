@@ -184,6 +184,7 @@ class WindowKiosk {
   };
   std::optional<PageShown> page_shown_;
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
+  bool ready_said_ = false;                //!< READY=1 sent (run(): after the second frame)
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
@@ -1005,7 +1006,18 @@ int WindowKiosk::run() {
     else if (win_.window->still())
       health_.frame_still();  // nothing changed: the screen shows this frame already
     work_ms_ = 0.9 * work_ms_ + 0.1 * to_seconds(monotonic_now() - now) * 1e3;
-    if (health_.frames() == 1) health_.notifier().ready();
+    // READY=1 once the frames cost what they will: after the first frame drawn whole and the
+    // first drawn over the cached background (only what changed), whose pipelines a software
+    // driver compiles at that first use. Mesa 25's lavapipe takes 1.6 s for that second frame
+    // where Mesa 22.3's took 0.4 s (a PC's CPU; then 50 ms a frame); in a slow machine that
+    // was over the watchdog's 10 s, which killed the kiosk right after READY=1, and each
+    // restart began again (the compile, lost with the kiosk, was never cached). Before
+    // READY=1, TimeoutStartSec= waits, as it does for the first frame. A still scene draws
+    // no second frame: it is ready as soon as the first is on the screen.
+    if (!ready_said_ && (health_.frames() >= 2 || (health_.frames() == 1 && win_.window->still()))) {
+      health_.notifier().ready();
+      ready_said_ = true;
+    }
     health_.beat(now, *stage_, *states_, win_);
   }
   health_.stop(monotonic_now(), *stage_, win_);
