@@ -44,7 +44,7 @@ std::uint64_t KioskHealth::strikes(const KioskStage& stage) const {
 
 void KioskHealth::heartbeat(Nanos now, const KioskStage& stage, const KioskStates& states) {
   const Nanos interval = notifier_.watchdog_interval().value_or(0);
-  const bool beat_due = interval > 0 && now >= next_watchdog_;
+  const bool beat_due = ready_ && interval > 0 && now >= next_watchdog_;
   const bool log_due = now >= next_log_;
   if (!beat_due && !log_due) return;
   const audio::OutputCounters a = stage.output ? stage.output->counters() : audio::OutputCounters{};

@@ -42,6 +42,13 @@ class KioskHealth {
   void frame_drawn() { ++frames_; }
   void frame_still() { ++still_frames_; }
   std::uint64_t frames() const { return frames_; }
+  //! READY=1 (once the frames cost what they will: WindowKiosk::run). systemd arms the
+  //! watchdog only then, so none is fed before: READY=1 is the first word it hears.
+  void ready() {
+    notifier_.ready();
+    ready_ = true;
+  }
+  bool said_ready() const { return ready_; }
 
   //! Once a loop: the watchdog and the heartbeat when due, the frame, the state and the
   //! tracking into the metrics, and the file when due.
@@ -73,6 +80,7 @@ class KioskHealth {
   SystemdNotifier notifier_ = SystemdNotifier::from_environment();
   Nanos next_watchdog_ = 0, next_log_;
   bool starving_ = false;  //!< the watchdog was not fed at the last beat
+  bool ready_ = false;     //!< READY=1 said
   std::uint64_t frames_ = 0, frames_at_beat_ = 0, polls_ = 0, polls_at_beat_ = 0;
   std::uint64_t still_frames_ = 0;  //!< frames not drawn: nothing on the screen would have changed
   std::uint64_t callbacks_at_beat_ = 0;

@@ -184,7 +184,6 @@ class WindowKiosk {
   };
   std::optional<PageShown> page_shown_;
   bool doctor_asked_ = false;              //!< D pressed: the checks run in this frame's overlay
-  bool ready_said_ = false;                //!< READY=1 sent (run(): after the second frame)
   std::vector<PointerSample> cursor_;      //!< the window's cursor events since the last frame
   std::optional<Vec2> last_cursor_;        //!< the latest of them (normalised screen)
   double volume_ = 0.8, gain_ = 0.2;       //!< the operator's knobs
@@ -1014,10 +1013,8 @@ int WindowKiosk::run() {
     // restart began again (the compile, lost with the kiosk, was never cached). Before
     // READY=1, TimeoutStartSec= waits, as it does for the first frame. A still scene draws
     // no second frame: it is ready as soon as the first is on the screen.
-    if (!ready_said_ && (health_.frames() >= 2 || (health_.frames() == 1 && win_.window->still()))) {
-      health_.notifier().ready();
-      ready_said_ = true;
-    }
+    if (!health_.said_ready() && (health_.frames() >= 2 || (health_.frames() == 1 && win_.window->still())))
+      health_.ready();
     health_.beat(now, *stage_, *states_, win_);
   }
   health_.stop(monotonic_now(), *stage_, win_);
