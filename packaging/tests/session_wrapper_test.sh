@@ -25,13 +25,22 @@ fail() {
 # The stand-in cage: logs what it was given, then runs its client as cage does (with
 # DISPLAY set to its Xwayland's display) and ends with it.
 # FAKE_CAGE=abort-on-stop: it then stays up and, told to stop (SIGTERM), aborts as Debian 12's
-# cage 0.1.4 does at the end of every stop; FAKE_CAGE=abort: it aborts by itself. `cage -v`
-# says FAKE_CAGE_VERSION (default 0.1.4, Debian 12's).
+# cage 0.1.4 does at the end of every stop; FAKE_CAGE=abort: it aborts by itself;
+# FAKE_CAGE=wait-for-client: its client runs beside it and, told to stop, it waits for the
+# client to end and ends with its status, as Debian 13's cage 0.2.0 does. `cage -v` says
+# FAKE_CAGE_VERSION (default 0.1.4, Debian 12's).
 cat >"$scratch/fakebin/cage" <<'CAGE'
 #!/bin/sh
 [ "$1" = -v ] && { echo "Cage version ${FAKE_CAGE_VERSION:-0.1.4}"; exit 0; }
 echo "XDG_RUNTIME_DIR=$XDG_RUNTIME_DIR WLR_RENDERER=${WLR_RENDERER:-} args=$*" >> "$FAKE_LOG"
 [ "$1" = -- ] && shift
+if [ "${FAKE_CAGE:-}" = wait-for-client ]; then
+  DISPLAY=:7 "$@" &
+  client=$!
+  trap 'wait "$client"; exit $?' TERM
+  wait "$client"
+  exit $?
+fi
 DISPLAY=:7 "$@"
 case "${FAKE_CAGE:-}" in
 abort-on-stop)
@@ -40,8 +49,10 @@ abort-on-stop)
 abort) trap - ABRT; kill -ABRT $$ ;;
 esac
 CAGE
-# The client ends with `exec sleep infinity`: here it ends at once.
-printf '#!/bin/sh\necho "sleep $*" >> "$FAKE_LOG"\n' >"$scratch/fakebin/sleep"
+# The client sleeps until the session stops: here its sleep ends at once (FAKE_SLEEP=real: it
+# does not).
+printf '#!/bin/sh\necho "sleep $*" >> "$FAKE_LOG"\n[ "${FAKE_SLEEP:-}" = real ] && exec /bin/sleep "$@"\nexit 0\n' \
+  >"$scratch/fakebin/sleep"
 # `mallet doctor --print-renderer` says $FAKE_RENDERER, or fails when it is empty.
 cat >"$scratch/fakebin/mallet" <<'MALLET'
 #!/bin/sh
@@ -106,6 +117,21 @@ stop_aborting 0.2.0
 grep -q 'cage 0.2.0 aborted while stopping' "$scratch/out" || fail "cage 0.2.0's abort was not said: $(cat "$scratch/out")"
 run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=abort && status=0 || status=$?
 ((status == 134)) || fail "cage aborting by itself: mallet-session exits $status, expected 134"
+
+# cage 0.2.0 told to stop waits for its client: the session ends the client too, so the stop
+# is clean and does not wait for systemd's kill (bounded here: 5 s).
+run -u WLR_RENDERER FAKE_RENDERER=pixman FAKE_CAGE=wait-for-client FAKE_CAGE_VERSION=0.2.0 FAKE_SLEEP=real &
+runner=$!
+for _ in $(seq 100); do [[ -e $scratch/run/display ]] && break; /bin/sleep 0.05; done
+/bin/sleep 0.2
+pkill -TERM -f "^/bin/sh $session\$" || fail "no mallet-session to stop"
+for _ in $(seq 100); do kill -0 "$runner" 2>/dev/null || break; /bin/sleep 0.05; done
+if kill -0 "$runner" 2>/dev/null; then
+  fail "mallet-session still runs 5 s after its stop while cage 0.2.0 waits for its client"
+  pkill -KILL -f "^/bin/sleep infinity\$"
+fi
+wait "$runner" && status=0 || status=$?
+((status == 0)) || fail "mallet-session stopped while cage 0.2.0 waits for its client exits $status: $(cat "$scratch/out")"
 
 # --wait: the display's socket there → 0 at once; absent → 1 after the limit, with a line.
 python3 -c 'import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$scratch/x11/X7"
