@@ -42,8 +42,9 @@ class KioskHealth {
   void frame_drawn() { ++frames_; }
   void frame_still() { ++still_frames_; }
   std::uint64_t frames() const { return frames_; }
-  //! READY=1 (once the frames cost what they will: WindowKiosk::run). systemd arms the
-  //! watchdog only then, so none is fed before: READY=1 is the first word it hears.
+  //! READY=1: at start-up once the frames cost what they will (WindowKiosk::run), and after
+  //! each reload. systemd arms the watchdog only at the first, so none is fed before it:
+  //! READY=1 is the first word it hears.
   void ready() {
     notifier_.ready();
     ready_ = true;

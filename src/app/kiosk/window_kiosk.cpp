@@ -885,7 +885,7 @@ int WindowKiosk::run() {
     if (reload_requested()) {
       health_.notifier().reloading();
       reload();
-      health_.notifier().ready();
+      health_.ready();
     }
     follow_screen_shape();
     handle_keys(now);
