@@ -19,7 +19,13 @@ struct DoctorOptions {
   std::string device;                               //!< Vulkan device (substring of its name)
   double remote_wait_s = 4.0;                       //!< how long a found remote may take to start its camera
   double camera_wait_s = 2.0;                       //!< how long a V4L2 camera is watched (rate, LED)
+  //! The checks to run and print, by name (doctor_check_names()); empty: every one. A device
+  //! not named is not opened (`--only wiimote,hidraw` draws no frame and opens no sound card).
+  std::vector<std::string> only;
 };
+
+//! Every check's name, in the order the doctor prints them.
+const std::vector<std::string>& doctor_check_names();
 
 //! What the running kiosk already knows of its devices (the operator page).
 struct KioskDeviceFacts {
@@ -54,8 +60,8 @@ CompositorRenderer kiosk_compositor_renderer(bool ask_unit);
 //! "wiimote".
 DoctorCheck wiimote_without_remote(const std::string& source);
 
-//! Every check, each device opened and released again. Never throws: a probe that fails is a
-//! `fail` line.
+//! Every check (or those `options.only` names), each device opened and released again. Never
+//! throws: a probe that fails is a `fail` line.
 std::vector<DoctorCheck> run_doctor(const DoctorOptions& options);
 
 //! The checks that open no device (the compositor's renderer, settings, scenes, models,

@@ -55,6 +55,40 @@ TEST(ConfigShow, PrintsTheMergedSettingsWithEachKeysFile) {
   EXPECT_EQ(std::system(check.c_str()), 0);
 }
 
+TEST(Doctor, OnlyRunsTheChecksNamedInItsOwnOrderAndRefusesAnUnknownName) {
+  no_display();
+  const fs::path dir = test::scratch_dir();
+  // Named out of order: printed in the doctor's order, and nothing else.
+  const test::CliResult r = test::run_mallet("doctor --only hidraw,settings,models 2>/dev/null");
+  std::istringstream lines(r.output);
+  std::string line;
+  std::vector<std::string> seen;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string level, name;
+    words >> level >> name;
+    seen.push_back(name);
+  }
+  EXPECT_EQ(seen, (std::vector<std::string>{"settings", "models", "hidraw"})) << r.output;
+  EXPECT_NE(r.output.find("ok    settings"), std::string::npos) << r.output;
+  // The JSON of a choice counts only what ran.
+  const test::CliResult j =
+      test::run_mallet("doctor --only settings,models --json > " + (dir / "d.json").string() + " 2>/dev/null; exit $?");
+  EXPECT_EQ(j.status, 0);
+  const std::string check =
+      "python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); c=d['checks'];"
+      "assert [x['name'] for x in c]==['settings','models'];"
+      "assert d['ok']+d['warn']+d['fail']==2\" " +
+      (dir / "d.json").string();
+  EXPECT_EQ(std::system(check.c_str()), 0);
+  // A name that is no check: refused before anything runs, naming the checks.
+  const test::CliResult bad = test::run_mallet("doctor --only wiimote,hidrawz 2>&1");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("hidrawz"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("calibration"), std::string::npos) << bad.output;
+  EXPECT_EQ(bad.output.find("ok    "), std::string::npos) << bad.output;
+}
+
 TEST(ConfigShow, TheKiosksMeasuredDropInsMergeWithTheOperatorsByName) {
   // The display latency the operator confirmed on the page lives in the state folder (the
   // kiosk's service may not write /etc); an operator's drop-in named later still wins.
