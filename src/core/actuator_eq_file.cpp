@@ -16,7 +16,7 @@ namespace mallet {
 
 namespace {
 
-constexpr std::int64_t kFormatVersion = 1;
+constexpr std::int64_t kEqFormatVersion = 1;
 
 std::optional<std::pair<std::string, std::string>> problem_of(const ActuatorEq& e) {
   if (!(e.sample_rate_hz >= 8000 && e.sample_rate_hz <= 384000))
@@ -45,11 +45,11 @@ std::string list(const std::vector<double>& v, int per_line) {
   return out + "\n]";
 }
 
-ActuatorEq read(const toml::table& root, const std::string& name) {
+ActuatorEq read_eq(const toml::table& root, const std::string& name) {
   config::TableReader top(root, name);
   const std::int64_t version = top.integer("format_version");
-  if (version != kFormatVersion)
-    top.fail("format_version", fmt::format("this mallet reads format_version = {}, got {}", kFormatVersion, version));
+  if (version != kEqFormatVersion)
+    top.fail("format_version", fmt::format("this mallet reads format_version = {}, got {}", kEqFormatVersion, version));
   ActuatorEq e;
   e.created_utc = top.string_or("created_utc", "");
   e.created_by = top.string_or("created_by", "");
@@ -108,11 +108,11 @@ int ActuatorEq::alignment_samples() const {
 }
 
 ActuatorEq parse_actuator_eq(std::string_view text, const std::string& name) {
-  return read(config::parse_text(text, name), name);
+  return read_eq(config::parse_text(text, name), name);
 }
 
 ActuatorEq load_actuator_eq(const std::filesystem::path& path) {
-  return read(config::parse_file(path), path.string());
+  return read_eq(config::parse_file(path), path.string());
 }
 
 std::string format_actuator_eq(const ActuatorEq& e) {
@@ -123,7 +123,7 @@ std::string format_actuator_eq(const ActuatorEq& e) {
          toml_text::comment(e.created_utc.empty() ? "an unknown time" : e.created_utc) + ",\n";
   out += "# and the inverse the kiosk applies to the actuator channel ([actuator] equalize).\n";
   out += "# Measure again (mallet calibrate actuator) whenever the stick, the actuator or the amplifier changes.\n";
-  out += fmt::format("format_version = {}\n", kFormatVersion);
+  out += fmt::format("format_version = {}\n", kEqFormatVersion);
   out += "created_utc = " + toml_text::quoted(e.created_utc) + "\n";
   out += "created_by = " + toml_text::quoted(e.created_by) + "\n";
   out += "sensor = " + toml_text::quoted(e.sensor) + "  # what recorded it\n";

@@ -19,7 +19,7 @@ namespace mallet {
 
 namespace {
 
-constexpr std::int64_t kFormatVersion = 1;
+constexpr std::int64_t kCalibrationFormatVersion = 1;
 
 // The first problem that would stop the kiosk from using a calibration: {key, message}.
 std::optional<std::pair<std::string, std::string>> problem_of(const Calibration& c) {
@@ -73,12 +73,12 @@ Calibration calibration_from_fit(const HomographyFit& fit, std::string created_b
 
 namespace {
 
-Calibration read(const toml::table& root, const std::string& name) {
+Calibration read_calibration(const toml::table& root, const std::string& name) {
   config::TableReader top(root, name);
   Calibration c;
   const std::int64_t version = top.integer("format_version");
-  if (version != kFormatVersion)
-    top.fail("format_version", "this mallet reads format_version = " + std::to_string(kFormatVersion) + ", got " +
+  if (version != kCalibrationFormatVersion)
+    top.fail("format_version", "this mallet reads format_version = " + std::to_string(kCalibrationFormatVersion) + ", got " +
                                    std::to_string(version));
   c.created_utc = top.string_or("created_utc", "");
   c.created_by = top.string_or("created_by", "");
@@ -107,11 +107,11 @@ Calibration read(const toml::table& root, const std::string& name) {
 }  // namespace
 
 Calibration parse_calibration(std::string_view text, const std::string& name) {
-  return read(config::parse_text(text, name), name);
+  return read_calibration(config::parse_text(text, name), name);
 }
 
 Calibration load_calibration(const std::filesystem::path& path) {
-  return read(config::parse_file(path), path.string());
+  return read_calibration(config::parse_file(path), path.string());
 }
 
 std::string format_calibration(const Calibration& c) {
@@ -123,7 +123,7 @@ std::string format_calibration(const Calibration& c) {
   out += "# Maps raw Wii Remote IR camera pixels (x 0..1023, y 0..767, not mirrored) to normalised\n"
          "# screen coordinates (0..1, origin top-left): [sx*w, sy*w, w] = matrix . [cam_x, cam_y, 1].\n"
          "# Refit (mallet calibrate fit) whenever the remote or the screen moves.\n";
-  out += "format_version = " + std::to_string(kFormatVersion) + "\n";
+  out += "format_version = " + std::to_string(kCalibrationFormatVersion) + "\n";
   out += "created_utc = " + toml_text::quoted(c.created_utc) + "\n";
   out += "created_by = " + toml_text::quoted(c.created_by) + "\n";
   if (!c.remote.empty()) out += "remote = " + toml_text::quoted(c.remote) + "  # the Wii Remote it was made with\n";

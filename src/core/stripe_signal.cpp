@@ -7,7 +7,7 @@
 namespace mallet {
 
 namespace {
-constexpr double kTwoPi = 2 * std::numbers::pi;
+constexpr double kStripeTwoPi = 2 * std::numbers::pi;
 }
 
 void StripePhase::update(double dt_s, double speed_m_per_s) {
@@ -30,8 +30,8 @@ double StripePhase::distance_at(double dt_s) const { return base_ + comp_ + spee
 double StripePhase::phase_at(double dt_s) const {
   // Reduce the distance modulo λ first so the phase keeps its precision after hours.
   const double cycles = std::fmod(base_, p_.wavelength_m) + comp_ + speed_ * std::max(0.0, dt_s);
-  double phase = std::fmod(kTwoPi * (cycles / p_.wavelength_m) + p_.phase_rad, kTwoPi);
-  if (phase < 0) phase += kTwoPi;
+  double phase = std::fmod(kStripeTwoPi * (cycles / p_.wavelength_m) + p_.phase_rad, kStripeTwoPi);
+  if (phase < 0) phase += kStripeTwoPi;
   return phase;
 }
 

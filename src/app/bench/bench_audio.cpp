@@ -26,17 +26,17 @@ namespace mallet::app {
 
 namespace {
 
-struct Row {
+struct VoiceRow {
   std::string what;
   double ns = 0;
   std::string note;
 };
 
-void print_rows(const char* title, const char* unit, const std::vector<Row>& rows) {
+void print_rows(const char* title, const char* unit, const std::vector<VoiceRow>& rows) {
   std::printf("\n%s\n", title);
   std::printf("| %-44s | %12s | %s\n", "", unit, "note");
   std::printf("|%s|%s|%s\n", std::string(46, '-').c_str(), std::string(14, '-').c_str(), "------");
-  for (const Row& r : rows) std::printf("| %-44s | %12.2f | %s\n", r.what.c_str(), r.ns, r.note.c_str());
+  for (const VoiceRow& r : rows) std::printf("| %-44s | %12.2f | %s\n", r.what.c_str(), r.ns, r.note.c_str());
 }
 
 }  // namespace
@@ -47,7 +47,7 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
   const int fs = 48000;
   const int n = fs * seconds_of_audio;
   const int runs = 7;
-  std::vector<Row> voice;
+  std::vector<VoiceRow> voice;
 
   // Eq. 1 evaluated directly (exp + sin per sample): the exact reference.
   const VibrationParams metal{2.0, 90.0, 300.0};
@@ -71,7 +71,7 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
   print_rows("Cost of one voice at 48 kHz (median of 7 runs)", "ns/sample", voice);
 
   // The engine with many voices: the share of one core a 64-frame callback takes.
-  std::vector<Row> engine_rows;
+  std::vector<VoiceRow> engine_rows;
   for (int voices : {16, 64, 256, 512}) {
     AppConfig config;
     config.audio.max_voices = voices;
@@ -102,7 +102,7 @@ void run_bench_audio(const std::filesystem::path& scene_path, int seconds_of_aud
 
   // Impact → first sample: where in the output stream an impact lands, relative to its
   // own time, for random impact times (sample arithmetic: exact, not wall time).
-  std::vector<Row> latency_rows;
+  std::vector<VoiceRow> latency_rows;
   std::mt19937 rng(1);
   for (int block : {16, 64, 256}) {
     for (double ahead : {0.0, 5.0}) {

@@ -41,7 +41,7 @@ cam::SynthScene scene_with(double read_noise, double shot_variance) {
   s.exposure_s = 0.001;
   return s;
 }
-constexpr cam::SynthSpot kReflection{560.0, 80.0, 2.0, 70.0, 0.0, 0.0};
+constexpr cam::SynthSpot kCameraReflection{560.0, 80.0, 2.0, 70.0, 0.0, 0.0};
 
 struct Frames {
   std::vector<std::vector<std::uint8_t>> grey, yuyv, mjpeg;
@@ -60,7 +60,7 @@ Frames make_frames(std::uint64_t seed) {
     cam::SynthScene s = scene_with(1.5, 0.1);
     s.spots.push_back({320 + radius * std::cos(a), 240 + radius * std::sin(a), 1.8, 200, -speed_px * std::sin(a),
                        speed_px * std::cos(a)});
-    s.spots.push_back(kReflection);
+    s.spots.push_back(kCameraReflection);
     synth.render(s, luma);
     f.grey.push_back(luma);
     f.yuyv.push_back(*cam::encode_frame(luma, kW, kH, cam::PixelFormat::yuyv));

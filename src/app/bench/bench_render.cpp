@@ -69,7 +69,7 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-struct Row {
+struct TimingRow {
   std::string what;
   double median_ms = 0, p95_ms = 0;
   double rms = -1, differing = -1;  // against the reference; < 0: not measured
@@ -100,7 +100,7 @@ render::FrameState bench_state(const Scene& scene) {
   return s;
 }
 
-Row time_frames(render::HeadlessRenderer& r, const render::FrameState& state, int frames, const std::string& what) {
+TimingRow time_frames(render::HeadlessRenderer& r, const render::FrameState& state, int frames, const std::string& what) {
   r.draw(state);  // warm-up: pipelines compiled, attachments made
   std::vector<double> ms;
   for (int i = 0; i < frames; ++i) {
@@ -163,7 +163,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
     render::Image reference =
         downsample_linear_light(make(1, true, {size.width * 2, size.height * 2})->render(state), 2);
 
-    std::vector<Row> rows;
+    std::vector<TimingRow> rows;
     {
       auto r = make(1, false, size);
       render::FrameState floor = state;
@@ -174,7 +174,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
     }
     {  // what the cached background saves: every frame draws every instrument
       auto r = make(1, true, size, false);
-      Row row = time_frames(*r, state, frames, "scene + shadow, whole, no AA");
+      TimingRow row = time_frames(*r, state, frames, "scene + shadow, whole, no AA");
       const render::ImageDiff d = render::compare_images(r->read_back(), reference, 3);
       row.rms = d.rms;
       row.differing = d.differing_fraction * 100;
@@ -200,7 +200,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
         rows.push_back({"bg MSAA " + std::to_string(background_msaa) + "x: not offered", 0, 0});
         continue;
       }
-      Row row = time_frames(*r, state, frames, "scene + shadow, bg MSAA " + std::to_string(background_msaa) + "x");
+      TimingRow row = time_frames(*r, state, frames, "scene + shadow, bg MSAA " + std::to_string(background_msaa) + "x");
       const render::ImageDiff d = render::compare_images(r->read_back(), reference, 3);
       row.rms = d.rms;
       row.differing = d.differing_fraction * 100;
@@ -214,7 +214,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
         rows.push_back({"MSAA " + std::to_string(msaa) + "x: not offered", 0, 0});
         continue;
       }
-      Row row = time_frames(*r, state, frames,
+      TimingRow row = time_frames(*r, state, frames,
                             msaa == 1 ? std::string("scene + shadow, no AA") : "scene + shadow, MSAA " +
                                                                                   std::to_string(msaa) + "x");
       const render::ImageDiff d = render::compare_images(r->read_back(), reference, 3);
@@ -228,7 +228,7 @@ void run(double kiosk_cpu_s, const std::filesystem::path& scene_file, int frames
     std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(30, '-').c_str(), std::string(11, '-').c_str(),
                 std::string(10, '-').c_str(), std::string(10, '-').c_str(), std::string(15, '-').c_str(),
                 std::string(14, '-').c_str());
-    for (const Row& row : rows) {
+    for (const TimingRow& row : rows) {
       const std::string rms = row.rms >= 0 ? fmt::format("{:.3f}", row.rms) : "";
       const std::string diff = row.rms >= 0 ? fmt::format("{:.3f}", row.differing) : "";
       if (row.median_ms == 0) {

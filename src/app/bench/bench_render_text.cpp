@@ -19,9 +19,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double elapsed_ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-double median(std::vector<double> v) {
+double median_ms(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
 }
@@ -71,9 +71,9 @@ void print_text_costs(const std::string& device, int frames) {
     for (int i = 0; i < frames; ++i) {
       const auto t0 = Clock::now();
       r.draw(s);
-      ms.push_back(ms_since(t0));
+      ms.push_back(elapsed_ms(t0));
     }
-    return median(ms);
+    return median_ms(ms);
   };
   r.draw(state);
   const double bare = time_frame(state);
@@ -103,20 +103,20 @@ void print_text_costs(const std::string& device, int frames) {
     };
     auto t0 = Clock::now();
     build();
-    const double first = ms_since(t0);
+    const double first = elapsed_ms(t0);
     const std::uint64_t set_first = font->shapings();
     std::vector<double> later;
     for (int i = 0; i < frames; ++i) {
       t0 = Clock::now();
       build();
-      later.push_back(ms_since(t0));
+      later.push_back(elapsed_ms(t0));
     }
     render::FrameState with = state;
     with.overlay = &overlay;
     r.draw(with);  // the atlas's first copy to the GPU
     const double frame = time_frame(with);
     std::printf("| %-8s | %16.2f | %16.3f | %15.2f | %15.2f | %5llu, %4llu | %12zu |\n", language.c_str(), first,
-                median(later), frame, frame - panel, static_cast<unsigned long long>(set_first),
+                median_ms(later), frame, frame - panel, static_cast<unsigned long long>(set_first),
                 static_cast<unsigned long long>(font->shapings() - set_first), font->glyphs_drawn());
   }
   use_visitor_language("en");

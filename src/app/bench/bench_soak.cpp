@@ -50,7 +50,7 @@ constexpr double kIdleAfterS = 20.0;
 constexpr Nanos kOnsetBefore = 10 * kMs, kOnsetAfter = 300 * kMs;
 
 //! The kiosk's output: its strike times as they arrive, every line kept in OUT/kiosk.log.
-struct KioskLog {
+struct SoakKioskLog {
   std::mutex mutex;
   bool started = false;
   std::deque<Nanos> strikes;  //!< not yet audited
@@ -76,7 +76,7 @@ struct Mapping {
   }
 };
 
-std::string settings_text(const std::filesystem::path& metrics) {
+std::string soak_settings_text(const std::filesystem::path& metrics) {
   std::string t = "# written by `mallet bench soak` for the kiosk under test\n";
   t += "[audio]\ndevice = \"system\"   # the JACK host API's device, on the bench's own JACK server\n";
   t += "sample_rate_hz = " + std::to_string(kRate) + "\n";
@@ -91,7 +91,7 @@ std::string settings_text(const std::filesystem::path& metrics) {
 class StrikeAudit {
  public:
   //! `lost_file`: a line for each lost strike, to look at it closer.
-  StrikeAudit(latency::JackRecorder& recorder, KioskLog& log, std::ofstream& lost_file, Nanos start)
+  StrikeAudit(latency::JackRecorder& recorder, SoakKioskLog& log, std::ofstream& lost_file, Nanos start)
       : recorder_(recorder), log_(log), lost_file_(lost_file), start_(start) {
     recorder_.start_recording(track_);
     lost_file_ << "hours,t_s,note_found,actuator_found,late_jack_cycles_near,ms_since_previous,ms_to_next\n" << std::flush;
@@ -146,7 +146,7 @@ class StrikeAudit {
 
  private:
   latency::JackRecorder& recorder_;
-  KioskLog& log_;
+  SoakKioskLog& log_;
   std::ofstream& lost_file_;
   Nanos start_ = 0, previous_ = 0;
   std::optional<Nanos> recorded_from_;  //!< the first recorded sample's time
@@ -204,7 +204,7 @@ int run_bench_soak(const SoakOptions& options) {
   std::filesystem::create_directories(options.out);
   const latency::KioskFolders folders("mallet-bench-soak");
   const std::filesystem::path& metrics = folders.metrics;
-  latency::write_text(folders.settings, settings_text(metrics));
+  latency::write_text(folders.settings, soak_settings_text(metrics));
   const Scene scene = config::load_scene(default_scene());
   if (scene.targets.empty()) throw std::runtime_error("bench soak: the shipped scene has no bars");
 
@@ -213,7 +213,7 @@ int run_bench_soak(const SoakOptions& options) {
   latency::JackRecorder recorder(jack.name(), 2);
   latency::FakePointer hand(x.name());
 
-  auto log = std::make_shared<KioskLog>();
+  auto log = std::make_shared<SoakKioskLog>();
   log->file.open(options.out / "kiosk.log");
   if (!log->file) throw std::runtime_error("bench soak: cannot write " + (options.out / "kiosk.log").string());
   const std::filesystem::path exe = latency::kiosk_executable("bench soak");

@@ -39,7 +39,7 @@ and still exits 0: "none found" is an answer, not a failure.)");
   });
 }
 
-struct MonitorCli {
+struct CameraMonitorCli {
   CameraMonitorOptions options;
   std::optional<std::filesystem::path> config = default_settings();
   std::optional<std::filesystem::path> config_dir;
@@ -47,7 +47,7 @@ struct MonitorCli {
   std::string dir = cam::kDefaultVideoDir;
 };
 
-void run_monitor(const MonitorCli& cli) {
+void camera_monitor_command(const CameraMonitorCli& cli) {
   if (!(cli.options.seconds >= 0 && cli.options.seconds <= 1e7))
     throw CLI::ValidationError("--seconds", "must be >= 0 (0 = until Ctrl+C)");
   const AppConfig config = command_settings(cli.config, cli.config_dir, "camera monitor");
@@ -61,7 +61,7 @@ void run_monitor(const MonitorCli& cli) {
 }
 
 void add_monitor(CLI::App& camera) {
-  auto cli = std::make_shared<MonitorCli>();
+  auto cli = std::make_shared<CameraMonitorCli>();
   CLI::App* cmd = camera.add_subcommand(
       "monitor", "Watch the camera as the kiosk reads it: its mode, the rate achieved, the LED's position and noise");
   cmd->footer(R"X(Opens the camera as the kiosk does ([camera] of the settings: device, size, rate_hz,
@@ -84,7 +84,7 @@ Exit 0 if the camera was open at some point, 1 if never (the reason is printed).
       ->type_name("D");
   cmd->add_option("--dir", cli->dir, "Where \"auto\" and a name look for video* nodes")->capture_default_str();
   add_settings_options(*cmd, cli->config, cli->config_dir);  // [camera], [tracking]
-  cmd->callback([cli] { run_monitor(*cli); });
+  cmd->callback([cli] { camera_monitor_command(*cli); });
 }
 
 }  // namespace

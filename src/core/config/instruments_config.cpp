@@ -38,7 +38,7 @@ ModalPreset read_preset(TableReader t, const std::string& name) {
   return p;
 }
 
-std::vector<ModalPreset> read(const toml::table& root, const std::string& file) {
+std::vector<ModalPreset> read_presets(const toml::table& root, const std::string& file) {
   TableReader top(root, file);
   TableReader all = top.table("instrument");
   top.finish();
@@ -52,11 +52,11 @@ std::vector<ModalPreset> read(const toml::table& root, const std::string& file) 
 }  // namespace
 
 std::vector<ModalPreset> load_instruments(const std::filesystem::path& path) {
-  return read(parse_file(path), path.string());
+  return read_presets(parse_file(path), path.string());
 }
 
 std::vector<ModalPreset> parse_instruments(std::string_view text, const std::string& name) {
-  return read(parse_text(text, name), name);
+  return read_presets(parse_text(text, name), name);
 }
 
 }  // namespace mallet::config

@@ -17,7 +17,7 @@ VibrationParams read_triple(TableReader t, std::string_view amplitude_key) {
   return p;
 }
 
-MaterialLibrary read(const toml::table& root, const std::string& file) {
+MaterialLibrary read_materials(const toml::table& root, const std::string& file) {
   TableReader top(root, file);
   TableReader all = top.table("material");
   top.finish();
@@ -47,11 +47,11 @@ MaterialLibrary read(const toml::table& root, const std::string& file) {
 }  // namespace
 
 MaterialLibrary load_materials(const std::filesystem::path& path) {
-  return read(parse_file(path), path.string());
+  return read_materials(parse_file(path), path.string());
 }
 
 MaterialLibrary parse_materials(std::string_view text, const std::string& name) {
-  return read(parse_text(text, name), name);
+  return read_materials(parse_text(text, name), name);
 }
 
 }  // namespace mallet::config
