@@ -20,6 +20,11 @@
 #                                   recorded commit)
 #   tools/idle_budget.sh --record   also append this tree's figures to the record (commit first)
 #   tools/idle_budget.sh --rebuild  build and measure the recorded commit whatever the ratio
+#   tools/idle_budget.sh --no-rebuild
+#                                   never build it: a crossing of the flag is then said
+#                                   against the recorded figures, with the verdict "unsure"
+#                                   (the machine or the code?); .ci/run passes it when too
+#                                   little of CI's time is left for a build (about 500 s)
 #   tools/idle_budget.sh --package-build DIR
 #                                   this tree's `mallet` is the one packaging/tests/
 #                                   build_package.sh built in DIR (the package tests'
@@ -36,6 +41,7 @@ seconds=${IDLE_BUDGET_SECONDS:-10}
 runs=${IDLE_BUDGET_RUNS:-1}
 record=0
 rebuild=0
+no_rebuild=0
 package_build=
 say() { echo "idle budget: $*"; }
 fail() { say "$*" >&2; exit 2; }
@@ -43,6 +49,7 @@ while (($#)); do
   case "$1" in
     --record) record=1 ;;
     --rebuild) rebuild=1 ;;
+    --no-rebuild) no_rebuild=1 ;;
     --package-build)
       [[ $# -ge 2 ]] || fail "--package-build needs the folder build_package.sh wrote"
       package_build=$2
@@ -52,14 +59,15 @@ while (($#)); do
   esac
   shift
 done
+((rebuild && no_rebuild)) && fail "--rebuild and --no-rebuild contradict each other"
 
 for program in Xvfb jackd git cmake dpkg-buildflags awk diff; do
   command -v "$program" >/dev/null || fail "needs $program"
 done
 [[ -f "$record_file" ]] || fail "no record: $record_file"
 # The last record: commit, attract, play, still (tab-separated, after the comments).
-read -r recorded_commit recorded_attract recorded_play recorded_still < <(
-  awk -F'\t' '!/^#/ && NF >= 6 { c = $2; a = $4; p = $5; s = $6 } END { print c, a, p, s }' "$record_file")
+read -r recorded_date recorded_commit recorded_attract recorded_play recorded_still < <(
+  awk -F'\t' '!/^#/ && NF >= 6 { d = $1; c = $2; a = $4; p = $5; s = $6 } END { print d, c, a, p, s }' "$record_file")
 [[ -n "$recorded_commit" ]] || fail "$record_file has no record"
 
 work=$(mktemp -d /var/tmp/mallet-idle-budget.XXXXXX)
@@ -143,7 +151,11 @@ crosses_flag() {  # this tree's attract or play at 1.5x the recorded figures or 
   return 1
 }
 recorded_figures=("$recorded_attract" "$recorded_play" "$recorded_still")
-if [[ -z "$recorded_bin" ]] && { ((rebuild)) || crosses_flag; }; then
+unsure=0
+if [[ -z "$recorded_bin" ]] && ((no_rebuild)) && crosses_flag; then
+  say "at 1.5x the recorded figures or more, recorded on $recorded_date, perhaps on another machine: the code is not told from the machine here (--no-rebuild); tools/idle_budget.sh --rebuild measures the recorded commit beside this tree"
+  unsure=1
+elif [[ -z "$recorded_bin" ]] && { ((rebuild)) || crosses_flag; }; then
   # The recorded commit built and measured here: is it the code or this machine?
   if ! git -C "$root" cat-file -e "$recorded_commit^{commit}" 2>/dev/null; then
     say "the recorded commit $recorded_commit is not in this clone: only the recorded figures are compared"
@@ -180,7 +192,10 @@ for i in 0 1; do  # the still scene is too small a figure for a ratio: it has it
   [[ "${then_[$i]}" =~ ^[0-9.]+$ ]] || { say "${names[$i]}: no recorded figure to compare with"; continue; }
   ratio=$(awk -v a="${this[$i]}" -v b="${then_[$i]}" 'BEGIN { printf "%.2f", a / (b + 1e-4) }')
   say "${names[$i]} ${ratio}x the recorded commit's"
-  if above "$ratio" 1.5; then
+  if above "$ratio" 1.5 && ((unsure)); then
+    say "unsure: ${names[$i]} costs ${ratio}x the recorded figures (${this[$i]} % of a core against ${then_[$i]} %), this machine or the code"
+    [[ "$verdict" == regression ]] || verdict=unsure
+  elif above "$ratio" 1.5; then
     say "REGRESSION: ${names[$i]} costs ${ratio}x the recorded commit's (${this[$i]} % of a core against ${then_[$i]} %)"
     verdict=regression
   fi
