@@ -654,9 +654,10 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
 }
 
 const std::vector<std::string>& doctor_check_names() {
-  static const std::vector<std::string> names{"vulkan",   "compositor", "audio",   "wiimote", "camera",  "settings",
-                                              "models",   "soundfont",  "languages", "language", "actuator", "latency",
-                                              "display",  "hidraw",     "calibration", "disk",   "service", "watchdog"};
+  static const std::vector<std::string> names{"vulkan",   "compositor", "audio",       "wiimote", "camera",
+                                              "settings", "models",     "soundfont",   "languages", "language",
+                                              "actuator", "latency",    "display",     "hidraw",  "calibration",
+                                              "disk",     "service",    "watchdog"};
   return names;
 }
 
