@@ -229,10 +229,15 @@ class Test:
                                     lambda: self.journal(since, grep="^strike t=").strip().splitlines(), 180)
         # The visitor took over from the attract mode's ghost: the next heartbeat (one a minute)
         # says play. The visitor stays (the mouse nudged now and then), or the kiosk would go
-        # back to its attract mode before the heartbeat comes.
+        # back to its attract mode before the heartbeat comes. A nudge is real movement only
+        # past the kiosk's dead band (0.005 of the screen: 2 px at 576 was not, and the scenario
+        # passed only when a heartbeat fell within the 45 s idle rule after the last stroke);
+        # sideways, so that it strikes nothing, and one way a look (the kiosk draws a frame every
+        # second or so under TCG: there and back within one would be no movement at all).
+        nudge = [max(12, int(0.012 * w))]
         def still_playing():
-            qmp.move(0, -2)
-            qmp.move(0, 2)
+            qmp.move(nudge[0], 0)
+            nudge[0] = -nudge[0]
             return self.journal(since, grep="^heartbeat: play").strip()
         beat, _ = self.wait("a heartbeat saying play after the mouse's downstrokes", still_playing, 150)
         self.screen("vm-play")
