@@ -194,7 +194,7 @@ for i in 0 1; do  # the still scene is too small a figure for a ratio: it has it
   say "${names[$i]} ${ratio}x the recorded commit's"
   if above "$ratio" 1.5 && ((unsure)); then
     say "unsure: ${names[$i]} costs ${ratio}x the recorded figures (${this[$i]} % of a core against ${then_[$i]} %), this machine or the code"
-    [[ "$verdict" == regression ]] || verdict=unsure
+    verdict=unsure
   elif above "$ratio" 1.5; then
     say "REGRESSION: ${names[$i]} costs ${ratio}x the recorded commit's (${this[$i]} % of a core against ${then_[$i]} %)"
     verdict=regression
