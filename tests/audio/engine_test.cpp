@@ -267,7 +267,7 @@ TEST(AudioEngine, RefusesSettingsItCannotHonourBeforeAnyAudioRuns) {
 }
 
 // The shipped scene's own acoustic presets (config/instruments.toml), as audio_setup picks them.
-std::vector<ModalPreset> shipped_presets() {
+std::vector<ModalPreset> shipped_scene_presets() {
   const std::vector<ModalPreset> library = config::load_instruments(percussion().instruments_file);
   std::vector<ModalPreset> presets;
   for (const Instrument& inst : percussion().instruments) presets.push_back(*find_named(library, inst.voice));
@@ -302,7 +302,7 @@ TEST(AudioEngine, NoVolumeOrGainTheSettingsAllowDrivesEitherChannelToFullScale) 
   EngineSettings quiet;
   quiet.acoustic_volume = 0.01;
   quiet.actuator.gain = 0.001;
-  AudioEngine reference(percussion(), shipped_presets(), quiet);
+  AudioEngine reference(percussion(), shipped_scene_presets(), quiet);
   const auto raw = run(reference, impacts, 48000, 256);
   ASSERT_LT(peak(channel(raw, 2, 0)), 0.9);
   ASSERT_LT(peak(channel(raw, 2, 1)), 0.9);
@@ -315,7 +315,7 @@ TEST(AudioEngine, NoVolumeOrGainTheSettingsAllowDrivesEitherChannelToFullScale) 
       EngineSettings s;
       s.acoustic_volume = volume;
       s.actuator.gain = gain;
-      AudioEngine engine(percussion(), shipped_presets(), s);
+      AudioEngine engine(percussion(), shipped_scene_presets(), s);
       const auto out = run(engine, impacts, 48000, 256);
       for (std::size_t i = 0; i < out.size(); ++i) {
         ASSERT_TRUE(std::isfinite(out[i]));
@@ -328,7 +328,7 @@ TEST(AudioEngine, NoVolumeOrGainTheSettingsAllowDrivesEitherChannelToFullScale) 
   mono.routing = {1, 0, 0};
   mono.acoustic_volume = kVolumeKnob.hi;
   mono.actuator.gain = kGainKnob.hi;
-  AudioEngine engine(percussion(), shipped_presets(), mono);
+  AudioEngine engine(percussion(), shipped_scene_presets(), mono);
   for (float x : run(engine, impacts, 48000, 256)) ASSERT_LE(std::fabs(x), ceiling);
 }
 
@@ -338,11 +338,11 @@ TEST(AudioEngine, AtVolumeFourTenSecondsOfPlayHaveNoSampleAtFullScale) {
   const std::vector<Impact> impacts = busy_visitor(10.0);
   EngineSettings s;
   s.acoustic_volume = 4.0;
-  AudioEngine engine(percussion(), shipped_presets(), s);
+  AudioEngine engine(percussion(), shipped_scene_presets(), s);
   const auto out = run(engine, impacts, 10 * 48000, 512);
   EngineSettings unit;
   unit.acoustic_volume = 1.0 / 64;  // linear: below the threshold throughout
-  AudioEngine reference(percussion(), shipped_presets(), unit);
+  AudioEngine reference(percussion(), shipped_scene_presets(), unit);
   const auto raw = channel(run(reference, impacts, 10 * 48000, 512), 2, 0);
   ASSERT_LT(peak(raw), 0.9);
 
@@ -366,13 +366,13 @@ TEST(AudioEngine, ALoudSpeakerNeverTurnsTheActuatorDownNorDelaysEither) {
   EngineSettings loud, soft;
   loud.acoustic_volume = kVolumeKnob.hi;
   soft.acoustic_volume = 0.1;
-  AudioEngine a(percussion(), shipped_presets(), loud), b(percussion(), shipped_presets(), soft);
+  AudioEngine a(percussion(), shipped_scene_presets(), loud), b(percussion(), shipped_scene_presets(), soft);
   const auto x = run(a, impacts, 48000, 128), y = run(b, impacts, 48000, 128);
   EXPECT_GT(a.counters().clipped, 0u);  // the speaker was limited
   EXPECT_EQ(channel(x, 2, 1), channel(y, 2, 1));
   EXPECT_EQ(first_nonzero(channel(x, 2, 0)), first_nonzero(channel(y, 2, 0)));
   const Nanos t = 96 * kNanosPerSecond / 48000 + 7'000;
-  AudioEngine c(percussion(), shipped_presets(), loud);
+  AudioEngine c(percussion(), shipped_scene_presets(), loud);
   const auto one = run(c, {strike(3, t, 3.0)}, 4800, 64);
   const std::int64_t own = (t * 48000 + kNanosPerSecond - 1) / kNanosPerSecond;
   EXPECT_EQ(first_nonzero(channel(one, 2, 0)), own);

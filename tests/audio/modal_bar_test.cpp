@@ -72,11 +72,11 @@ void fft(std::vector<std::complex<double>>& x) {
 
 // |X|² of a whole decayed note (no window is needed: it starts at sin(0) and has died
 // away before the end, so each partial's line is a Lorentzian without leakage).
-struct Spectrum {
+struct BarSpectrum {
   std::vector<double> power;
   double bin_hz = 0;
 
-  Spectrum(const std::vector<double>& y, int rate) {
+  BarSpectrum(const std::vector<double>& y, int rate) {
     std::vector<std::complex<double>> x(y.begin(), y.end());
     fft(x);
     power.resize(x.size() / 2);
@@ -153,7 +153,7 @@ TEST(ModalBar, EveryBarOfTheShippedSceneIsWithinFiveCentsOfEqualTemperament) {
           if (p.name == inst.voice) preset = &p;
     ASSERT_NE(preset, nullptr) << t.instrument;
     const double expected = note_frequency_hz(t.note, 440.0);  // 440·2^((n−69)/12)
-    const Spectrum spectrum(render(*preset, t.frequency_hz, preset->reference_speed_m_per_s), kRate);
+    const BarSpectrum spectrum(render(*preset, t.frequency_hz, preset->reference_speed_m_per_s), kRate);
     // The fundamental is the strongest line of the whole audible spectrum.
     const double measured = spectrum.peak_hz(20.0, 20000.0);
     EXPECT_LT(std::fabs(cents(measured, expected)), 5.0)
@@ -170,7 +170,7 @@ TEST(ModalBar, RenderedPartialsAreAtTheConfiguredRatios) {
                {"xylophone", 72, {3.0}},             {"xylophone", 84, {3.0}}};
   for (const Case& c : cases) {
     const double f0 = note_frequency_hz(c.note);
-    const Spectrum spectrum(render(shipped(c.preset), f0, 3.0), kRate);
+    const BarSpectrum spectrum(render(shipped(c.preset), f0, 3.0), kRate);
     const double fundamental = spectrum.peak_hz(0.9 * f0, 1.1 * f0);
     for (double r : c.ratios) {
       // Search ±10% around the expected partial: a bar with the wrong ratio (e.g. 3 instead
@@ -194,7 +194,7 @@ TEST(ModalBar, FasterStrikeIsLouderAndBrighterAndZeroAtRest) {
         peak = std::max(peak, std::fabs(s));
         energy += s * s;
       }
-      const Spectrum spectrum(y, kRate);
+      const BarSpectrum spectrum(y, kRate);
       const double share = spectrum.energy(1.5 * f0, 0.5 * kRate) / spectrum.energy(0, 0.5 * kRate);
       const double fundamental = spectrum.max_in(0.95 * f0, 1.05 * f0);
       EXPECT_GT(peak, last_peak) << name << " v = " << v;
@@ -229,7 +229,7 @@ TEST(ModalBar, BrightnessZeroKeepsTheTimbre) {
   ModalPreset p = shipped("glockenspiel");
   p.brightness = 0.0;
   const double f0 = note_frequency_hz(88);
-  const Spectrum slow(render(p, f0, 0.5), kRate), fast(render(p, f0, 8.0), kRate);
+  const BarSpectrum slow(render(p, f0, 0.5), kRate), fast(render(p, f0, 8.0), kRate);
   const double share_slow = slow.energy(1.5 * f0, 0.5 * kRate) / slow.energy(0, 0.5 * kRate);
   const double share_fast = fast.energy(1.5 * f0, 0.5 * kRate) / fast.energy(0, 0.5 * kRate);
   EXPECT_NEAR(share_fast, share_slow, 1e-9);
@@ -294,7 +294,7 @@ TEST(ModalBar, ModesAtOrAboveFortyFivePercentOfTheRateAreLeftOut) {
   EXPECT_EQ(voice.active_modes(), 3);
 
   const std::vector<double> y = render(xylophone, f0, 3.0, 0.0, kLowRate, std::size_t{1} << 16);
-  const Spectrum spectrum(y, kLowRate);
+  const BarSpectrum spectrum(y, kLowRate);
   const double alias_hz = kLowRate - 6.0 * f0;
   const double fundamental = spectrum.max_in(0.95 * f0, 1.05 * f0);
   // Had the 6× mode been rendered, its alias would stand ~27 dB below the fundamental;

@@ -14,10 +14,10 @@
 namespace mallet::audio {
 namespace {
 
-constexpr int kRate = 48000;
+constexpr int kLimiterRate = 48000;
 
 TEST(PeakLimiter, BelowTheThresholdTheOutputIsTheInputBitForBit) {
-  PeakLimiter limiter(0.9, kRate);
+  PeakLimiter limiter(0.9, kLimiterRate);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> level(-0.9, 0.9);
   for (int i = 0; i < 100000; ++i) {
@@ -31,10 +31,10 @@ TEST(PeakLimiter, BelowTheThresholdTheOutputIsTheInputBitForBit) {
 
 TEST(PeakLimiter, AFullScaleSquareStaysUnderTheCeiling) {
   for (double height : {1.0, 4.0, 1e3, 1e9}) {
-    PeakLimiter limiter(0.9, kRate);
+    PeakLimiter limiter(0.9, kLimiterRate);
     double peak = 0;
     int over_threshold = 0;
-    for (int i = 0; i < kRate; ++i) {
+    for (int i = 0; i < kLimiterRate; ++i) {
       const double x = (i / 24) % 2 ? height : -height;  // 1 kHz
       const auto y = static_cast<float>(limiter.tick(x));
       peak = std::max(peak, static_cast<double>(std::fabs(y)));
@@ -49,7 +49,7 @@ TEST(PeakLimiter, AFullScaleSquareStaysUnderTheCeiling) {
 }
 
 TEST(PeakLimiter, ASingleSampleSpikeIsCaughtOnItsOwnSampleThenReleased) {
-  PeakLimiter limiter(0.9, kRate);
+  PeakLimiter limiter(0.9, kLimiterRate);
   for (int i = 0; i < 100; ++i) ASSERT_EQ(limiter.tick(0.5), 0.5);
   const double spike = limiter.tick(50.0);
   EXPECT_LE(spike, PeakLimiter::kCeiling);
@@ -59,9 +59,9 @@ TEST(PeakLimiter, ASingleSampleSpikeIsCaughtOnItsOwnSampleThenReleased) {
   EXPECT_LT(held, 0.5);
   EXPECT_GT(held, 0.0);
   double last = held;
-  const int hold = static_cast<int>(std::ceil(PeakLimiter::kHoldS * kRate));
+  const int hold = static_cast<int>(std::ceil(PeakLimiter::kHoldS * kLimiterRate));
   for (int i = 1; i < hold; ++i) ASSERT_EQ(limiter.tick(0.5), held) << "held " << i;
-  for (int i = 0; i < kRate && limiter.limiting(); ++i) {
+  for (int i = 0; i < kLimiterRate && limiter.limiting(); ++i) {
     const double y = limiter.tick(0.5);
     ASSERT_GE(y, last) << "release " << i;  // recovers monotonically
     ASSERT_LE(y, 0.5);
@@ -73,7 +73,7 @@ TEST(PeakLimiter, ASingleSampleSpikeIsCaughtOnItsOwnSampleThenReleased) {
 }
 
 TEST(PeakLimiter, NoInputEscapesTheCeiling) {
-  PeakLimiter limiter(0.5, kRate);
+  PeakLimiter limiter(0.5, kLimiterRate);
   const double inf = std::numeric_limits<double>::infinity();
   for (double x : {inf, -inf, std::numeric_limits<double>::max(), -1e300, 0.7, -0.99, 1e-300}) {
     const double y = limiter.tick(x);
@@ -94,10 +94,10 @@ TEST(PeakLimiter, NoInputEscapesTheCeiling) {
 TEST(PeakLimiter, ALoudNoteKeepsItsWaveformAfterItsFirstPeak) {
   // A decaying 440 Hz sinusoid at 4× full scale: after the first quarter-cycle the gain
   // moves slowly, so the output is the input times a near-constant gain (not a square wave).
-  PeakLimiter limiter(0.9, kRate);
-  std::vector<double> x(kRate / 4), y(x.size()), g(x.size());
+  PeakLimiter limiter(0.9, kLimiterRate);
+  std::vector<double> x(kLimiterRate / 4), y(x.size()), g(x.size());
   for (std::size_t n = 0; n < x.size(); ++n) {
-    const double t = static_cast<double>(n) / kRate;
+    const double t = static_cast<double>(n) / kLimiterRate;
     x[n] = 4.0 * std::exp(-3.0 * t) * std::sin(2 * 3.141592653589793 * 440 * t);
     y[n] = limiter.tick(x[n]);
     g[n] = limiter.gain();
@@ -112,11 +112,11 @@ TEST(PeakLimiter, ALoudNoteKeepsItsWaveformAfterItsFirstPeak) {
 }
 
 TEST(PeakLimiter, RefusesAThresholdAtOrAboveItsCeiling) {
-  EXPECT_THROW(PeakLimiter(PeakLimiter::kCeiling, kRate), std::invalid_argument);
-  EXPECT_THROW(PeakLimiter(0.0, kRate), std::invalid_argument);
+  EXPECT_THROW(PeakLimiter(PeakLimiter::kCeiling, kLimiterRate), std::invalid_argument);
+  EXPECT_THROW(PeakLimiter(0.0, kLimiterRate), std::invalid_argument);
   EXPECT_THROW(PeakLimiter(0.9, 0), std::invalid_argument);
-  EXPECT_NO_THROW(PeakLimiter(kMaxSoftClipKnee, kRate));  // every knee the settings allow
-  EXPECT_NO_THROW(PeakLimiter(kMinSoftClipKnee, kRate));
+  EXPECT_NO_THROW(PeakLimiter(kMaxSoftClipKnee, kLimiterRate));  // every knee the settings allow
+  EXPECT_NO_THROW(PeakLimiter(kMinSoftClipKnee, kLimiterRate));
 }
 
 }  // namespace

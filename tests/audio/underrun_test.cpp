@@ -29,11 +29,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kRate = 48000;
+constexpr int kUnderrunRate = 48000;
 
 // Polls with small sleeps until `done()`; the cap only keeps a broken stream from hanging.
 template <class Done>
-bool wait_until(Done done) {
+bool poll_until(Done done) {
   for (int i = 0; i < 30000; ++i) {
     if (done()) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -59,7 +59,7 @@ class UnderrunTest : public ::testing::Test {
 
   static AppConfig config() {
     AppConfig c;
-    c.audio.sample_rate_hz = kRate;
+    c.audio.sample_rate_hz = kUnderrunRate;
     c.audio.min_latency_ms = 10;  // 10 ms + a period: under the card's 30 ms stalls
     return c;
   }
@@ -67,7 +67,7 @@ class UnderrunTest : public ::testing::Test {
   // Frames go on flowing: `more` frames after the call.
   static bool keeps_playing(const PortAudioOutput& out, std::uint64_t more) {
     const std::uint64_t from = out.counters().frames;
-    return wait_until([&] { return out.counters().frames >= from + more; });
+    return poll_until([&] { return out.counters().frames >= from + more; });
   }
 
   fs::path dir_;
@@ -76,15 +76,15 @@ class UnderrunTest : public ::testing::Test {
 TEST_F(UnderrunTest, UnderrunsAreCountedAndTheStreamPlaysOn) {
   AppConfig c = config();
   c.audio.grow_after_underruns = 0;  // never grow: every stall underruns
-  AudioRig rig = make_audio_rig(test::percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(test::percussion(), c, kUnderrunRate, false);
   PortAudioOutput out(*rig.engine, c.audio);
   EXPECT_DOUBLE_EQ(out.requested_latency_s(), 0.010);
   out.start();
-  ASSERT_TRUE(wait_until([&] { return out.counters().xruns >= 10; })) << out.counters().xruns << " underruns";
-  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  ASSERT_TRUE(poll_until([&] { return out.counters().xruns >= 10; })) << out.counters().xruns << " underruns";
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate / 2));
   // A strike posted between underruns is still consumed and rendered.
   ASSERT_TRUE(rig.engine->post(test::strike(3, 0, 1.0)));
-  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate / 2));
   out.stop();
   const OutputCounters n = out.counters();
   EXPECT_TRUE(out.counters().xruns >= 10);
@@ -98,19 +98,19 @@ TEST_F(UnderrunTest, RepeatedUnderrunsGrowTheBufferUpToItsCeilingWhileThePlayGoe
   c.audio.grow_after_underruns = 3;
   c.audio.underrun_window_ms = 60000;
   c.audio.max_latency_ms = 40;  // 10 → 20 (still under the stalls) → 40 ms, and no further
-  AudioRig rig = make_audio_rig(test::percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(test::percussion(), c, kUnderrunRate, false);
   PortAudioOutput out(*rig.engine, c.audio);
   const double first_latency = out.output_latency_s();
   out.start();
-  ASSERT_TRUE(wait_until([&] { return out.counters().buffer_growths >= 2; }))
+  ASSERT_TRUE(poll_until([&] { return out.counters().buffer_growths >= 2; }))
       << out.counters().xruns << " underruns, " << out.counters().buffer_growths << " growths";
   EXPECT_DOUBLE_EQ(out.requested_latency_s(), 0.040);
   EXPECT_GT(out.output_latency_s(), first_latency);
   EXPECT_TRUE(out.device_ok());
-  EXPECT_TRUE(keeps_playing(out, kRate));
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate));
   // At the ceiling, neither underruns nor an operator's request grow it further.
   out.grow_buffer();
-  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate / 2));
   out.stop();
   const OutputCounters n = out.counters();
   EXPECT_GE(n.xruns, 6u);  // grow_after_underruns at 10 ms, again at 20 ms
@@ -134,14 +134,14 @@ TEST_F(UnderrunTest, ADeviceThatKeepsItsBufferIsReopenedOnceNotOverAndOver) {
   c.audio.grow_after_underruns = 2;
   c.audio.underrun_window_ms = 60000;
   c.audio.max_latency_ms = 100;  // doubled up to here, were each reopen taken for a growth
-  AudioRig rig = make_audio_rig(test::percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(test::percussion(), c, kUnderrunRate, false);
   PortAudioOutput out(*rig.engine, c.audio);
   const double first_latency = out.output_latency_s(), first_asked = out.requested_latency_s();
   ASSERT_LT(2 * first_asked, c.audio.max_latency_ms / 1000);  // room for more than one doubling
   out.start();
   // Underruns well past what four more reopens would have needed (two each).
-  ASSERT_TRUE(wait_until([&] { return out.counters().xruns >= 14; })) << out.counters().xruns << " underruns";
-  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  ASSERT_TRUE(poll_until([&] { return out.counters().xruns >= 14; })) << out.counters().xruns << " underruns";
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate / 2));
   out.stop();
   const OutputCounters n = out.counters();
   EXPECT_EQ(n.buffer_growths, 0u);                     // the one reopen grew nothing
@@ -154,18 +154,18 @@ TEST_F(UnderrunTest, AGrownBufferSurvivesADeviceReopen) {
   AppConfig c = config();
   c.audio.grow_after_underruns = 2;
   c.audio.underrun_window_ms = 60000;
-  AudioRig rig = make_audio_rig(test::percussion(), c, kRate, false);
+  AudioRig rig = make_audio_rig(test::percussion(), c, kUnderrunRate, false);
   PortAudioOutput::Options o;
   o.first_retry = std::chrono::milliseconds(5);
   PortAudioOutput out(*rig.engine, c.audio, o);
   out.start();
-  ASSERT_TRUE(wait_until([&] { return out.counters().buffer_growths >= 1; }));
+  ASSERT_TRUE(poll_until([&] { return out.counters().buffer_growths >= 1; }));
   const double grown = out.requested_latency_s();
   EXPECT_GE(grown, 0.020);
   out.drop_device();
-  ASSERT_TRUE(wait_until([&] { return out.counters().reopens >= 1; }));
+  ASSERT_TRUE(poll_until([&] { return out.counters().reopens >= 1; }));
   EXPECT_GE(out.requested_latency_s(), grown);
-  EXPECT_TRUE(keeps_playing(out, kRate / 2));
+  EXPECT_TRUE(keeps_playing(out, kUnderrunRate / 2));
   out.stop();
 }
 

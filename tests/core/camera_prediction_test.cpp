@@ -24,7 +24,7 @@ namespace {
 
 using test::percussion;
 
-constexpr Nanos kT0 = 40 * 86'400 * kNanosPerSecond;
+constexpr Nanos kCameraT0 = 40 * 86'400 * kNanosPerSecond;
 constexpr double kRates[] = {120.0, 240.0};
 
 //! The shipped presets tuned for the corpus's V4L2 camera at `camera`'s rate and noise.
@@ -75,7 +75,7 @@ TEST(CameraPrediction, NeverPredictsAHandThatStopsAboveTheClearance) {
   int strokes = 0;
   for (double rate : kRates)
     for (const PredictionConfig& config : tuned_presets(v4l2_camera(rate)))
-      strokes += test::expect_stops_never_predicted(config, percussion(), 3, rate, kT0);
+      strokes += test::expect_stops_never_predicted(config, percussion(), 3, rate, kCameraT0);
   EXPECT_EQ(strokes, 2 * 3 * 5 * 5 * 4);
 }
 

@@ -13,7 +13,7 @@
 namespace mallet {
 namespace {
 
-constexpr Nanos kDay = 86'400 * kNanosPerSecond;
+constexpr Nanos kOneDay = 86'400 * kNanosPerSecond;
 
 bool finite_and_normal_or_zero(double x) { return std::isfinite(x) && (x == 0.0 || std::fabs(x) >= DBL_MIN); }
 
@@ -40,7 +40,7 @@ TEST(Extremes, HeavyDecayGoesToExactZeroNotSubnormal) {
 TEST(Extremes, ThirtyDaysOfUptimeGiveTheSameSignalAsOneSecond) {
   // Eq. 1 sees only the time since the impact; the impact time itself can be huge.
   const VibrationParams metal{0.020, 9.0, 15.0};
-  for (Nanos boot : {Nanos{kNanosPerSecond}, 30 * kDay, 30 * kDay + 123'456'789}) {
+  for (Nanos boot : {Nanos{kNanosPerSecond}, 30 * kOneDay, 30 * kOneDay + 123'456'789}) {
     for (Nanos since : {Nanos{0}, Nanos{1}, Nanos{16'666'667}, Nanos{250'000'000}}) {
       const Nanos now = boot + since;
       EXPECT_EQ(eq1(metal, 1.3, now - boot), eq1(metal, 1.3, since));

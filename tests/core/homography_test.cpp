@@ -403,7 +403,7 @@ TEST(CalibrationFile, AFailedWriteLeavesTheOldFile) {
   EXPECT_EQ(load_calibration(path).remote, "another remote");
 }
 
-const char* kGood = R"(format_version = 1
+const char* kGoodCalibration = R"(format_version = 1
 created_utc = "2025-05-01T09:30:00Z"
 created_by = "hand"
 
@@ -429,7 +429,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 TEST(CalibrationFile, MalformedFilesNameFileLineAndKey) {
-  const Calibration ok = parse_calibration(kGood, "c.toml");
+  const Calibration ok = parse_calibration(kGoodCalibration, "c.toml");
   EXPECT_NEAR(ok.camera_to_screen.map({100, 0}).x, 0.0, 1e-15);
 
   struct Case {
@@ -438,19 +438,19 @@ TEST(CalibrationFile, MalformedFilesNameFileLineAndKey) {
     std::string says;
   };
   const Case cases[] = {
-      {replaced(kGood, "points = 4", "points = "), 13, ""},  // syntax
-      {replaced(kGood, "points = 4", "points = 3"), 13, "camera_to_screen.points: must be >= 4"},
-      {replaced(kGood, "points = 4", "points = 4.5"), 13, "camera_to_screen.points: expected an integer"},
-      {replaced(kGood, "  0, 0, 1,\n", ""), 6, "camera_to_screen.matrix: expected 9 numbers"},
-      {replaced(kGood, "  0, 0, 1,\n", "  0, 0, nan,\n"), 9, "camera_to_screen.matrix: expected a finite number"},
-      {replaced(kGood, "0.001, 0, -0.1,", "0, 0, 0,"), 6, "camera_to_screen.matrix: is singular"},
-      {replaced(kGood, "screen_height_px = 1080", "screen_height_px = -1"), 12,
+      {replaced(kGoodCalibration, "points = 4", "points = "), 13, ""},  // syntax
+      {replaced(kGoodCalibration, "points = 4", "points = 3"), 13, "camera_to_screen.points: must be >= 4"},
+      {replaced(kGoodCalibration, "points = 4", "points = 4.5"), 13, "camera_to_screen.points: expected an integer"},
+      {replaced(kGoodCalibration, "  0, 0, 1,\n", ""), 6, "camera_to_screen.matrix: expected 9 numbers"},
+      {replaced(kGoodCalibration, "  0, 0, 1,\n", "  0, 0, nan,\n"), 9, "camera_to_screen.matrix: expected a finite number"},
+      {replaced(kGoodCalibration, "0.001, 0, -0.1,", "0, 0, 0,"), 6, "camera_to_screen.matrix: is singular"},
+      {replaced(kGoodCalibration, "screen_height_px = 1080", "screen_height_px = -1"), 12,
        "camera_to_screen.screen_height_px: must be > 0"},
-      {replaced(kGood, "max_error_camera_px = 0", "max_error_camera_px = \"big\""), 17,
+      {replaced(kGoodCalibration, "max_error_camera_px = 0", "max_error_camera_px = \"big\""), 17,
        "camera_to_screen.max_error_camera_px: expected a number"},
-      {replaced(kGood, "rms_error_screen_px = 0\n", ""), 5, "camera_to_screen.rms_error_screen_px: missing"},
-      {replaced(kGood, "created_by = \"hand\"", "created_by = \"hand\"\nremote_id = \"x\""), 4, "remote_id: unknown key"},
-      {replaced(kGood, "format_version = 1", "format_version = 2"), 1, "format_version = 1, got 2"},
+      {replaced(kGoodCalibration, "rms_error_screen_px = 0\n", ""), 5, "camera_to_screen.rms_error_screen_px: missing"},
+      {replaced(kGoodCalibration, "created_by = \"hand\"", "created_by = \"hand\"\nremote_id = \"x\""), 4, "remote_id: unknown key"},
+      {replaced(kGoodCalibration, "format_version = 1", "format_version = 2"), 1, "format_version = 1, got 2"},
   };
   for (const Case& c : cases) {
     const FileError e = file_error_of([&] { parse_calibration(c.text, "c.toml"); });
@@ -461,7 +461,7 @@ TEST(CalibrationFile, MalformedFilesNameFileLineAndKey) {
   const auto dir = test::scratch_dir();
   const FileError missing = file_error_of([&] { load_calibration(dir / "none.toml"); });
   EXPECT_NE(std::string(missing.what()).find("none.toml: file not found"), std::string::npos) << missing.what();
-  std::ofstream(dir / "bad.toml") << replaced(kGood, "points = 4", "points = 2");
+  std::ofstream(dir / "bad.toml") << replaced(kGoodCalibration, "points = 4", "points = 2");
   const FileError bad = file_error_of([&] { load_calibration(dir / "bad.toml"); });
   EXPECT_EQ(std::string(bad.what()).rfind((dir / "bad.toml").string() + ":13:", 0), 0u) << bad.what();
 }

@@ -12,7 +12,7 @@
 namespace mallet {
 namespace {
 
-constexpr Nanos kMs = 1'000'000;
+constexpr Nanos kMillisecond = 1'000'000;
 constexpr Nanos kS = kNanosPerSecond;
 
 bool has_line(const std::string& text, const std::string& line) {
@@ -44,16 +44,16 @@ TEST(KioskMetrics, SampleValuesAreShortestRoundTripAndNamedSpecials) {
 }
 
 TEST(KioskMetrics, HistogramBucketsAreCumulativeWithInfSumAndCount) {
-  DurationHistogram h({10 * kMs, 20 * kMs, 50 * kMs});
-  for (Nanos d : {5 * kMs, 10 * kMs, 15 * kMs, 49 * kMs, 400 * kMs, -3 * kMs}) h.observe(d);
+  DurationHistogram h({10 * kMillisecond, 20 * kMillisecond, 50 * kMillisecond});
+  for (Nanos d : {5 * kMillisecond, 10 * kMillisecond, 15 * kMillisecond, 49 * kMillisecond, 400 * kMillisecond, -3 * kMillisecond}) h.observe(d);
   // `le` is "less than or equal": 10 ms falls in the 10 ms bucket; a negative duration is 0.
   EXPECT_EQ(h.cumulative(0), 3u);
   EXPECT_EQ(h.cumulative(1), 4u);
   EXPECT_EQ(h.cumulative(2), 5u);
   EXPECT_EQ(h.cumulative(3), 6u);  // +Inf
   EXPECT_EQ(h.count(), 6u);
-  EXPECT_EQ(h.sum_ns(), 479 * kMs);
-  EXPECT_THROW(DurationHistogram({20 * kMs, 10 * kMs}), std::invalid_argument);
+  EXPECT_EQ(h.sum_ns(), 479 * kMillisecond);
+  EXPECT_THROW(DurationHistogram({20 * kMillisecond, 10 * kMillisecond}), std::invalid_argument);
   EXPECT_THROW(DurationHistogram({0}), std::invalid_argument);
 }
 
@@ -61,7 +61,7 @@ TEST(KioskMetrics, FrameHistogramRendersEveryBucketThenInfSumAndCount) {
   KioskMetrics m;
   m.count_frame(16'700'000);
   m.count_frame(16'600'000);
-  m.count_frame(40 * kMs);
+  m.count_frame(40 * kMillisecond);
   const std::string text = render_prometheus_text(m);
   EXPECT_TRUE(has_line(text, "# TYPE mallet_frame_seconds histogram")) << text;
   EXPECT_TRUE(has_line(text, "mallet_frame_seconds_bucket{le=\"0.012\"} 0")) << text;
@@ -160,12 +160,12 @@ TEST(KioskMetrics, TrackingLostTimeCountsOnlyWhileLost) {
   KioskMetrics m;
   m.observe_tracking(false, 0);
   m.observe_tracking(true, 1 * kS);
-  m.observe_tracking(true, 1500 * kMs);
+  m.observe_tracking(true, 1500 * kMillisecond);
   m.observe_tracking(false, 3 * kS);  // lost from 1 s to 3 s
   m.observe_tracking(false, 10 * kS);
   m.observe_tracking(true, 10 * kS);
-  m.observe_tracking(false, 10250 * kMs);
-  EXPECT_EQ(m.tracking_lost_ns(), 2250 * kMs);
+  m.observe_tracking(false, 10250 * kMillisecond);
+  EXPECT_EQ(m.tracking_lost_ns(), 2250 * kMillisecond);
   EXPECT_TRUE(has_line(render_prometheus_text(m), "mallet_tracking_lost_seconds_total 2.25"));
 }
 

@@ -15,7 +15,7 @@ namespace mallet {
 namespace {
 
 // What the camera shows in frame `i` while running preset number `preset`.
-using Scene = std::function<IrFrame(std::size_t preset, int i)>;
+using IrScene = std::function<IrFrame(std::size_t preset, int i)>;
 
 IrFrame frame_of(std::vector<IrDot> dots) {
   IrFrame f;
@@ -32,7 +32,7 @@ struct TunerRun {
   TunerStep last = TunerStep::observing;
 };
 
-TunerRun run(const Scene& scene, SensitivityTunerConfig config = {}) {
+TunerRun run(const IrScene& scene, SensitivityTunerConfig config = {}) {
   TunerRun r{SensitivityTuner(config), {}, TunerStep::observing};
   for (int i = 0; i < 100000 && !r.tuner.done(); ++i) {
     std::size_t preset = 0;

@@ -18,7 +18,7 @@ namespace {
 
 using test::percussion;
 
-constexpr Nanos kT0 = 40 * 86'400 * kNanosPerSecond;
+constexpr Nanos kDetectorT0 = 40 * 86'400 * kNanosPerSecond;
 constexpr Nanos kPeriod = 10'000'000;  // 100 Hz
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -98,7 +98,7 @@ std::vector<PointerSample> descent(int target, double v, double last_above_m, in
   std::vector<PointerSample> out;
   for (int k = 0; k < samples; ++k) {
     const int back = samples - 1 - k;
-    out.push_back({kT0 + k * kPeriod, centre_x(target), plane_of(target) + last_above_m + v * back * 0.01});
+    out.push_back({kDetectorT0 + k * kPeriod, centre_x(target), plane_of(target) + last_above_m + v * back * 0.01});
   }
   return out;
 }
@@ -132,7 +132,7 @@ TEST(StrikeDetector, PredictedStrikeIsTheOnlyNoteOfItsStroke) {
   EXPECT_EQ(detector.counters().impacts, 0u);  // the solver made none
   // Lifting re-arms as after any strike (rearm_height_m above the plane): a new stroke sounds.
   std::vector<PointerSample> again = descent(target, 1.5, 0.006, 8);
-  for (PointerSample& p : again) p.t_ns += path.back().t_ns + kPeriod - kT0;
+  for (PointerSample& p : again) p.t_ns += path.back().t_ns + kPeriod - kDetectorT0;
   int more = 0;
   for (const PointerSample& p : again) more += detector.update(p.t_ns, {p.x, p.y}) ? 1 : 0;
   EXPECT_EQ(more, 1);
@@ -177,18 +177,18 @@ TEST(StrikeDetector, DisarmRearmsAboveTheHandOrThePlane) {
   Mallet mallet(scene, config);
   const ContactZone& zone = mallet.zones()[1];
   const double x = 0.5 * (zone.lo + zone.hi);
-  mallet.update(kT0, {x, zone.plane_y + 0.02});
+  mallet.update(kDetectorT0, {x, zone.plane_y + 0.02});
   mallet.disarm(zone, zone.plane_y + 0.010);
   EXPECT_FALSE(mallet.armed());
-  mallet.update(kT0 + kPeriod, {x, zone.plane_y + 0.012});  // below 10 + 3 mm
+  mallet.update(kDetectorT0 + kPeriod, {x, zone.plane_y + 0.012});  // below 10 + 3 mm
   EXPECT_FALSE(mallet.armed());
-  mallet.update(kT0 + 2 * kPeriod, {x, zone.plane_y + 0.0131});
+  mallet.update(kDetectorT0 + 2 * kPeriod, {x, zone.plane_y + 0.0131});
   EXPECT_TRUE(mallet.armed());
   // A hand below the plane: the plane's own hysteresis.
   mallet.disarm(zone, zone.plane_y - 0.01);
-  mallet.update(kT0 + 3 * kPeriod, {x, zone.plane_y + 0.0029});
+  mallet.update(kDetectorT0 + 3 * kPeriod, {x, zone.plane_y + 0.0029});
   EXPECT_FALSE(mallet.armed());
-  mallet.update(kT0 + 4 * kPeriod, {x, zone.plane_y + 0.0031});
+  mallet.update(kDetectorT0 + 4 * kPeriod, {x, zone.plane_y + 0.0031});
   EXPECT_TRUE(mallet.armed());
 }
 

@@ -49,7 +49,7 @@ test::CliResult run_with(const std::string& variable, const std::string& args) {
   return test::run_command("env '" + variable + "' " + std::string(MALLET_TEST_BINARY) + " " + args);
 }
 
-void no_display() {
+void unset_display() {
   unsetenv("DISPLAY");
   unsetenv("WAYLAND_DISPLAY");
 }
@@ -113,7 +113,7 @@ TEST(KioskLayout, APortraitWindowLaysTheInstrumentsOutStackedAndTheGhostStrikesT
 }
 
 TEST(KioskFaults, HeadlessAndTheOtherCommandsStillRefuseABrokenSettingsFileWithExitTwo) {
-  no_display();
+  unset_display();
   const fs::path dir = test::scratch_dir();
   const fs::path settings = dir / "mallet.toml";
   write_text(settings, "# the operator's\n[audio]\nvolume = \"loud\n");
@@ -152,14 +152,14 @@ TEST(KioskFaults, AStateFolderThatCannotBeWrittenIsSaidOnceAndTheKioskPlaysOn) {
   EXPECT_NE(prom.find("\nmallet_settings_refused 0\n"), std::string::npos) << prom;
 
   // The doctor, alone, finds it too, naming the folder.
-  no_display();
+  unset_display();
   const test::CliResult d = run_with("MALLET_STATE_DIR=" + state.string(), "doctor --config " + settings.string());
   EXPECT_NE(d.output.find("fail  disk         state folder: "), std::string::npos) << d.output;
   EXPECT_NE(d.output.find(state.string() + " is not a folder"), std::string::npos) << d.output;
 }
 
 TEST(KioskFaults, DoctorSaysTheBrokenSettingsLineAndWhatTheKioskRunsOnMeanwhile) {
-  no_display();
+  unset_display();
   const fs::path dir = test::scratch_dir();
   const fs::path settings = dir / "mallet.toml";
   write_text(settings, "[audio]\nvolume = 12\n");
@@ -171,7 +171,7 @@ TEST(KioskFaults, DoctorSaysTheBrokenSettingsLineAndWhatTheKioskRunsOnMeanwhile)
 }
 
 TEST(KioskFaults, DoctorPrintsTheCompositorsRendererForTheSessionsStartScript) {
-  no_display();
+  unset_display();
   // An operator's WLR_RENDERER wins, whatever /dev/dri holds.
   test::CliResult r = run_with("WLR_RENDERER=pixman", "doctor --print-renderer");
   EXPECT_EQ(r.status, 0) << r.output;

@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& file) {
+std::string read_state_file(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
@@ -57,7 +57,7 @@ TEST(StateFolder, AFolderThatCannotBeWrittenIsSaidOnceNamingItAndTheKioskGoesOn)
   EXPECT_TRUE(folder.failing());
   // The page shows the latest failure.
   EXPECT_NE(folder.problem().find("calibration.toml: No space left on device"), std::string::npos) << folder.problem();
-  EXPECT_EQ(read_text(state), "a file where the folder should be\n");
+  EXPECT_EQ(read_state_file(state), "a file where the folder should be\n");
 
   // The folder comes back (the operator freed it): the next write succeeds and says so once.
   fs::remove(state);
@@ -68,7 +68,7 @@ TEST(StateFolder, AFolderThatCannotBeWrittenIsSaidOnceNamingItAndTheKioskGoesOn)
   EXPECT_NE(said.notes[0].find("writing again"), std::string::npos) << said.notes[0];
   EXPECT_TRUE(folder.write("kiosk-starts", "3\n"));
   EXPECT_EQ(said.notes.size(), 1u);
-  EXPECT_EQ(read_text(state / "kiosk-starts"), "3\n");
+  EXPECT_EQ(read_state_file(state / "kiosk-starts"), "3\n");
 }
 
 TEST(StateFolder, AWriteRefusedPartWayLeavesThePreviousFileWholeAndNoTemporaryFile) {
@@ -90,7 +90,7 @@ TEST(StateFolder, AWriteRefusedPartWayLeavesThePreviousFileWholeAndNoTemporaryFi
   std::signal(SIGXFSZ, old_handler);
   ASSERT_FALSE(wrote);
   EXPECT_NE(wrote.error().find("(the old file, if any, is unchanged)"), std::string::npos) << wrote.error();
-  EXPECT_EQ(read_text(state / "last-good-settings.toml"), before);
+  EXPECT_EQ(read_state_file(state / "last-good-settings.toml"), before);
   std::vector<fs::path> files;
   for (const fs::directory_entry& e : fs::directory_iterator(state)) files.push_back(e.path().filename());
   EXPECT_EQ(files, std::vector<fs::path>{"last-good-settings.toml"}) << "no temporary file left";

@@ -15,11 +15,11 @@
 namespace mallet::study {
 namespace {
 
-constexpr double kThreshold = 12.0, kSlope = 0.25;  // the simulated observer's tactile_only
+constexpr double kObserverThreshold = 12.0, kObserverSlope = 0.25;  // the simulated observer's tactile_only
 constexpr int kRuns = 200;
 
 //! The difference at which the observer is correct with probability p (its curve inverted).
-double observer_at(double p) { return kThreshold - std::log(0.5 / (p - 0.5) - 1.0) / kSlope; }
+double observer_at(double p) { return kObserverThreshold - std::log(0.5 / (p - 0.5) - 1.0) / kObserverSlope; }
 
 struct Spread {
   double mean = 0, sd = 0;
@@ -33,7 +33,7 @@ Spread staircase_estimates(int down, std::uint64_t seed) {
     StaircaseRule rule;
     rule.down = down;
     Staircase s(rule);
-    while (!s.done()) s.answer(u(rng) < psychometric_2afc(s.level(), kThreshold, kSlope));
+    while (!s.done()) s.answer(u(rng) < psychometric_2afc(s.level(), kObserverThreshold, kObserverSlope));
     const std::optional<double> t = s.threshold();
     EXPECT_TRUE(t.has_value()) << "run " << r << ": " << s.reversals() << " reversals in " << s.trials() << " trials";
     sum += *t;
@@ -148,19 +148,19 @@ TEST(Quest, ItsPosteriorConvergesOnAKnownThreshold) {
 TEST(Quest, TheLogisticShapeIsTheFitsCurveAndTheModeAndMeanAgreeOnSharpData) {
   QuestModel logistic;
   logistic.shape = QuestShape::logistic;
-  logistic.beta = kSlope;
+  logistic.beta = kObserverSlope;
   logistic.delta = 0;
-  EXPECT_DOUBLE_EQ(quest_p_correct(logistic, kThreshold, 20.0), psychometric_2afc(20.0, kThreshold, kSlope));
+  EXPECT_DOUBLE_EQ(quest_p_correct(logistic, kObserverThreshold, 20.0), psychometric_2afc(20.0, kObserverThreshold, kObserverSlope));
   Quest q(logistic, QuestPrior{20, 10, 0.5, 60});
   const double prior_sd = q.sd();
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int t = 0; t < 200; ++t) {
     const double x = q.level();
-    q.answer(x, u(rng) < psychometric_2afc(x, kThreshold, kSlope));
+    q.answer(x, u(rng) < psychometric_2afc(x, kObserverThreshold, kObserverSlope));
   }
   EXPECT_LT(q.sd(), prior_sd / 3);
-  EXPECT_NEAR(q.mean(), kThreshold, 3 * q.sd() + 0.5);
+  EXPECT_NEAR(q.mean(), kObserverThreshold, 3 * q.sd() + 0.5);
   EXPECT_NEAR(q.mode(), q.mean(), q.sd());
 }
 

@@ -44,7 +44,7 @@ std::vector<Bytes> drain(IrStartup& s) {
 
 //! A remote that acknowledges each report it is sent, with `error` for the n-th and for
 //! every copy of it sent again (a write it cannot do).
-struct FakeRemote {
+struct StartupRemote {
   int refuse_index = -1;  //!< which report gets an error ack (-1: none)
   std::uint8_t error = 0x03;
   int drop_index = -1;    //!< which report's ack is lost once
@@ -96,7 +96,7 @@ TEST(IrStartup, BasicModeMaxSensitivityAndRumble) {
   c.sensitivity = *find_sensitivity("max");
   c.rumble = Rumble::on;
   IrStartup s(c);
-  FakeRemote remote;
+  StartupRemote remote;
   s.start(0);
   remote.exchange(s, 0);
   ASSERT_TRUE(s.running()) << s.error();
@@ -181,7 +181,7 @@ TEST(IrStartup, LostAckIsResentAfterTheTimeout) {
   EXPECT_EQ(s.resends(), 1);
   s.feed(ack(0x1a), 1000 + 150 * kMs);
   EXPECT_EQ(s.step(), IrStartupStep::camera_on);
-  FakeRemote remote;
+  StartupRemote remote;
   remote.exchange(s, 1000 + 150 * kMs);
   EXPECT_TRUE(s.running());
 }
@@ -192,7 +192,7 @@ TEST(IrStartup, RetriesRunOutWithAClearError) {
   c.max_resends = 2;
   IrStartup s(c);
   s.start(0);
-  FakeRemote remote;
+  StartupRemote remote;
   remote.exchange(s, 0);  // would run to the end: start over and stay silent instead
   s.start(0);
   EXPECT_EQ(drain(s).size(), 1u);
@@ -213,26 +213,26 @@ TEST(IrStartup, RetriesRunOutWithAClearError) {
 
 TEST(IrStartup, RestartsFromTheTopAfterAReconnect) {
   IrStartup s;
-  FakeRemote remote;
+  StartupRemote remote;
   s.start(0);
   remote.exchange(s, 0);
   ASSERT_TRUE(s.running());
   // The remote dropped and came back: it forgot everything.
   s.start(5 * kNanosPerSecond);
   EXPECT_EQ(s.step(), IrStartupStep::pixel_clock);
-  FakeRemote again;
+  StartupRemote again;
   again.exchange(s, 5 * kNanosPerSecond);
   EXPECT_TRUE(s.running());
   EXPECT_EQ(again.received, linux_sequence());
   // And after a failure.
-  FakeRemote refusing;
+  StartupRemote refusing;
   refusing.refuse_index = 0;
   s.start(6 * kNanosPerSecond);
   refusing.exchange(s, 6 * kNanosPerSecond);
   ASSERT_TRUE(s.failed());
   s.start(7 * kNanosPerSecond);
   EXPECT_TRUE(s.error().empty());
-  FakeRemote fine;
+  StartupRemote fine;
   fine.exchange(s, 7 * kNanosPerSecond);
   EXPECT_TRUE(s.running());
   // reset(): idle, nothing queued.
@@ -244,7 +244,7 @@ TEST(IrStartup, RestartsFromTheTopAfterAReconnect) {
 
 TEST(IrStartup, StatusReportWhileRunningResendsTheReportingMode) {
   IrStartup s;
-  FakeRemote remote;
+  StartupRemote remote;
   s.start(0);
   remote.exchange(s, 0);
   ASSERT_TRUE(s.running());
