@@ -228,7 +228,11 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
   }
   if (out.pages > 1)
     out.rows.push_back({out.x + em, std::round(out.y + line * static_cast<float>(row + 1)),
-                        fmt::sprintf(tr("Page Down: more   (%d of %d)"), out.page + 1, out.pages), PageTone::title});
+                        // Page Down wraps: from the last screen it goes back to the first.
+                        fmt::sprintf(out.page + 1 < out.pages ? tr("Page Down: more   (%d of %d)")
+                                                              : tr("Page Down: back to the first   (%d of %d)"),
+                                     out.page + 1, out.pages),
+                        PageTone::title});
   return out;
 }
 

@@ -158,6 +158,11 @@ TEST(OperatorPageLayout, ManyWarningsTakeScreensInTurnAndLoseNoWord) {
     const PageLayout first = layout_operator_page(*font, lines, s.w, s.h, 0, 0);
     EXPECT_EQ(layout_operator_page(*font, lines, s.w, s.h, 0, -1).page, first.pages - 1);
     EXPECT_EQ(layout_operator_page(*font, lines, s.w, s.h, 0, first.pages).page, 0);
+    // The footer says what Page Down does: more, except on the last screen, where it goes back.
+    EXPECT_EQ(first.rows.back().text, "Page Down: more   (1 of " + std::to_string(first.pages) + ")") << what;
+    const PageLayout last = layout_operator_page(*font, lines, s.w, s.h, 0, first.pages - 1);
+    const std::string n = std::to_string(first.pages);
+    EXPECT_EQ(last.rows.back().text, "Page Down: back to the first   (" + n + " of " + n + ")") << what;
   }
 }
 
