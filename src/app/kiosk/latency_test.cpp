@@ -1,5 +1,6 @@
 #include "app/kiosk/latency_test.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include <fmt/printf.h>
@@ -46,7 +47,9 @@ std::string LatencyTest::status(Nanos now) const {
   if (now >= all_.back()) return tr("latency test: done");
   int pulse = 0;
   for (Nanos t : all_) pulse += now >= t;
-  if (pulse == 0) return fmt::sprintf(tr("latency test: the first pulse in %.0f s"), to_seconds(all_.front() - now));
+  // Whole seconds, rounded up: the last half second before the pulse is "in 1 s", never "in 0 s".
+  if (pulse == 0)
+    return fmt::sprintf(tr("latency test: the first pulse in %.0f s"), std::ceil(to_seconds(all_.front() - now)));
   return fmt::sprintf(tr("latency test: pulse %d of %d"), pulse, kPulses);
 }
 

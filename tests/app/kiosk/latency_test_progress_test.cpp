@@ -17,6 +17,7 @@ TEST(LatencyTestProgress, SaysEachPulseThenDoneThenNothing) {
   EXPECT_EQ(test.status(start), "") << "no test yet";
   test.start(start, test::percussion(), *rig.engine);
   EXPECT_EQ(test.status(start), "latency test: the first pulse in 1 s");
+  EXPECT_EQ(test.status(start + 600'000'000), "latency test: the first pulse in 1 s") << "never in 0 s";
   EXPECT_TRUE(test.pulsing(start));
   EXPECT_EQ(test.status(start + kNanosPerSecond), "latency test: pulse 1 of 10");
   EXPECT_EQ(test.status(start + 3 * kNanosPerSecond + 1), "latency test: pulse 3 of 10");
