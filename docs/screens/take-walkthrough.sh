@@ -11,12 +11,8 @@
 #   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
 set -eu
 mallet=$1; out=$2; name=$3; lang=$4
-work=$(mktemp -d); export XDG_RUNTIME_DIR=$work/xdg MALLET_STATE_DIR=$work/state; mkdir -m 700 "$XDG_RUNTIME_DIR"
-mkdir "$work/drop-ins"; printf '[kiosk]\nlanguage = "%s"\n' "$lang" >"$work/drop-ins/language.toml"
-"$mallet" run --config-dir "$work/drop-ins" >"$work/log" 2>&1 & pid=$!
-trap 'kill $pid 2>/dev/null || true; rm -rf "$work"' EXIT
-for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
-read -r w h < <(xdotool getdisplaygeometry)
+dropin="[kiosk]\nlanguage = \"$lang\"\n"
+. "$(dirname "$0")/start-kiosk.sh"
 shot() { sleep "${2:-1}"; import -window root "$out/walk-$name-$lang-$1.png"; }
 shot 1-attract 4
 . "$(dirname "$0")/sweep-third-bar.sh"

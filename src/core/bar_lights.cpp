@@ -19,9 +19,9 @@ int bar_under(const Scene& scene, Vec2 mallet_centre) {
   return best;
 }
 
-std::array<BarLight, 2> bar_lights(const Scene& scene, Vec2 mallet_centre, const VisualVibration& vibration,
+BarLights bar_lights(const Scene& scene, Vec2 mallet_centre, const VisualVibration& vibration,
                                    Nanos present) {
-  std::array<BarLight, 2> out{};
+  BarLights out{};
   if (const int hovered = bar_under(scene, mallet_centre); hovered >= 0) out[0] = {hovered, kHoverGlow};
   const double glow = vibration.glow(present);
   if (scene.kind == SceneKind::percussion && vibration.target() >= 0 && glow > 1.0 / 255)

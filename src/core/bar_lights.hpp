@@ -4,6 +4,7 @@
 // material's visual decay (VisualVibration::glow). Per frame, like the bounce: the
 // renderer redraws those bars over its cached background with the light added.
 #include <array>
+#include <cstddef>
 
 #include "core/geometry.hpp"
 #include "core/scene.hpp"
@@ -27,9 +28,18 @@ inline constexpr double kHoverHeightM = 0.12;
 //! bar's top by at most kHoverHeightM; -1 when none (or not a percussion scene).
 int bar_under(const Scene& scene, Vec2 mallet_centre);
 
+//! How brightly a bar the screen points a visitor to is lit, steadily: the study offer's
+//! "Yes" among bars the ghost keeps striking (brighter than a hover, dimmer than a strike).
+inline constexpr float kCalledOutGlow = 0.45f;
+
+//! The lights a frame may show: [0] the bar under the mallet, [1] the bar last struck, [2]
+//! a bar the screen points a visitor to (the caller's: -1 from bar_lights()).
+inline constexpr std::size_t kBarLights = 3;
+using BarLights = std::array<BarLight, kBarLights>;
+
 //! [0] the bar under the mallet (kHoverGlow), [1] the bar last struck (its glow at
-//! `present`, when above 1/255).
-std::array<BarLight, 2> bar_lights(const Scene& scene, Vec2 mallet_centre, const VisualVibration& vibration,
+//! `present`, when above 1/255); [2] none.
+BarLights bar_lights(const Scene& scene, Vec2 mallet_centre, const VisualVibration& vibration,
                                    Nanos present);
 
 }  // namespace mallet

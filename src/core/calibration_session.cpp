@@ -100,7 +100,7 @@ void CalibrationSession::clear_window() {
   sum_x_ = sum_y_ = 0;
 }
 
-CalibrationStep CalibrationSession::feed(Nanos t_ns, Vec2 p) {
+CalibrationStep CalibrationSession::feed(Nanos t_ns, Vec2 p, bool may_measure) {
   if (status_ != CalibrationStatus::measuring || !finite(p) || (last_sample_ns_ && t_ns <= *last_sample_ns_)) {
     ++counters_.ignored;
     return CalibrationStep::ignored;
@@ -121,6 +121,13 @@ CalibrationStep CalibrationSession::feed(Nanos t_ns, Vec2 p) {
   if (settle_end_ns_) {
     if (t_ns < *settle_end_ns_) return CalibrationStep::settling;
     settle_end_ns_.reset();
+  }
+  if (!may_measure) {  // off the target: no dwell here, one starts afresh on it
+    if (!window_.empty()) {
+      clear_window();
+      ++counters_.dwell_resets;
+    }
+    return CalibrationStep::dwell_reset;
   }
   CalibrationStep step = CalibrationStep::dwelling;
   if (!window_.empty()) {

@@ -123,8 +123,11 @@ class CalibrationSession {
   explicit CalibrationSession(CalibrationSessionConfig config = {});
   CalibrationSession(CalibrationSessionConfig config, std::vector<Vec2> targets);
 
-  //! One position of the tracked IR dot, raw camera pixels.
-  CalibrationStep feed(Nanos t_ns, Vec2 camera_px);
+  //! One position of the tracked IR dot, raw camera pixels. `may_measure` false: a position
+  //! known to be off the target shown (the mouse standing in for the dot, away from its
+  //! ring): it counts for leaving the resting point, and restarts the dwell (dwell_reset)
+  //! instead of measuring the target there.
+  CalibrationStep feed(Nanos t_ns, Vec2 camera_px, bool may_measure = true);
 
   const std::vector<Vec2>& targets() const { return targets_; }
   //! The target to show now (index into targets()), or nothing once accepted or failed.

@@ -42,7 +42,9 @@ std::string_view hint_text(KioskHint hint, SceneKind scene, bool mouse) {
                                          : tr("Pick up the mallet and strike a bar");
     case KioskHint::point_at_screen: return tr("Point the mallet at the screen");
     case KioskHint::close_needs_chord: return tr("This kiosk closes from the operator page only");
-    case KioskHint::remote_missing: return tr("The mallet is resting: please ask a member of staff");
+    // The attract mode's ghost mallet plays on meanwhile: the words say what a visitor can
+    // do, not that a mallet is resting while one moves on the screen.
+    case KioskHint::remote_missing: return tr("To play, please ask a member of staff");
   }
   return "";
 }
@@ -260,7 +262,6 @@ KioskOverlay KioskStates::overlay() const {
 
 KioskHint KioskStates::hint() const {
   const KioskOverlay o = overlay();
-  if (o.close_needs_chord) return KioskHint::close_needs_chord;
   if (o.remote_missing) return KioskHint::remote_missing;
   if (o.point_at_screen) return KioskHint::point_at_screen;
   if (o.invitation) return KioskHint::invitation;

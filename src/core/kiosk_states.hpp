@@ -88,8 +88,9 @@ struct KioskOverlay {
   bool remote_missing = false;     //!< Attract or Play with the Wii Remote as input and not connected
 };
 
-//! The one line to show, most urgent first: close notice, remote missing, point-at-screen,
-//! invitation.
+//! The one line to show the visitors, most urgent first: remote missing, point-at-screen,
+//! invitation. close_needs_chord is the staff's, never the visitors' line: its words
+//! (hint_text) show as a corner note while KioskOverlay::close_needs_chord holds.
 enum class KioskHint { none, invitation, point_at_screen, close_needs_chord, remote_missing };
 //! "" for none. The invitation asks for what the scene is played with: a bar to strike, the
 //! disc to move over (texture), the wall to tap; with the `mouse` as the input, to move the

@@ -95,4 +95,24 @@ Scene laid_out(const Scene& scene, SceneLayout layout) {
   return layout == SceneLayout::portrait ? portrait_layout(scene) : scene;
 }
 
+Vec2 to_layout(const Scene& file_scene, const Scene& laid, Vec2 world) {
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 moved = world;
+  for (const Instrument& inst : file_scene.instruments) {
+    Span bars;
+    for (int id : inst.targets) {
+      const Target& t = file_scene.targets.at(static_cast<std::size_t>(id));
+      bars.add(t.x_min, t.x_max);
+    }
+    if (bars.empty() || inst.targets.front() >= static_cast<int>(laid.targets.size())) continue;
+    const double away = world.x < bars.lo ? bars.lo - world.x : world.x > bars.hi ? world.x - bars.hi : 0.0;
+    if (away >= best) continue;
+    best = away;
+    const Target& was = file_scene.targets.at(static_cast<std::size_t>(inst.targets.front()));
+    const Target& now = laid.targets.at(static_cast<std::size_t>(inst.targets.front()));
+    moved = {world.x + (now.x_min - was.x_min), world.y + (now.top_y - was.top_y)};
+  }
+  return moved;
+}
+
 }  // namespace mallet

@@ -27,4 +27,11 @@ SceneLayout layout_for(const Scene& scene, double aspect);
 //! `scene` in `layout`: as it is for landscape, portrait_layout() for portrait.
 Scene laid_out(const Scene& scene, SceneLayout layout);
 
+//! A point of `file_scene`'s world (a hand over the scene as its file lays it out: a
+//! trajectory, a recording) where it is over `laid` (laid_out(file_scene, ...)): moved as the
+//! instrument it is over moved (the nearest one along x where it is between two), so that a
+//! stroke onto a bar lands on that bar in either layout. Unmoved where nothing moved (a
+//! landscape layout, the wall, the texture disc).
+Vec2 to_layout(const Scene& file_scene, const Scene& laid, Vec2 world);
+
 }  // namespace mallet

@@ -27,7 +27,10 @@ std::optional<Impact> StrikeLoop::feed(Nanos t, Vec2 hand) {
   if (impact && !scene_.targets.at(static_cast<std::size_t>(impact->target)).hand_strikes) impact.reset();
   if (impact) {
     show(*impact);
-    if (cycle_materials_) next_wall_material();
+    if (cycle_materials_ && ++cycle_taps_ == kTapsPerMaterial) {
+      cycle_taps_ = 0;
+      next_wall_material();
+    }
   }
   return impact;
 }

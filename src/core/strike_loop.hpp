@@ -63,11 +63,17 @@ class StrikeLoop {
   void set_wall_material(int material) {
     if (scene_.kind == SceneKind::wall) mallet_.set_material(0, material);
   }
-  //! Attract mode: the wall's material moves on after every strike. Ending it puts back the
-  //! material chosen before it began (the operator's M, or the scene's own): a visitor finds
-  //! the wall the operator left, not wherever the attract mode stopped.
+  //! Attract mode: the wall's material moves on after every kTapsPerMaterial strikes (the
+  //! ghost taps about twice a second: each material is felt and heard a few seconds, and its
+  //! plaque stands still long enough to read, rather than flickering at every tap). Ending
+  //! it puts back the material chosen before it began (the operator's M, or the scene's
+  //! own): a visitor finds the wall the operator left, not wherever the attract mode stopped.
+  static constexpr int kTapsPerMaterial = 8;
   void set_cycle_materials(bool on) {
-    if (on && !cycle_materials_) chosen_material_ = wall_material();
+    if (on && !cycle_materials_) {
+      chosen_material_ = wall_material();
+      cycle_taps_ = 0;
+    }
     if (!on && cycle_materials_ && chosen_material_ >= 0) set_wall_material(chosen_material_);
     cycle_materials_ = on;
   }
@@ -80,6 +86,7 @@ class StrikeLoop {
   std::optional<TextureCursor> texture_;
   std::optional<StripeMotion> motion_;
   bool cycle_materials_ = false;
+  int cycle_taps_ = 0;        //!< strikes on the current material while cycling
   int chosen_material_ = -1;  //!< the wall's material before the attract mode cycled it
 };
 

@@ -42,8 +42,8 @@ struct FrameLook {
   Vec2 mallet_centre;         //!< the head's centre, world metres (as FrameState has it)
   glm::dvec2 mallet_px{0.0};  //!< the head's centre on the image, pixels
   PixelRect mallet_rect;      //!< the head and the shadow it casts
-  std::array<BarLight, 2> lights{};
-  std::array<PixelRect, 2> light_rects{};  //!< each lit bar's on the image
+  BarLights lights{};
+  std::array<PixelRect, kBarLights> light_rects{};  //!< each lit bar's on the image
   std::vector<OverlayVertex> overlay_vertices;
   std::vector<std::uint32_t> overlay_indices;
   const FontAtlas* overlay_atlas = nullptr;

@@ -44,6 +44,7 @@ float area_scale(int segments) {
 void Overlay::clear() {
   vertices_.clear();
   indices_.clear();
+  text_boxes_.clear();
 }
 
 std::uint32_t Overlay::solid_vertex(float x, float y, const std::array<float, 4>& color) {
@@ -143,6 +144,7 @@ float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4
   float pen = x;
   if (align == TextAlign::center) pen -= width / 2;
   if (align == TextAlign::right) pen -= width;
+  TextBox ink{INFINITY, INFINITY, -INFINITY, -INFINITY, std::string(utf8)};
   for (const PlacedGlyph& g : shaped.glyphs) {
     const std::optional<GlyphQuad> q = atlas_->quad(g);
     if (!q) continue;  // a space has no quad, only an advance
@@ -158,7 +160,12 @@ float Overlay::text(float x, float y, std::string_view utf8, std::array<float, 4
     vertices_.push_back({x1, y1, q->u1, q->v1, color});
     vertices_.push_back({x0, y1, q->u0, q->v1, color});
     quad(first, first + 1, first + 2, first + 3);
+    ink.x0 = std::min(ink.x0, x0);
+    ink.y0 = std::min(ink.y0, y0);
+    ink.x1 = std::max(ink.x1, x1);
+    ink.y1 = std::max(ink.y1, y1);
   }
+  if (ink.x1 > ink.x0) text_boxes_.push_back(std::move(ink));
   return width;
 }
 

@@ -5,6 +5,7 @@
 // fully-covered texel, so one pipeline with straight alpha blending draws everything.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -19,6 +20,17 @@ struct OverlayVertex {
 };
 
 enum class TextAlign { left, center, right };
+
+//! Where a text's ink landed: the box around its glyphs' quads, in pixels (x0, y0 top-left).
+//! Every text drawn leaves one, so that what a screen shows can be checked for words drawn
+//! over words or off the screen (the overlap contract: tests/app/kiosk/text_boxes_test.cpp).
+struct TextBox {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::string text;
+};
+inline bool overlap(const TextBox& a, const TextBox& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
 
 //! Triangles wind clockwise on screen; no shape overlaps itself (a translucent shape blends
 //! once); circles stray < 0.25 px from the true circle and keep its area; degenerate or
@@ -43,6 +55,8 @@ class Overlay {
 
   const std::vector<OverlayVertex>& vertices() const { return vertices_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
+  //! Each text drawn since clear(), in order (a text with no ink, all spaces, leaves none).
+  const std::vector<TextBox>& text_boxes() const { return text_boxes_; }
   const FontAtlas& atlas() const { return *atlas_; }
 
  private:
@@ -56,6 +70,7 @@ class Overlay {
   const FontAtlas* atlas_;
   std::vector<OverlayVertex> vertices_;
   std::vector<std::uint32_t> indices_;
+  std::vector<TextBox> text_boxes_;
 };
 
 }  // namespace mallet::render

@@ -95,6 +95,30 @@ void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::ma
   }
 }
 
+std::vector<NoteBox> draw_bar_signs(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj,
+                                    float width, float height, const std::vector<BarLabel>& signs, SignStyle style) {
+  const float em = overlay.atlas().pixel_height();
+  std::vector<NoteBox> out;
+  for (const BarLabel& sign : signs) {
+    const Target& t = scene.targets.at(static_cast<std::size_t>(sign.target));
+    const glm::dvec2 end = render::project_to_screen(view_proj, {(t.x_min + t.x_max) / 2, t.top_y - t.thickness_m,
+                                                                 t.length_m / 2});
+    NoteBox box = band_for(overlay.atlas(), sign.text, 1.0f);
+    box.x = std::clamp(static_cast<float>(end.x) * width - box.width / 2, em * 0.5f,
+                       std::max(em * 0.5f, width - em * 0.5f - box.width));
+    // Below the near end, a quarter of a letter apart; never down into the corner notes' row
+    // (draw_corner_note: 0.6 of a letter, on a band 1.5 of its letters high, half one in).
+    box.y = std::min(std::round(static_cast<float>(end.y) * height + em * 0.25f), height - em * 1.3f - box.height);
+    if (style == SignStyle::called_out) {
+      overlay.fill_rect(box.x, box.y, box.width, box.height, {1.0f, 0.72f, 0.16f, 0.95f});
+      out.push_back(draw_on_band(overlay, box, sign.text, 1.0f, 0.0f, {0.08f, 0.06f, 0.02f, 1.0f}));
+    } else {
+      out.push_back(draw_on_band(overlay, box, sign.text, 1.0f, 0.6f, {1.0f, 1.0f, 1.0f, 0.95f}));
+    }
+  }
+  return out;
+}
+
 NoteBox draw_wall_name(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                        float height, std::string_view name) {
   if (scene.kind != SceneKind::wall || scene.targets.empty()) return {};

@@ -24,7 +24,7 @@ struct NoteBox {
 NoteBox draw_banner(render::Overlay& overlay, std::string_view text, float width, float height);
 
 enum class Corner { bottom_left, bottom_right };
-//! A small note for the staff in a bottom corner ("Mouse (no Wii Remote)", "No sound"):
+//! A small note for the staff in a bottom corner ("Mouse", "No sound", a refused close):
 //! smaller than the visitors' words, discreet, on a dark band of its own, so that it reads
 //! (at least 4.5:1, WCAG 2.1 AA) over every scene, the grey texture scene's too.
 NoteBox draw_corner_note(render::Overlay& overlay, std::string_view text, Corner corner, float width, float height);
@@ -37,6 +37,18 @@ struct BarLabel {
 };
 void draw_bar_labels(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj, float width,
                      float height, const std::vector<BarLabel>& labels);
+
+//! A sign under a bar: `text` at the visitors' size (the banner's letters), centred on the
+//! bar, on a band just below its near end (the end towards the visitor) as `view_proj` shows
+//! it, so that it reads from two metres away and never covers the bar's own note name; kept
+//! on the screen and above the corner notes' row. The study's answer bars ("Yes", "No", "1",
+//! "Taps") carry them on a dark band; a called-out sign (the offer's "Yes" on the kiosk's
+//! instrument, where the ghost keeps playing beside it) on a bright amber one. Returns each
+//! sign's band.
+enum class SignStyle { plain, called_out };
+std::vector<NoteBox> draw_bar_signs(render::Overlay& overlay, const Scene& scene, const glm::mat4& view_proj,
+                                    float width, float height, const std::vector<BarLabel>& signs,
+                                    SignStyle style = SignStyle::plain);
 
 //! The wall's material by name ("Wood", "Rubber") on a plaque at the foot of the wall, as
 //! `view_proj` shows it, on a dark band: the three walls look alike by design (the paper's white rectangle), so

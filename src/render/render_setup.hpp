@@ -139,6 +139,9 @@ struct ProductWindow {
   std::unique_ptr<render::WindowTarget> window;
   std::unique_ptr<render::FontAtlas> font;
   std::unique_ptr<render::Overlay> overlay;
+  //! How the frames are paced, as the log last said it ("render: frames paced at 60 a
+  //! second, ..."); empty until said. The operator page's timing line says the same words.
+  const std::string& pace_said() const { return pace_said_; }
 
  private:
   std::uint64_t frames_ = 0, devices_lost_ = 0;

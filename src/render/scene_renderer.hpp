@@ -81,8 +81,9 @@ struct FrameState {
   bool draw_mallet = true;
   bool draw_instruments = true;      //!< false: only the clear (the benchmark's floor)
   const Overlay* overlay = nullptr;  //!< drawn last, over everything; may be null
-  //! Bars lit this frame (core/bar_lights.hpp): the one under the mallet, the one struck.
-  std::array<BarLight, 2> bar_lights{};
+  //! Bars lit this frame (core/bar_lights.hpp): the one under the mallet, the one struck,
+  //! one the screen points a visitor to.
+  BarLights bar_lights{};
 };
 
 //! Whether the device can render colour and depth with this many samples per pixel.

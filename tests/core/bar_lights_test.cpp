@@ -65,7 +65,7 @@ TEST(BarLights, AStruckBarGlowsAndFadesWithItsMaterialsVisualDecay) {
   w.start(soft, s.materials.at(static_cast<std::size_t>(bar.material)).visual);
   EXPECT_DOUBLE_EQ(w.glow(soft.t_ns), 0.25);
 
-  const std::array<BarLight, 2> lights = bar_lights(s, {0.0, 0.3}, v, hard.t_ns + 50'000'000);
+  const BarLights lights = bar_lights(s, {0.0, 0.3}, v, hard.t_ns + 50'000'000);
   EXPECT_EQ(lights[0].target, -1);  // the mallet high above everything
   EXPECT_EQ(lights[1].target, bar.id);
   EXPECT_NEAR(lights[1].glow, VisualVibration::glow_of_envelope(std::exp(-b * 0.05)), 1e-6);

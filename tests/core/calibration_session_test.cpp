@@ -94,6 +94,25 @@ TEST(CalibrationSession, TheDefaultTargetsAreANineGridAtTheMargins) {
   EXPECT_NEAR(h[7].y, 0.8, 1e-12);
 }
 
+TEST(CalibrationSession, APositionKnownToBeOffTheTargetNeverMeasuresItAndOnItDoes) {
+  // The mouse standing in for the dot: where it rests away from the ring it is not measured
+  // however still it holds (issue 48, item 9: the first target was measured wherever the
+  // mouse happened to rest); moved onto the ring it is.
+  CalibrationSession s(CalibrationSessionConfig{});
+  Nanos t = 5'000 * kNanosPerSecond;
+  s.feed(t, {20, 20}, false);  // where it rested when the target was shown
+  for (int i = 0; i < 1000; ++i) {
+    const CalibrationStep step = s.feed(t += kReport, {300, 300}, false);
+    ASSERT_TRUE(step == CalibrationStep::settling || step == CalibrationStep::dwell_reset) << to_string(step);
+  }
+  EXPECT_EQ(s.current_target(), 0) << "the first target is still to be measured";
+  CalibrationStep step = CalibrationStep::dwelling;
+  for (int i = 0; i < 1000 && step != CalibrationStep::target_measured; ++i) step = s.feed(t += kReport, {310, 305});
+  EXPECT_EQ(step, CalibrationStep::target_measured);
+  ASSERT_TRUE(s.measured(0));
+  EXPECT_NEAR(s.measured(0)->x, 310, 1e-9);
+}
+
 TEST(CalibrationSession, ExactDataIsAcceptedWithNoError) {
   CalibrationSession s;
   Visitor v;

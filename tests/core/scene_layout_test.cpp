@@ -113,6 +113,28 @@ struct Stacked {
   double x() const { return 0.5 * (upper().x_min + upper().x_max); }  //!< over both bars
 };
 
+TEST(SceneLayout, APointOverABarOfTheFileIsOverTheSameBarInThePortraitLayout) {
+  // `mallet render --layout auto` of a landscape trajectory on a portrait image drew the
+  // mallet under the xylophone's rail (issue 48, item 14): a point above each bar, and one
+  // beside the instruments, is moved with its instrument; the landscape layout moves nothing.
+  const Scene& file = test::percussion();
+  const Scene portrait = portrait_layout(file);
+  for (const Target& t : file.targets) {
+    const Target& laid = portrait.targets.at(static_cast<std::size_t>(t.id));
+    const Vec2 above{0.5 * (t.x_min + t.x_max), t.top_y + 0.05};
+    const Vec2 moved = to_layout(file, portrait, above);
+    EXPECT_NEAR(moved.x, 0.5 * (laid.x_min + laid.x_max), 1e-12) << "bar " << t.id;
+    EXPECT_NEAR(moved.y, laid.top_y + 0.05, 1e-12) << "bar " << t.id;
+    const Vec2 same = to_layout(file, file, above);
+    EXPECT_EQ(same.x, above.x);
+    EXPECT_EQ(same.y, above.y);
+  }
+  // Left of every bar: moved as the leftmost instrument (the xylophone, the upper row).
+  const Target& first = file.targets.front();
+  const Vec2 beside = to_layout(file, portrait, {first.x_min - 0.3, first.top_y});
+  EXPECT_NEAR(beside.y, portrait.targets.front().top_y, 1e-12);
+}
+
 TEST(StackedRows, OnlyTheBarsOfTheUpperRowHaveAFloor) {
   for (const ContactZone& z : contact_zones(percussion())) EXPECT_FALSE(std::isfinite(z.floor_y)) << z.target;
   const Stacked st;

@@ -124,6 +124,25 @@ TEST_F(DropIns, KeptSettingsReadBackAsTheFilesTheyCameFromRelativePathsIncluded)
   EXPECT_EQ(e.file(), (dir / "state" / "kept.toml").string());
 }
 
+TEST_F(DropIns, AProblemAtAKeptSettingIsNamedInTheOperatorsFileItWasKeptFrom) {
+  // A scene choice deleted since was reported against the generated last-good-settings.toml:77
+  // (issue 48, item 13): it is named where the operator wrote it, the kept place beside it.
+  write_text(drop / "20-scenes.toml", "# the room's scenes\n[scenes]\nchoices = [\"gone.toml\"]\n");
+  const config::LoadedSettings s = config::load_settings(main, config::drop_in_files(drop));
+  const fs::path kept = dir / "state" / "kept.toml";
+  write_text(kept, config::show_settings(s));
+  const config::LoadedSettings back = config::load_kept_settings(kept, main);
+  const FilePlace& at = back.config.scenes.choices_at;
+  ASSERT_EQ(at.file, kept.string());
+  const std::string problem = std::string("scene choice skipped: ") + FileError(at, "scenes.choices: gone.toml: no such file").what();
+  EXPECT_EQ(config::at_kept_origin(kept, problem),
+            "scene choice skipped: " + (drop / "20-scenes.toml").string() + ":3 (kept as " + kept.string() + ":" +
+                std::to_string(at.line) + "): scenes.choices: gone.toml: no such file");
+  // A place with no origin (the kept file's header), another file's place: as they were.
+  EXPECT_EQ(config::at_kept_origin(kept, kept.string() + ":1:1: x"), kept.string() + ":1:1: x");
+  EXPECT_EQ(config::at_kept_origin(kept, "/etc/other.toml:3:1: y"), "/etc/other.toml:3:1: y");
+}
+
 TEST(ScenesPlaces, TheSettingsLineThatNamesTheScenesIsKept) {
   const AppConfig c = config::parse_app_config("[scenes]\nstart = \"x.toml\"\nchoices = [\"x.toml\"]\n", "m.toml");
   EXPECT_EQ(c.scenes.start_at.file, "m.toml");

@@ -114,9 +114,23 @@ void run_render(const RenderCliOptions& o) {
       o.layout == "auto" ? layout_for(file_scene, static_cast<double>(ho.size.width) / static_cast<double>(ho.size.height))
                          : *value_named(kSceneLayoutNames, o.layout);
   const Scene scene = laid_out(file_scene, layout);
-  const input::Trajectory trajectory = input::read_trajectory_csv(o.input);
-  const Replay replay(scene, config, trajectory,
-                      o.input_space == "world" ? InputSpace::world : InputSpace::screen, o.input.string());
+  input::Trajectory trajectory = input::read_trajectory_csv(o.input);
+  InputSpace space = o.input_space == "world" ? InputSpace::world : InputSpace::screen;
+  if (o.layout == "auto" && scene.layout != file_scene.layout) {
+    // With the layout chosen for the image, the trajectory is one made over the scene as its
+    // file lays it out (as `simulate` replays it by default): each sample is taken where it
+    // is over the laid-out scene, so that a stroke onto a bar lands on that bar, not on the
+    // rail of a row moved under it. A --layout named is the trajectory's own (`mallet
+    // trajectory --layout portrait` aims at the stacked rows).
+    for (PointerSample& p : trajectory.samples) {
+      const Vec2 world = space == InputSpace::screen ? file_scene.screen_to_world.map(p.x, p.y) : Vec2{p.x, p.y};
+      const Vec2 moved = to_layout(file_scene, scene, world);
+      p.x = moved.x;
+      p.y = moved.y;
+    }
+    space = InputSpace::world;
+  }
+  const Replay replay(scene, config, trajectory, space, o.input.string());
   if (o.msaa == "auto")
     ho.auto_samples = true;
   else
@@ -188,7 +202,9 @@ Exit status: 0 written, 1 renderer failure, 2 bad input (FILE:LINE: problem).)")
   cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str()->check(pixel_size());
   cmd->add_option("--layout", o->layout,
                   "auto (as the kiosk lays the scene out for --size: portrait, instruments stacked, on a "
-                  "portrait image where that shows them larger), landscape or portrait")
+                  "portrait image where that shows them larger; the trajectory, made over the scene file's "
+                  "landscape layout, is moved with the instrument it is over), landscape or portrait (the "
+                  "trajectory is taken as made in that layout: mallet trajectory --layout)")
       ->check(CLI::IsMember({"auto", "landscape", "portrait"}))
       ->capture_default_str();
   auto* at = cmd->add_option("--at", o->at_s, "One frame at this time (s)")->check(seconds());

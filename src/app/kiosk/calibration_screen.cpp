@@ -1,6 +1,7 @@
 #include "app/kiosk/calibration_screen.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <system_error>
 
@@ -58,10 +59,31 @@ void CalibrationScreen::frame(const IrFrame& f) {
   journal::info("calibration: {}", tuner_note_.c_str());
 }
 
-CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px) {
+namespace {
+
+//! The current target's ring's radius on a width×height screen, pixels (draw() draws it).
+float ring_radius(float w, float h) { return std::max(10.0f, std::min(w, h) * 0.035f); }
+
+}  // namespace
+
+CalibrationStep CalibrationScreen::feed_pointer(Nanos t_ns, Vec2 screen) {
+  const ScreenSize size = session_.config().screen;
+  const std::optional<int> current = session_.current_target();
+  pointer_on_ring_ = false;
+  if (current) {
+    const Vec2 target = session_.targets().at(static_cast<std::size_t>(*current));
+    const double dx = (screen.x - target.x) * size.width_px, dy = (screen.y - target.y) * size.height_px;
+    // On the ring: within it and its progress band around it, as drawn.
+    const float ring = ring_radius(static_cast<float>(size.width_px), static_cast<float>(size.height_px));
+    pointer_on_ring_ = std::hypot(dx, dy) <= ring + 9.0;
+  }
+  return feed(t_ns, mouse_as_camera_px(screen), pointer_on_ring_);
+}
+
+CalibrationStep CalibrationScreen::feed(Nanos t_ns, Vec2 camera_px, bool may_measure) {
   dot_seen_ = true;
   if (outcome_ != Outcome::measuring || tuning()) return CalibrationStep::ignored;
-  const CalibrationStep step = session_.feed(t_ns, camera_px);
+  const CalibrationStep step = session_.feed(t_ns, camera_px, may_measure);
   if (step == CalibrationStep::target_measured || step == CalibrationStep::unstable ||
       step == CalibrationStep::round_rejected)
     journal::info("calibration: {} at camera {:.0f},{:.0f}", to_string(step), camera_px.x, camera_px.y);
@@ -124,8 +146,10 @@ std::string CalibrationScreen::status_line() const {
   // ones would.
   const std::size_t count = session_.targets().size();
   const int target = session_.current_target().value_or(static_cast<int>(count) - 1);
-  return fmt::sprintf(tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1,
-                      dot_seen_ ? tr("light seen") : tr("no light seen"));
+  const char* seen = remote_ == "mouse" ? (pointer_on_ring_ ? tr("pointer on the ring") : tr("move the pointer onto the ring"))
+                     : dot_seen_         ? tr("light seen")
+                                         : tr("no light seen");
+  return fmt::sprintf(tr("Target %d of %zu, round %d   %s"), target + 1, count, session_.round() + 1, seen);
 }
 
 void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
@@ -145,29 +169,41 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
     pen += px * 0.2f;
   };
   say(tr("Calibration"), white);
+  // The way out, a small note in the bottom-left corner: below the bottom row of targets,
+  // whose rings (the current one's is the largest) it would otherwise touch. A mouse's
+  // calibration is never saved: there is no previous one to keep.
+  render::draw_corner_note(o, remote_ == "mouse" ? tr("Esc stops the calibration")
+                                                 : tr("Esc stops the calibration; the previous one stays"),
+                           render::Corner::bottom_left, w, h);
+  if (remote_ != "mouse" && !link_up_ && outcome_ == Outcome::measuring) {
+    // Nothing can come until it is back: say what is wrong and what to do, not "no light".
+    say(camera_ ? tr("The camera is not connected: check its cable")
+                : tr("The Wii Remote is not connected: press its 1 and 2 buttons together"),
+        {1, 0.75f, 0.4f, 1});
+    return;
+  }
+
+  if (tuning()) {
+    // One step at a time: this one's instruction alone, its ring below the words.
+    const auto& verdicts = tuner_->verdicts();
+    say(tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f});
+    const float r = std::max(16.0f, std::min(w, h) * 0.06f);
+    const float cy = std::max(h * 0.5f, pen + px * 0.5f + r);
+    o.progress_ring(w / 2, cy, r, 8.0f,
+                    static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
+    pen = std::max(h * 0.70f, cy + r + px * 1.5f);
+    say(fmt::sprintf(tr("Choosing the camera's sensitivity: setting %d of %zu"), static_cast<int>(verdicts.size()) + 1,
+                     kSensitivityPresets.size()) +
+            "   " + (dot_seen_ ? tr("light seen") : tr("no light seen")),
+        white);
+    return;
+  }
   say(remote_ == "mouse" ? tr("Hold the pointer still on the ring until it fills")
                         : tr("Hold the mallet's light still on the ring until it fills"),
       {1, 1, 1, 0.8f});
-  // The way out, a small note in the bottom-left corner: below the bottom row of targets,
-  // whose rings (the current one's is the largest) it would otherwise touch.
-  render::draw_corner_note(o, tr("Esc stops the calibration; the previous one stays"), render::Corner::bottom_left, w,
-                           h);
-
-  if (tuning()) {
-    const float cx = w / 2, cy = h * 0.5f, r = std::max(16.0f, std::min(w, h) * 0.06f);
-    const auto& verdicts = tuner_->verdicts();
-    say(tr("First, hold the mallet's light up towards the camera"), {1, 1, 1, 0.8f});
-    o.progress_ring(cx, cy, r, 8.0f,
-                    static_cast<float>(verdicts.size() + 1) / static_cast<float>(kSensitivityPresets.size()), ring);
-    const std::string line = std::string(tr("Choosing the IR sensitivity: trying ")) +
-                             std::string(tuner_->preset()) + "   " + (dot_seen_ ? tr("light seen") : tr("no light seen"));
-    pen = h * 0.70f;
-    say(line, white);
-    return;
-  }
   const std::vector<Vec2>& targets = session_.targets();
   const std::optional<int> current = session_.current_target();
-  const float r = std::max(10.0f, std::min(w, h) * 0.035f);
+  const float r = ring_radius(w, h);
   for (int i = 0; i < static_cast<int>(targets.size()); ++i) {
     const float x = static_cast<float>(targets[static_cast<std::size_t>(i)].x) * w;
     const float y = static_cast<float>(targets[static_cast<std::size_t>(i)].y) * h;
@@ -185,10 +221,9 @@ void CalibrationScreen::draw(render::Overlay& o, float w, float h) const {
   // Below the middle row of targets, each line wrapped to the screen: never cut at its edges.
   pen = h * 0.70f;
   say(status_line(), outcome_ == Outcome::failed ? std::array<float, 4>{1, 0.5f, 0.4f, 1} : white);
-  if (outcome_ == Outcome::measuring && !last_round_.empty())
-    say(last_round_, {1, 0.75f, 0.4f, 1});
-  else if (outcome_ == Outcome::measuring && !tuner_note_.empty())
-    say(tuner_note_, {1, 1, 1, 0.7f});
+  // (The sensitivity chosen is the journal's and the operator page's: a preset's name means
+  // nothing on this screen.)
+  if (outcome_ == Outcome::measuring && !last_round_.empty()) say(last_round_, {1, 0.75f, 0.4f, 1});
 }
 
 }  // namespace mallet::app

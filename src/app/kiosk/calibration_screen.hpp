@@ -49,8 +49,18 @@ class CalibrationScreen {
   //! The preset the phase chose (or put back), once it is over.
   const std::string& sensitivity() const { return sensitivity_; }
 
-  //! One position of the dot (raw camera pixels) at t; ignored while tuning.
-  CalibrationStep feed(Nanos t_ns, Vec2 camera_px);
+  //! One position of the dot (raw camera pixels) at t; ignored while tuning. `may_measure`:
+  //! as CalibrationSession::feed.
+  CalibrationStep feed(Nanos t_ns, Vec2 camera_px, bool may_measure = true);
+  //! The mouse standing in for the dot, at `screen` (normalised): a target is measured only
+  //! while the pointer holds still on its ring, never wherever the mouse happens to rest.
+  CalibrationStep feed_pointer(Nanos t_ns, Vec2 screen);
+  //! Whether the remote (or the camera: `camera`) is connected: without it the screen says
+  //! so and what to do, instead of waiting for a light that cannot come.
+  void link(bool up, bool camera) {
+    link_up_ = up;
+    camera_ = camera;
+  }
   //! The dot is lost (or the remote is): only shown.
   void dot_seen(bool seen) { dot_seen_ = seen; }
 
@@ -89,6 +99,8 @@ class CalibrationScreen {
   bool sensitivity_chosen_ = false;  //!< the tuner found one (not: kept the configured one)
   std::optional<std::string> request_;
   bool dot_seen_ = false;
+  bool link_up_ = true, camera_ = false;
+  bool pointer_on_ring_ = false;  //!< the mouse: its pointer on the current target's ring
 };
 
 }  // namespace mallet::app

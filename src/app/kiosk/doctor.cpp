@@ -139,7 +139,23 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
   try {
     // The output exactly as the kiosk opens it: the configured device, rate and routing.
     audio::AudioRig rig = audio::make_audio_rig(scene, config, config.audio.sample_rate_hz, /*acoustic_enabled=*/false);
-    audio::PortAudioOutput output(*rig.engine, config.audio, {});
+    const audio::PortAudioOutput output(*rig.engine, config.audio, {});
+    return judge_audio_output(config, output);
+  } catch (const std::exception& e) {
+    return audio_missing(e.what());
+  }
+}
+
+}  // namespace
+
+DoctorCheck audio_missing(const std::string& why) {
+  return fail("audio", why,
+              "connect the sound card and check that ALSA sees it (`aplay -l`), then choose it with [audio] device "
+              "(`mallet audio devices` lists them)");
+}
+
+DoctorCheck judge_audio_output(const AppConfig& config, const audio::PortAudioOutput& output) {
+  {
     const audio::DeviceInfo d = output.device();
     const AudioRouting& r = config.audio.routing;
     const std::string buf = fmt::format(
@@ -163,14 +179,8 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
       c.fix = "over 30 ms: the actuator is felt late; lower [audio] suggested_latency_ms or frames_per_buffer";
     }
     return c;
-  } catch (const std::exception& e) {
-    return fail("audio", e.what(),
-                "connect the sound card and check that ALSA sees it (`aplay -l`), then choose it with [audio] device "
-                "(`mallet audio devices` lists them)");
   }
 }
-
-}  // namespace
 
 DoctorCheck wiimote_without_remote(const std::string& source) {
   if (source == "mouse" || source == "replay" || source == "camera")
@@ -314,10 +324,11 @@ DoctorCheck check_soundfont(const AppConfig& config) {
 
 //! The visitor languages: every shipped catalogue readable (the page's L reaches them all),
 //! every dropped-in one too, and the ones the settings show (the language check looks into those).
-DoctorCheck check_languages(const AppConfig& config) {
+DoctorCheck check_languages(const AppConfig& config, const std::string& on_screen) {
   std::vector<std::string> problems;
   catalogue_texts(locale_dir(), problems);
   std::string shown = config.language;
+  if (!on_screen.empty() && on_screen != config.language) shown = on_screen + " (the page's L; the settings: " + shown + ")";
   if (!config.attract.languages.empty()) {
     shown += " (attract:";
     for (const std::string& l : config.attract.languages) shown += " " + l;
@@ -622,7 +633,10 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
                   ""};
     if (!setup.problems.empty()) {
       c.level = CheckLevel::warn;
-      c.found += "; " + std::to_string(setup.problems.size()) + " refused: " + setup.problems.front();
+      // Every problem of the start (refused drop-ins among them, which describe() counts),
+      // counted once, and the first whole.
+      const std::size_t n = setup.problems.size();
+      c.found += "; " + std::to_string(n) + (n == 1 ? " problem: " : " problems, the first: ") + setup.problems.front();
       c.fix = "fix or remove the file named (`mallet config show` shows what is in force)";
     }
     checks.push_back(c);
@@ -631,7 +645,7 @@ std::vector<DoctorCheck> run_doctor_with(const DoctorOptions& o, const KioskDevi
       scenes.insert(scenes.begin(), setup.scene.file);
     checks.push_back(check_models(scenes));
     checks.push_back(check_soundfont(setup.config));
-    checks.push_back(check_languages(setup.config));
+    checks.push_back(check_languages(setup.config, facts.shown_language));
     checks.push_back(check_language(setup.config));
     checks.push_back(check_actuator(setup.config));
     checks.push_back(check_latency(setup.config));

@@ -11,6 +11,10 @@
 #include "core/app_config.hpp"
 #include "core/doctor_check.hpp"
 
+namespace mallet::audio {
+class PortAudioOutput;
+}
+
 namespace mallet::app {
 
 struct DoctorOptions {
@@ -37,6 +41,9 @@ struct KioskDeviceFacts {
   //! Why the kiosk's last write into its state folder failed (state_folder.hpp); empty: it
   //! did not, or the doctor runs alone (it then tries a write of its own).
   std::string state_problem;
+  //! The language on the kiosk's screen now (the operator page's L may have changed it from
+  //! the settings'); empty: the doctor runs alone, and the settings' is what shows.
+  std::string shown_language;
 };
 
 //! The render nodes in /dev/dri (renderD*), each with its kernel driver
@@ -59,6 +66,12 @@ CompositorRenderer kiosk_compositor_renderer(bool ask_unit);
 //! Remote connected", a warning for "auto" (the kiosk plays with the mouse) and a failure for
 //! "wiimote".
 DoctorCheck wiimote_without_remote(const std::string& source);
+
+//! The audio check of an output as the kiosk opened it (its device, rate, latency and the
+//! settings' routing), in the one wording `mallet doctor` and the operator page's D print.
+DoctorCheck judge_audio_output(const AppConfig& config, const audio::PortAudioOutput& output);
+//! The audio check where no output opened, `why` as the open said it.
+DoctorCheck audio_missing(const std::string& why);
 
 //! Every check (or those `options.only` names), each device opened and released again. Never
 //! throws: a probe that fails is a `fail` line.

@@ -1,5 +1,7 @@
 #include "app/kiosk/kiosk.hpp"
 
+#include "app/kiosk/visitor_words.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -93,9 +95,10 @@ int run_headless(const KioskOptions& o, const KioskSetup& setup, const std::stri
     loop.advance(t);
     overlay.clear();
     const float width = static_cast<float>(ho.size.width), height = static_cast<float>(ho.size.height);
-    if (config.note_names)
-      render::draw_note_names(overlay, scene, render::view_projection(scene, width / height), width, height);
-    render::draw_banner(overlay, hint_text(KioskHint::invitation, scene.kind), width, height);
+    VisitorWords words;
+    words.note_names = config.note_names;
+    words.banner = hint_text(KioskHint::invitation, scene.kind);
+    draw_visitor_words(overlay, scene, words, width, height);
     render::FrameState state;
     const StrikeLoop::View view = loop.strike_loop().view();
     state.mallet_centre = view.displayed(t);

@@ -1,5 +1,9 @@
 #include "app/kiosk/kiosk_setup.hpp"
 
+#include <unistd.h>
+
+#include "app/kiosk/systemd_notify.hpp"
+
 #include <system_error>
 
 #include "core/data_paths.hpp"
@@ -85,16 +89,21 @@ Result<KioskSetup, std::string> start_setup(const KioskOptions& o, const std::fi
       config::LoadedSettings settings = kept ? config::load_kept_settings(file, as_if)
                                              : config::load_settings(file, {});
       KioskSetup s = setup_from(options, std::move(settings), as_if);
+      // A problem with a kept setting (a scene choice gone since) is named in the operator's
+      // own file, where it is fixed, not in the generated one.
+      if (kept)
+        for (std::string& p : s.problems) p = config::at_kept_origin(file, p);
       s.fallback = what + " (" + file.string() + ")";
       s.refused = "settings refused: " + own.error() + "; the kiosk runs on " + s.fallback +
-                  " until they load (fix them, then reload: systemctl reload mallet)";
+                  " until they load (fix them, then reload: " +
+                  reload_command(NotifyEnvironment::from_process(), static_cast<long>(getpid())) + ")";
       s.settings_line = "settings: " + s.fallback + ", the operator's are refused";
       s.problems.insert(s.problems.begin(), not_used.begin(), not_used.end());
       s.problems.insert(s.problems.begin(), s.refused);
       own = std::move(s);
       return true;
     } catch (const std::exception& e) {
-      not_used.push_back(what + " not used: " + e.what());
+      not_used.push_back(what + " not used: " + (kept ? config::at_kept_origin(file, e.what()) : std::string(e.what())));
       return false;
     }
   };

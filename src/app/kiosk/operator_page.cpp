@@ -121,8 +121,9 @@ LineRows line_rows(const render::FontAtlas& font, const PageLine& line, float sc
   // Continuation rows: under the text's own column beside a mark or a name, else indented.
   const bool hangs = tx > 0;
   const float next_x = hangs ? tx : tx + 1.5f * em;
-  const PageTone text_tone = line.tone == PageTone::title || line.tone == PageTone::warning ? line.tone
-                                                                                              : PageTone::status;
+  const PageTone text_tone =
+      line.tone == PageTone::title || line.tone == PageTone::warning || line.tone == PageTone::keys ? line.tone
+                                                                                                      : PageTone::status;
   int row = 0;
   std::size_t from = 0;
   for (;;) {  // '\n' starts a continuation row
@@ -173,8 +174,10 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
   for (float scale = kLargestScale;; scale = std::max(smallest, scale - 0.05f)) {
     const float em = px * scale;
     out.scale = scale;
-    // Smaller text on a wide screen: a wider panel, so that fewer lines wrap.
-    out.width = std::min(w - 2 * em, std::max(kWidestLine * px, kWidestLineEms * em));
+    // As wide as the largest text's panel whatever the text's size (smaller text then wraps
+    // less, rather than in a narrower panel: a long language used half of a wide screen and
+    // took two pages where English took one), and never wider than the screen.
+    out.width = std::min(w - 2 * em, std::max(kWidestLine * px, kWidestLineEms * px * kLargestScale));
     room = out.width - 2 * em;
     float mark_w = 0, head_w = 0;
     for (const PageLine& l : lines) {
@@ -190,18 +193,26 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
     max_rows = static_cast<int>(std::floor((h - em) / (kLineSpacing * em))) - 1;  // a row's room above and below
     if (total <= max_rows || scale <= smallest) break;
   }
-  // The lines on screens taken in turn when they do not fit one: the title on each, then as
-  // many whole lines as fit with the footer's row (a line taller than a screen has one alone).
+  // The lines on screens taken in turn when they do not fit one: the title and the keys'
+  // line on each (the way back is on every screen, not only the last), then as many whole
+  // lines as fit with the footer's row (a line taller than a screen has one alone).
   std::vector<std::vector<std::size_t>> screens(1);
   const bool titled = !lines.empty() && lines.front().tone == PageTone::title;
-  int used = titled ? laid.front().count : 0;
-  int total = used;
-  for (std::size_t i = titled ? 1 : 0; i < laid.size(); ++i) total += laid[i].count;
+  std::vector<std::size_t> keys;  // on every screen, after its lines
+  int pinned = titled ? laid.front().count : 0;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].tone == PageTone::keys) keys.push_back(i), pinned += laid[i].count;
+  const auto paged = [&](std::size_t i) { return !(titled && i == 0) && lines[i].tone != PageTone::keys; };
+  int total = pinned;
+  for (std::size_t i = 0; i < laid.size(); ++i)
+    if (paged(i)) total += laid[i].count;
   const int room_rows = total <= max_rows ? max_rows : max_rows - 1;  // the footer's row
-  for (std::size_t i = titled ? 1 : 0; i < laid.size(); ++i) {
+  int used = pinned;
+  for (std::size_t i = 0; i < laid.size(); ++i) {
+    if (!paged(i)) continue;
     if (used + laid[i].count > room_rows && !screens.back().empty()) {
       screens.emplace_back();
-      used = titled ? laid.front().count : 0;
+      used = pinned;
     }
     screens.back().push_back(i);
     used += laid[i].count;
@@ -210,6 +221,7 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
   out.page = ((page % out.pages) + out.pages) % out.pages;
   std::vector<std::size_t> shown = screens[static_cast<std::size_t>(out.page)];
   if (titled) shown.insert(shown.begin(), 0);
+  shown.insert(shown.end(), keys.begin(), keys.end());
 
   const float em = px * out.scale, line = kLineSpacing * em;
   int rows = 0;
@@ -239,20 +251,23 @@ PageLayout layout_operator_page(const render::FontAtlas& font, const std::vector
 void draw_operator_page(render::Overlay& o, const PageLayout& layout) {
   o.fill_rect(layout.x, layout.y, layout.width, layout.height, {0.05f, 0.05f, 0.07f, 0.88f});
   o.stroke_rect(layout.x, layout.y, layout.width, layout.height, 2, {1.0f, 1.0f, 1.0f, 0.5f});
-  // A right-to-left language reads the page from its right edge: each row aligned right, its
-  // columns (the marks, the checks' names) mirrored.
+  // A right-to-left language reads the page from its right edge: a row with its letters
+  // aligned right, its columns mirrored. A row of Latin text (a path, a key, a figure, a
+  // check's name and mark) is laid out by its own direction, from the left edge, so that the
+  // status lines stay straight columns to scan, not ragged on the right.
   const bool rtl = render::right_to_left(visitor_language());
   for (const PageRow& r : layout.rows) {
     std::array<float, 4> color{1.0f, 1.0f, 1.0f, 0.85f};
     switch (r.tone) {
       case PageTone::title: color = {1.0f, 1.0f, 1.0f, 1.0f}; break;
-      case PageTone::status: break;
+      case PageTone::status:
+      case PageTone::keys: break;
       case PageTone::warning:
       case PageTone::warn: color = {1.0f, 0.76f, 0.28f, 1.0f}; break;
       case PageTone::fail: color = {1.0f, 0.45f, 0.42f, 1.0f}; break;
       case PageTone::ok: color = {0.45f, 0.86f, 0.5f, 1.0f}; break;
     }
-    if (rtl)
+    if (rtl && o.atlas().shape(r.text).right_to_left)
       o.text(layout.x + layout.width - (r.x - layout.x), r.y, r.text, color, render::TextAlign::right, layout.scale);
     else
       o.text(r.x, r.y, r.text, color, render::TextAlign::left, layout.scale);
@@ -264,14 +279,13 @@ std::vector<PageLine> doctor_page_lines(const KioskStage& stage, const render::P
                                            const std::string& state_problem) {
   KioskDeviceFacts facts;
   facts.state_problem = state_problem;
+  facts.shown_language = visitor_language();  // the operator's L, not the settings' language
   VkPhysicalDeviceProperties props{};
   vkGetPhysicalDeviceProperties(win.ctx->physical_device(), &props);
   facts.vulkan = judge_renderer(win.ctx->device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
                                 win.window->extent().width, win.window->extent().height, frame_ms);
-  facts.vulkan.found += " (the kiosk's frames)";
-  facts.audio = stage.output ? DoctorCheck{"audio", CheckLevel::ok, stage.audio_status, ""}
-                             : DoctorCheck{"audio", CheckLevel::fail, stage.audio_status,
-                                           "connect the sound card and check `aplay -l`; `mallet audio devices`"};
+  facts.vulkan.found += " (the kiosk's frames that drew)";
+  facts.audio = stage.output ? judge_audio_output(stage.config, *stage.output) : audio_missing(stage.audio_status);
   facts.wiimote = wiimote_without_remote(stage.config.input.source);  // as `mallet doctor` says it
   facts.camera = {"camera", CheckLevel::ok, "not used: [input] source = \"" + stage.config.input.source + "\"", ""};
   if (stage.device) {
@@ -294,9 +308,9 @@ std::vector<PageLine> doctor_page_lines(const KioskStage& stage, const render::P
   std::vector<PageLine> lines;
   int failing = 0;
   for (const DoctorCheck& c : checks) {
-    // On the page what was found and the fix of a check that is not ok (not the tracker the
-    // settings do not use); in the journal every check whole.
-    if (!(c.level == CheckLevel::ok && c.found.rfind("not used", 0) == 0)) {
+    // On the page every check `mallet doctor` prints, in its words (the tracker the settings
+    // do not use too: "not used"), with the fix of one that is not ok; in the journal each whole.
+    {
       const PageTone tone = c.level == CheckLevel::fail   ? PageTone::fail
                             : c.level == CheckLevel::warn ? PageTone::warn
                                                           : PageTone::ok;

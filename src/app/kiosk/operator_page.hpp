@@ -49,6 +49,7 @@ enum class PageTone {
   fail,     //!< a doctor's check (D): its level in the mark column, red ...
   warn,     //!< ... amber ...
   ok,       //!< ... or green
+  keys,     //!< the keys' line ("D back to the page    Esc close"): last, on every screen of a page that takes several
 };
 
 //! One line of the page: it wraps within the panel and is never cut.

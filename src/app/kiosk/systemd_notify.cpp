@@ -52,6 +52,10 @@ NotifyEnvironment NotifyEnvironment::from_process() {
   return {env_or_empty("NOTIFY_SOCKET"), env_or_empty("WATCHDOG_USEC"), env_or_empty("WATCHDOG_PID")};
 }
 
+std::string reload_command(const NotifyEnvironment& env, long pid) {
+  return env.notify_socket.empty() ? "kill -HUP " + std::to_string(pid) : "systemctl reload mallet";
+}
+
 std::optional<Nanos> watchdog_half_period(std::string_view watchdog_usec) {
   const auto usec = parse_positive<Nanos>(watchdog_usec);
   if (!usec || *usec > std::numeric_limits<Nanos>::max() / 1000) return std::nullopt;

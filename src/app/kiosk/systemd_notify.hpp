@@ -36,6 +36,11 @@ struct NotifyEnvironment {
   static NotifyEnvironment from_process();
 };
 
+//! What an operator types to make this kiosk reload its settings: `systemctl reload mallet`
+//! when systemd started it (its unit sets $NOTIFY_SOCKET), else a SIGHUP to process `pid`
+//! (`kill -HUP PID`: a kiosk started by hand, which no unit reloads).
+std::string reload_command(const NotifyEnvironment& env, long pid);
+
 class SystemdNotifier {
  public:
   //! Not under systemd: every message is dropped (and reported as not sent).

@@ -28,6 +28,7 @@
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
 #include "render/overlay_text.hpp"
+#include "app/kiosk/visitor_words.hpp"
 #include "app/kiosk/input_choice.hpp"
 #include "app/kiosk/kiosk_health.hpp"
 #include "app/kiosk/kiosk_stage.hpp"
@@ -120,6 +121,8 @@ class WindowKiosk {
   void seed_window_cursor();           //!< the cursor's position at start-up, before any event
   float latency_square_side() const { return win_.font->pixel_height() * 4; }  //!< T's white square
   void draw_overlay(Nanos now, double frame_ms);
+  //! The visitors' words this frame (attract, play): hints, the offer, the staff's notes.
+  VisitorWords visitor_words(Nanos now);
   void apply_volume();
   void poll_remote(Nanos now);
   void calibration_frame(Nanos now, std::optional<Vec2> mouse_screen);
@@ -142,6 +145,9 @@ class WindowKiosk {
   //! What a frame costs from its start to its present (input, logic, drawing), smoothed: the
   //! frame interval less the frame budget's wait.
   double work_ms_ = 0;
+  //! The same for the frames that drew (not those an unchanged screen skipped): what the
+  //! doctor's vulkan check measures, a frame with the mallet moving, so both say one figure.
+  double drawn_ms_ = 0;
   std::unique_ptr<KioskStage> stage_;
   std::unique_ptr<KioskStates> states_;
   std::optional<AttractLoop> ghost_;
@@ -151,6 +157,8 @@ class WindowKiosk {
   std::unique_ptr<CalibrationScreen> calibration_;  //!< while the Calibration state lasts
   std::string notice_;                             //!< the last calibration's outcome ...
   Nanos notice_until_ = 0;                         //!< ... shown until then
+  std::string reloaded_;                           //!< the last reload that took, on the page ...
+  Nanos reloaded_until_ = 0;                       //!< ... until then
   LatencyTest latency_test_;  //!< the operator page's T
   //! T's photodiode, when the stream records one ([timing] photodiode_channel)
   std::optional<PhotodiodeLatency> photodiode_;
@@ -190,6 +198,7 @@ class WindowKiosk {
   //! Liveness (systemd's watchdog, the heartbeat) and [metrics].
   KioskHealth health_{monotonic_now()};
   std::optional<study::VisitorOffer> offer_;  //!< [study]: when the visitor study is offered
+  bool offer_shown_ = false;                  //!< this frame's overlay shows the offer
   Nanos offer_since_ = 0;             //!< the current offer's start: strikes before it do not accept
 };
 
@@ -401,7 +410,14 @@ void WindowKiosk::build(KioskSetup setup) {
   states_ = std::make_unique<KioskStates>(states_config(stage_->config, options_), now);
   if (on_page) states_->operator_chord(now);
   states_->input_source(now, stage_->source);
-  if (stage_->source == InputSource::mouse && !stage_->mouse) seed_window_cursor();
+  if (stage_->source == InputSource::mouse && !stage_->mouse) {
+    seed_window_cursor();
+    // The mallet where the cursor rests from the new stage's first frame (a scene switched
+    // by S, a reload): its route has no sample until the pointer moves, and drew no mallet.
+    if (last_cursor_)
+      stage_->route->feed(now, framed(stage_->scene.screen_to_world, &win_.aspect).map(last_cursor_->x, last_cursor_->y),
+                          now);
+  }
   if (stage_->device || stage_->camera) {
     states_->remote_connected(now, false);  // until its link runs (says nothing for a replay)
     start_ir_tracker(*stage_);
@@ -428,8 +444,12 @@ std::string WindowKiosk::timing_line() const {
   const AppConfig& c = stage_->config;
   const TimingConfig& t = c.timing;
   const double audio_ms = stage_->output ? stage_->output->output_latency_s() * 1e3 : 0.0;
-  return fmt::format("timing: align {}, prediction {}, frames {}, display {:.0f} ms, audio out {:.1f} ms{}",
-                     to_string(t.align), predict_text(t.predict), win_.window->present_clock().describe(),
+  // The frames in the log's own words (the budget's pace), then how they are presented.
+  std::string pace = win_.pace_said();
+  if (pace.rfind("render: ", 0) == 0) pace.erase(0, 8);
+  return fmt::format("timing: align {}, prediction {}, {}{}presented {}, display {:.0f} ms, audio out {:.1f} ms{}",
+                     to_string(t.align), predict_text(t.predict), pace, pace.empty() ? "" : "; ",
+                     win_.window->present_clock().describe(),
                      t.display_latency_ms, audio_ms, c.audio.output_latency_ms >= 0 ? " (set)" : " (the device's)");
 }
 
@@ -496,10 +516,9 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
     // The Wii camera's sensitivity blocks are the remote's; a V4L2 camera's exposure is set.
     if (stage_->device) calibration_->tune_sensitivity({}, kiosk_sensitivity(stage_->config, stage_->calibration));
   }
-  // The mouse stands in for the IR dot while it is the input.
-  if (stage_->source == InputSource::mouse && mouse_screen) {
-    calibration_->feed(now, mouse_as_camera_px(*mouse_screen));
-  }
+  // The mouse stands in for the IR dot while it is the input (measured on the ring only).
+  if (stage_->source == InputSource::mouse && mouse_screen) calibration_->feed_pointer(now, *mouse_screen);
+  if (stage_->device || stage_->camera) calibration_->link(ir_link(*stage_).up, stage_->camera != nullptr);
   if (calibration_->outcome() == CalibrationScreen::Outcome::measuring) return;
   if (!calibration_->sensitivity().empty())
     stage_->calibration_status_sensitivity = "IR sensitivity " + calibration_->sensitivity();
@@ -706,6 +725,14 @@ void WindowKiosk::reload() {
     const std::string settings = setup->settings_line;
     build(std::move(*setup));
     journal::notice("reloaded the settings and the scene ({})", settings.c_str());
+    // Said on the page for a minute too: the operator who pressed S, or reloaded from a
+    // terminal and walks to the kiosk, sees that it took.
+    char clock[16] = "";
+    const std::time_t wall = std::time(nullptr);
+    std::tm local{};
+    if (localtime_r(&wall, &local)) std::strftime(clock, sizeof clock, "%H:%M:%S", &local);
+    reloaded_ = "reloaded at " + std::string(clock) + ": " + settings;
+    reloaded_until_ = monotonic_now() + 60 * kNanosPerSecond;
     for (const std::string& p : problems) journal::warning("{}", p.c_str());
   } catch (const std::exception& e) {  // e.g. a model the new scene names is broken: whatever is thrown
     journal::warning("reload refused, the running configuration stays: {}", e.what());
@@ -754,49 +781,61 @@ void WindowKiosk::keep_last_good(const std::string& text) {
     journal::info("settings kept as the last good ones: {}", file.string());
 }
 
+VisitorWords WindowKiosk::visitor_words(Nanos now) {
+  VisitorWords words;
+  words.note_names = stage_->config.note_names;
+  if (stage_->scene.kind == SceneKind::wall) {
+    // The shipped wall materials' names (config/materials.toml) are in the catalogues; a name
+    // a lab gives its own material shows as written.
+    [[maybe_unused]] static constexpr const char* kShippedWallNames[] = {N_("Rubber"), N_("Wood"), N_("Aluminium")};
+    const int wall = stage_->route->loop().wall_material();
+    if (wall >= 0) words.wall_name = tr(stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str());
+  }
+  const KioskHint hint = states_->hint();
+  // The visitor study's offer, and its "Yes" under the last bar, in place of the invitation
+  // (a hint that something needs doing, a lost remote, comes first). While it shows, the
+  // screen is wholly in the language the study will be shown in: the kiosk's where the
+  // protocol has its words, else the protocol's own (never its words beside another
+  // language's).
+  const bool offering = (hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now);
+  offer_shown_ = offering;
+  std::optional<ShownLanguage> shown;  // the study's language, until the corner notes are written
+  if (offering) {
+    const study::VisitorProtocol& visitor = *stage_->visitor->visitor;
+    const std::string language = visitor.language_for(visitor_language());
+    shown.emplace(language);
+    words.banner = visitor.text_in(language).offer + " " + tr("(strike Yes)");
+    words.called_out = render::BarLabel{visitor_yes_bar(), tr("Yes")};
+  } else if (hint != KioskHint::none) {
+    words.banner = hint_text(hint, stage_->scene.kind, stage_->source == InputSource::mouse);
+  } else if (now < notice_until_) {
+    words.banner = notice_;
+  }
+  // Notes for the staff walking past, discreet on their own dark bands in the corners
+  // (contrast measured on every scene's frames: tests/app/strike/text_contrast_test.cpp),
+  // worded so that a visitor reads no fault in them: a refused close, the mouse standing in
+  // for the remote (why is the operator page's), a kiosk without sound.
+  const KioskOverlay overlay = states_->overlay();
+  if (overlay.close_needs_chord) words.staff_left = hint_text(KioskHint::close_needs_chord);
+  else if (overlay.mouse_notice) words.staff_left = tr("Mouse");
+  if (!stage_->output && (states_->state() == KioskState::attract || states_->state() == KioskState::play))
+    words.staff_right = tr("No sound");
+  return words;
+}
+
 void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   render::Overlay& o = *win_.overlay;
   o.clear();
   const VkExtent2D extent = win_.window->extent();
   const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
-  if (states_->state() == KioskState::calibration && calibration_) calibration_->draw(o, w, h);
-  else if (stage_->config.note_names)
-    render::draw_note_names(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h);
-  if (stage_->scene.kind == SceneKind::wall && states_->state() != KioskState::calibration) {
-    // The shipped wall materials' names (config/materials.toml) are in the catalogues; a name
-    // a lab gives its own material shows as written.
-    [[maybe_unused]] static constexpr const char* kShippedWallNames[] = {N_("Rubber"), N_("Wood"), N_("Aluminium")};
-    const int wall = stage_->route->loop().wall_material();
-    if (wall >= 0)
-      render::draw_wall_name(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
-                             tr(stage_->scene.materials[static_cast<std::size_t>(wall)].display_name.c_str()));
+  offer_shown_ = false;
+  // The operator page and the calibration have their own words, with nothing of the
+  // visitors' showing through them.
+  if (states_->state() == KioskState::calibration) {
+    if (calibration_) calibration_->draw(o, w, h);
+  } else if (states_->state() != KioskState::operator_page) {
+    draw_visitor_words(o, stage_->scene, visitor_words(now), w, h);
   }
-  const KioskHint hint = states_->hint();
-  // The visitor study's offer, and its "Yes" on the last bar, in place of the invitation (a
-  // hint that something needs doing, a lost remote, comes first). While it shows, the screen
-  // is wholly in the language the study will be shown in: the kiosk's where the protocol has
-  // its words, else the protocol's own (never its words beside another language's).
-  const bool offering = (hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now);
-  std::optional<ShownLanguage> shown;  // the study's language, until the corner notes are drawn
-  if (offering) {
-    const study::VisitorProtocol& visitor = *stage_->visitor->visitor;
-    const std::string language = visitor.language_for(visitor_language());
-    shown.emplace(language);
-    render::draw_banner(o, visitor.text_in(language).offer + " " + tr("(strike Yes)"), w, h);
-    render::draw_bar_labels(o, stage_->scene, render::view_projection(stage_->scene, w / h), w, h,
-                    {{visitor_yes_bar(), tr("Yes")}});
-  } else if (hint != KioskHint::none)
-    render::draw_banner(o, hint_text(hint, stage_->scene.kind, stage_->source == InputSource::mouse), w, h);
-  else if (now < notice_until_ && states_->state() != KioskState::calibration) render::draw_banner(o, notice_, w, h);
-  // Notes for the staff walking past, discreet on their own dark bands (contrast measured on
-  // every scene's frames: tests/app/strike/text_contrast_test.cpp): the mouse standing in for
-  // the remote, and a kiosk without sound.
-  if (states_->overlay().mouse_notice)
-    render::draw_corner_note(o, stage_->config.input.source == "auto" ? tr("Mouse (no Wii Remote)") : tr("Mouse"),
-                             render::Corner::bottom_left, w, h);
-  if (!stage_->output && (states_->state() == KioskState::attract || states_->state() == KioskState::play))
-    render::draw_corner_note(o, tr("No sound"), render::Corner::bottom_right, w, h);
-  shown.reset();  // the operator page is in the kiosk's language
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();
     return;
@@ -804,15 +843,15 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (doctor_asked_) {
     doctor_asked_ = false;
     // What a frame costs, not the budget's interval; and the state folder as the kiosk found it.
-    doctor_ = doctor_page_lines(*stage_, win_, options_, work_ms_, health_.state().problem());
+    doctor_ = doctor_page_lines(*stage_, win_, options_, drawn_ms_, health_.state().problem());
   }
   // The page's figures change once a second, not each frame: an unchanged page is not drawn
   // again (the window's skip_unchanged), so the open page costs no more than play.
   if (!page_figures_ || now - page_figures_->at >= kNanosPerSecond) {
     const double uptime = to_seconds(now - health_.started());
     page_figures_ =
-        PageFigures{fmt::format("frame: {:.1f} ms (its work {:.1f} ms)   uptime: {:.0f} h {:02.0f} min", frame_ms,
-                                work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)),
+        PageFigures{fmt::sprintf(tr("frame: %.1f ms (its work %.1f ms)   uptime: %.0f h %02.0f min"), frame_ms,
+                                 work_ms_, std::floor(uptime / 3600), std::fmod(std::floor(uptime / 60), 60.0)),
                     timing_line(), now};
   }
   std::vector<PageLine> lines;
@@ -824,6 +863,10 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   // What needs the operator first, before the status: settings refused (at start, on a
   // reload), drop-ins and scene choices skipped, a state folder that cannot be written.
   if (states_->quit_asked()) lines.push_back({PageTone::warning, tr("Q again quits the kiosk (any other key: stay)")});
+  // A calibration's outcome (R from the page comes back to it): a line of its own, not a
+  // banner drawn over the page's words.
+  if (now < notice_until_) lines.push_back({PageTone::status, notice_});
+  if (now < reloaded_until_) lines.push_back({PageTone::status, reloaded_});
   if (const std::string test = latency_test_.status(now); !test.empty()) lines.push_back({PageTone::status, test});
   if (photodiode_)
     for (PageLine& l : photodiode_->page_lines(stage_->config.timing.display_latency_ms)) lines.push_back(std::move(l));
@@ -832,7 +875,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (health_.state().failing()) lines.push_back({PageTone::warning, health_.state().problem()});
   if (!doctor_.empty()) {  // D: the doctor's checks instead of the page's status
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
-    lines.push_back({PageTone::status, tr("D back to the page    Esc close")});
+    lines.push_back({PageTone::keys, tr("D back to the page    Esc close")});
   } else {
     lines.push_back({PageTone::status, input_line(*stage_)});
     lines.push_back({PageTone::status, stage_->audio_status});
@@ -840,7 +883,7 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.push_back({PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100)});
     lines.push_back({PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_)});
     lines.push_back(
-        {PageTone::status, tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close")});
+        {PageTone::keys, tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close")});
     const int wall = stage_->route->loop().wall_material();
     std::string scene_line =
         fmt::sprintf(tr("scene: %s  (S next)"), std::filesystem::path(stage_->scene.file).filename().string());
@@ -995,16 +1038,18 @@ int WindowKiosk::run() {
         states_->state() != KioskState::operator_page && states_->state() != KioskState::calibration;
     // The bar under the mallet (where it is held, not where it bounces) and the bar struck.
     state.bar_lights = bar_lights(stage_->scene, view.shown, view.vibration, present);
+    if (offer_shown_) state.bar_lights[2] = {visitor_yes_bar(), kCalledOutGlow};  // the offer's "Yes", lit
     state.overlay = win_.overlay.get();
     // A lost device: the renderer and the window's device, pipelines and background made
     // anew; the sound, the remote's and the evdev mouse's strikes go on on their threads.
-    if (win_.draw_or_recover(
-            *stage_->renderer, state, [&] { stage_->renderer.reset(); },
-            [&] { stage_->renderer = make_renderer(*stage_); }))
-      health_.frame_drawn();
-    else if (win_.window->still())
-      health_.frame_still();  // nothing changed: the screen shows this frame already
-    work_ms_ = 0.9 * work_ms_ + 0.1 * to_seconds(monotonic_now() - now) * 1e3;
+    const bool drew = win_.draw_or_recover(
+        *stage_->renderer, state, [&] { stage_->renderer.reset(); },
+        [&] { stage_->renderer = make_renderer(*stage_); });
+    if (drew) health_.frame_drawn();
+    else if (win_.window->still()) health_.frame_still();  // nothing changed: the screen shows this frame already
+    const double this_ms = to_seconds(monotonic_now() - now) * 1e3;
+    work_ms_ = 0.9 * work_ms_ + 0.1 * this_ms;
+    if (drew) drawn_ms_ = drawn_ms_ > 0 ? 0.9 * drawn_ms_ + 0.1 * this_ms : this_ms;
     // READY=1 once the frames cost what they will: after the first frame drawn whole and the
     // first drawn over the cached background (only what changed), whose pipelines a software
     // driver compiles at that first use. Mesa 25's lavapipe takes 1.6 s for that second frame

@@ -162,7 +162,8 @@ std::optional<study::ResultRow> run_trial(const StudyPlan& plan, const Scene& st
 StudyRunResult nothing_run(const StudyPlan& plan);
 
 //! The remaining trials of the plan through `stage` and `answers`, each row durable
-//! before the next trial. `study_scene` = make_study_scene(plan.base, plan.protocol).
+//! before the next trial. `study_scene` = make_study_scene(plan.base, plan.protocol)
+//! (in a window: study_scene_for, laid out for its shape).
 StudyRunResult run_session(const StudyPlan& plan, const Scene& study_scene, StudyStage& stage,
                            AnswerSource& answers, const std::function<void(int)>& after_row = {});
 

@@ -101,6 +101,35 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
   return scene;
 }
 
+Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect) {
+  Scene scene = make_study_scene(base, protocol);
+  // Each crossing's scene is made from the base; keys need no bars; a landscape screen shows
+  // the bars spread as made.
+  if (protocol.texture() || protocol.response != study::StudyResponse::strike || !(aspect > 0 && aspect < 1))
+    return scene;
+  // Portrait: the bars side by side, close, in a band as wide as the screen (stacked, they
+  // were thin sticks a third of the height apart): the answers first in their order, the
+  // stimulus bar last, on the right, where the offer's "Yes" was (a visitor's second strike
+  // there taps a bar that answers nothing).
+  const std::vector<AnswerBar> answers = answer_bars(scene, protocol);
+  const Target& stimulus = scene.targets.front();
+  const double width = stimulus.x_max - stimulus.x_min, step = 2.5 * width;
+  const double right = stimulus.x_max + width;
+  const double stimulus_centre = 0.5 * (stimulus.x_min + stimulus.x_max);
+  const double n = static_cast<double>(answers.size());
+  for (std::size_t k = 0; k < answers.size(); ++k) {
+    Target& t = scene.targets.at(static_cast<std::size_t>(answers[k].target));
+    const double centre = stimulus_centre - (n - static_cast<double>(k)) * step;
+    t.x_min = centre - width / 2;
+    t.x_max = centre + width / 2;
+  }
+  scene.screen_to_world.left_m = stimulus_centre - n * step - width / 2 - width;
+  scene.screen_to_world.right_m = right;
+  scene.camera.eye_x_m = 0.5 * (scene.screen_to_world.left_m + scene.screen_to_world.right_m);
+  scene.layout = SceneLayout::portrait;
+  return scene;
+}
+
 Scene texture_trial_scene(const Scene& base, const study::Stimulus& stimulus, study::StudyCondition condition) {
   Scene scene = base;
   TextureStimulus& t = scene.texture.value();

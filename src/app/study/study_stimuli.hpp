@@ -25,6 +25,14 @@ namespace mallet::app {
 
 Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol);
 
+//! The study scene as a window of `aspect` (width over height) shows it. On a portrait
+//! screen (aspect < 1) the answer bars stand close beside each other in their order, then
+//! the stimulus bar on the right, and the scene is narrowed to them: a band of large bars
+//! across the screen's width, not small ones in a band across its middle (the answers
+//! left of where the kiosk's offer had its "Yes"). A landscape or unknown (0) aspect, a
+//! texture protocol and answers by keys: as made.
+Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect);
+
 //! The answer bars of a study scene and the answer each gives, in the protocol's order of
 //! answer_choices(); empty unless response = "strike".
 struct AnswerBar {

@@ -25,6 +25,7 @@
 #include "render/render_setup.hpp"
 #include "app/strike/strike_route.hpp"
 #include "app/study/study_stimuli.hpp"
+#include "app/study/study_words.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "app/study/visitor_study.hpp"
 #include "core/visitor_language.hpp"
@@ -39,6 +40,10 @@ namespace mallet::app {
 namespace {
 
 using study::ScheduledTrial;
+
+//! How long the consent screen hears no answer after it opens: a visitor's second strike
+//! on the offer's "Yes" (struck twice, as a xylophone is) falls in it.
+constexpr Nanos kConsentSettles = kNanosPerSecond;
 
 //! SIGINT / SIGTERM (Ctrl-C in the experimenter's terminal, systemd): stop as Esc does.
 std::atomic<bool> g_stop{false};
@@ -230,7 +235,9 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     labels_ = {{bars_.at(0).target, tr("Yes")}, {bars_.at(1).target, tr("No")}};
     if (stimulus_label_) labels_.push_back(*stimulus_label_);
     journal::info("mallet study: a visitor's consent screen");
-    const std::optional<std::size_t> k = struck_bar(opens, 2);
+    // A strike in its first moments is the visitor's strike on the offer, struck again as one
+    // strikes a xylophone: it does not answer.
+    const std::optional<std::size_t> k = struck_bar(opens, 2, opens + kConsentSettles);
     labels_ = answers;
     if (!k) return std::nullopt;
     return *k == 0;
@@ -287,10 +294,7 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     o.clear();
     const VkExtent2D extent = win_.window->extent();
     const float w = static_cast<float>(extent.width), h = static_cast<float>(extent.height);
-    const float px = win_.font->pixel_height();
-    if (!labels_.empty()) render::draw_bar_labels(o, scene_, render::view_projection(scene_, w / h), w, h, labels_);
-    if (!banner_.empty()) render::draw_banner(o, banner_, w, h);
-    if (!status_.empty()) o.text(px, h - px, status_, {1.0f, 1.0f, 1.0f, 0.35f});
+    draw_study_words(o, scene_, {banner_, labels_, status_}, w, h);
     render::FrameState state;
     const Nanos present = win_.window->predicted_present(now);
     state.mallet_centre = (crossing_ ? crossing_->route->view() : route_->view()).displayed(present);
@@ -306,16 +310,17 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
     return true;
   }
 
-  //! The first of the answer bars (only the first `among`) struck at or after `opens` by the
-  //! participant's mallet (the contact in struck_at_), the mallet back on the stimulus bar;
-  //! nothing when they stopped or the answer timed out.
-  std::optional<std::size_t> struck_bar(Nanos opens, std::size_t among = SIZE_MAX) {
+  //! The first of the answer bars (only the first `among`) struck at or after `counts_from`
+  //! (0: `opens`) by the participant's mallet (the contact in struck_at_), the mallet back on
+  //! the stimulus bar; nothing when they stopped or the answer timed out (from `opens`).
+  std::optional<std::size_t> struck_bar(Nanos opens, std::size_t among = SIZE_MAX, Nanos counts_from = 0) {
+    counts_from = std::max(counts_from, opens);
     struck_.clear();
     hand_live_ = true;  // from now on the mouse moves the mallet
     for (;;) {
       for (const Strike& s : std::exchange(struck_, {}))
         for (std::size_t k = 0; k < std::min(among, bars_.size()); ++k)
-          if (bars_[k].target == s.impact.target && s.impact.t_ns >= opens) {
+          if (bars_[k].target == s.impact.target && s.impact.t_ns >= counts_from) {
             banner_.clear();
             rest();
             struck_at_ = s.impact.t_ns;
@@ -384,7 +389,6 @@ class StudyWindow final : public StudyStage, public VisitorAnswers {
 StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOptions& window) {
   const StudyPlan plan = plan_study(options);
   if (plan.finished) return nothing_run(plan);  // nothing left: no window
-  const Scene scene = make_study_scene(plan.base, plan.protocol);
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
@@ -394,6 +398,7 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
   start_visitor_language(plan.config.language, problems);
   for (const std::string& p : problems) journal::warning("{}", p.c_str());
   render::ProductWindow win(plan.config.render, window.device, window.size, window.windowed, "Mallet study");
+  const Scene scene = study_scene_for(plan.base, plan.protocol, win.aspect.get());  // for the screen's shape
   StudyWindowRun run;
   run.quit_after = static_cast<Nanos>(std::llround(window.quit_after_s * 1e9));
   StudyWindow w(plan, scene, win, run);
@@ -406,7 +411,7 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
 study::VisitorSessionResult run_visitor_window(render::ProductWindow& win, const StudyPlan& plan,
                                         std::function<std::vector<PointerSample>()> pointer,
                                         std::function<bool()> each_frame) {
-  const Scene scene = make_study_scene(plan.base, plan.protocol);
+  const Scene scene = study_scene_for(plan.base, plan.protocol, win.aspect.get());  // for the screen's shape
   StudyWindowRun run;
   run.answer_timeout = plan.protocol.visitor->answer_timeout;
   run.quit_keys = false;

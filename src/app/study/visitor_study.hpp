@@ -44,7 +44,8 @@ std::filesystem::path visitor_results_dir(const StudyConfig& config);
 StudyPlan plan_visitor(const AppConfig& config, const Scene& base, const study::StudyProtocol& protocol,
                        const std::filesystem::path& dir, const std::string& id, const std::string& date);
 
-//! The consent, then the trials. `study_scene` = make_study_scene(plan.base, plan.protocol).
+//! The consent, then the trials. `study_scene` = make_study_scene(plan.base, plan.protocol)
+//! (in a window: study_scene_for, laid out for its shape).
 study::VisitorSessionResult run_visitor_session(const StudyPlan& plan, const Scene& study_scene, StudyStage& stage,
                                          VisitorAnswers& answers);
 

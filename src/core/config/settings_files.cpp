@@ -1,8 +1,10 @@
 #include "core/config/settings_files.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <system_error>
 
@@ -116,7 +118,8 @@ std::string LoadedSettings::describe() const {
     for (std::size_t i = 0; i < drop_ins.size(); ++i) out += (i ? ", " : "") + drop_ins[i].filename().string();
     out += ")";
   }
-  if (!refused.empty()) out += "; " + std::to_string(refused.size()) + " refused";
+  if (!refused.empty())
+    out += "; " + std::to_string(refused.size()) + (refused.size() == 1 ? " drop-in refused" : " drop-ins refused");
   return out;
 }
 
@@ -165,6 +168,43 @@ LoadedSettings load_kept_settings(const fs::path& kept, const std::optional<fs::
   s.file = kept;
   s.config = read_app_config(parse_file(kept), (as_if ? *as_if : kept).string());
   return s;
+}
+
+std::string at_kept_origin(const fs::path& kept, const std::string& message) {
+  const std::string prefix = kept.string() + ":";
+  std::string out;
+  std::size_t from = 0;
+  std::vector<std::string> lines;  // the kept file's, read at the first place found
+  bool read = false;
+  for (std::size_t at = message.find(prefix); at != std::string::npos; at = message.find(prefix, from)) {
+    std::size_t end = at + prefix.size();
+    std::size_t number = 0;
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end])))
+      number = number * 10 + static_cast<std::size_t>(message[end++] - '0');
+    out += message.substr(from, at - from);
+    from = end;
+    if (!read) {
+      std::ifstream in(kept);
+      for (std::string l; std::getline(in, l);) lines.push_back(l);
+      read = true;
+    }
+    const std::string place = message.substr(at, end - at);
+    const std::string marker = "  # from ";
+    const std::size_t origin =
+        number >= 1 && number <= lines.size() ? lines[number - 1].rfind(marker) : std::string::npos;
+    if (origin == std::string::npos) {
+      out += place;
+      continue;
+    }
+    // The operator's place, and then what followed the kept one (":COL: problem") unchanged.
+    out += lines[number - 1].substr(origin + marker.size()) + " (kept as " + place + ")";
+    if (from < message.size() && message[from] == ':') {  // the kept column means nothing there
+      std::size_t col = from + 1;
+      while (col < message.size() && std::isdigit(static_cast<unsigned char>(message[col]))) ++col;
+      if (col > from + 1) from = col;
+    }
+  }
+  return out + message.substr(from);
 }
 
 std::string show_settings(const LoadedSettings& settings) {

@@ -45,6 +45,13 @@ LoadedSettings load_settings(const std::optional<std::filesystem::path>& file,
 //! (none: against the kept file's own folder). Throws ConfigError for a bad file.
 LoadedSettings load_kept_settings(const std::filesystem::path& kept, const std::optional<std::filesystem::path>& as_if);
 
+//! `message` with each place in the kept settings `kept` ("KEPT:LINE:", as an error names
+//! it) named as the operator's own file and line that setting was kept from (its line's
+//! `# from FILE:LINE`, show_settings), the kept place after it in brackets: a problem is
+//! fixed in the operator's file, not in the generated one. Unchanged where the kept line
+//! names no origin or cannot be read.
+std::string at_kept_origin(const std::filesystem::path& kept, const std::string& message);
+
 //! The merged TOML of what `settings` applied (its file, then its accepted drop-ins), each
 //! key followed by `# from FILE`; keys no file sets keep their built-in defaults and are
 //! not listed.

@@ -29,11 +29,13 @@ std::string visitor_results_file(const std::string& date) { return "visitors-" +
 
 std::string undeliverable_cues(const StudyProtocol& protocol, bool audio_output) {
   if (audio_output) return {};
-  std::string tactile;
+  std::size_t felt = 0;
   for (const StudyCondition c : protocol.conditions)
-    if (plays_actuator(c)) tactile += (tactile.empty() ? "" : ", ") + std::string(condition_name(c));
-  if (!tactile.empty())
-    return "no audio output, so the actuator cues of its conditions " + tactile + " cannot be delivered";
+    if (plays_actuator(c)) ++felt;
+  // In an operator's words: what a visitor would miss, not the protocol's condition names.
+  if (felt > 0)
+    return "no audio output, so the taps felt through the stick cannot be given (" + std::to_string(felt) + " of its " +
+           std::to_string(protocol.conditions.size()) + " conditions); `mallet doctor` says why there is no sound";
   if (protocol.sound) return "no audio output, so its sound cannot be played";
   return {};
 }

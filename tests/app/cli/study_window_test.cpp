@@ -96,7 +96,7 @@ TEST(StudyWindow, TheMouseStrikesAnAnswerBar) {
   o.out = dir / "r.csv";
   o.scene = test::percussion_scene();
   const StudyPlan plan = plan_study(o);
-  const Scene scene = make_study_scene(plan.base, plan.protocol);
+  const Scene scene = study_scene_for(plan.base, plan.protocol, 640.0 / 360.0);  // as the window lays it out
   const AnswerBar two = answer_bars(scene, plan.protocol).at(1);
   screen.strike(scene, two.target);
   ASSERT_TRUE(test::wait_for(dir / "log.txt", "trial 2 of 4")) << test::slurp(dir / "log.txt");
@@ -190,7 +190,7 @@ TEST(StudyWindow, TheKioskOffersTheVisitorStudyAndAVisitorCompletesItByStriking)
   // The consent's "Yes" is the first answer bar, the trial's "1" too.
   const study::StudyProtocol protocol =
       study::load_study_protocol(dir / "v.toml", kiosk.materials, kiosk.targets.size());
-  const Scene scene = make_study_scene(kiosk, protocol);
+  const Scene scene = study_scene_for(kiosk, protocol, 640.0 / 360.0);  // as the window lays it out
   const std::vector<AnswerBar> bars = answer_bars(scene, protocol);
   ASSERT_TRUE(strike_until(screen, scene, bars.at(0).target, dir / "log.txt",
                            "trial 1 of 1: Which tap felt harder? Strike 1 or 2"))

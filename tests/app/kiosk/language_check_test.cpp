@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/kiosk/doctor.hpp"
 #include "app/kiosk/language_check.hpp"
 #include "core/visitor_catalogues.hpp"
 #include "core/visitor_language.hpp"
@@ -71,6 +72,28 @@ TEST_F(LanguageCheck, ADroppedInLanguageNamesItsGapsAndTheFileToFix) {
   EXPECT_NE(check.found.find("no font has: \xEE\x80\x80 (U+E000)"), std::string::npos) << check.found;
   EXPECT_NE(check.fix.find("translate them in " + (dir_ / "eo.po").string()), std::string::npos) << check.fix;
   EXPECT_NE(check.fix.find("[fonts] eo = "), std::string::npos) << check.fix;
+}
+
+TEST_F(LanguageCheck, ThePagesDoctorSaysTheLanguageOnTheScreenAfterTheOperatorsL) {
+  // The page's D said "shown: ar" after L had switched the kiosk to English (issue 48, item
+  // 13): the settings' language and the one on the screen, each named.
+  std::ofstream(dir_ / "mallet.toml") << "[kiosk]\nlanguage = \"ar\"\n";
+  setenv("MALLET_STATE_DIR", (dir_ / "state").c_str(), 1);
+  DoctorOptions o;
+  o.config = dir_ / "mallet.toml";
+  o.config_dir = dir_ / "mallet.d";
+  KioskDeviceFacts facts;
+  auto languages = [&] {
+    for (const DoctorCheck& c : run_doctor_with(o, facts))
+      if (c.name == "languages") return c.found;
+    return std::string("no languages check");
+  };
+  EXPECT_NE(languages().find("; shown: ar"), std::string::npos) << languages();
+  facts.shown_language = "en";
+  EXPECT_NE(languages().find("; shown: en (the page's L; the settings: ar)"), std::string::npos) << languages();
+  facts.shown_language = "ar";
+  EXPECT_EQ(languages().find("the page's L"), std::string::npos) << languages();
+  unsetenv("MALLET_STATE_DIR");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // panel, no word is lost, the warnings come first, and a doctor's check keeps its columns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -99,6 +100,7 @@ void expect_every_word(const render::FontAtlas& font, const std::vector<PageLine
                        const std::string& what) {
   std::vector<std::string> want;
   for (std::size_t i = 1; i < lines.size(); ++i) {  // the title is checked on each screen
+    if (lines[i].tone == PageTone::keys) continue;  // and so is the keys' line
     for (const char* mark : {"!", "fail", "warn", "ok"})
       if ((lines[i].tone == PageTone::warning && std::string(mark) == "!") ||
           (lines[i].tone == PageTone::fail && std::string(mark) == "fail") ||
@@ -119,7 +121,8 @@ void expect_every_word(const render::FontAtlas& font, const std::vector<PageLine
     EXPECT_EQ(page.rows.front().text, lines.front().text) << what << ": the title heads each screen";
     const std::size_t footer = page.pages > 1 ? 1 : 0;
     for (std::size_t r = 1; r + footer < page.rows.size(); ++r)
-      for (const std::string& w : words_of(page.rows[r].text)) got.push_back(w);
+      if (page.rows[r].tone != PageTone::keys)
+        for (const std::string& w : words_of(page.rows[r].text)) got.push_back(w);
   }
   EXPECT_EQ(got, want) << what << ": " << first.pages << " screen(s)";
 }
@@ -163,6 +166,31 @@ TEST(OperatorPageLayout, ManyWarningsTakeScreensInTurnAndLoseNoWord) {
     const PageLayout last = layout_operator_page(*font, lines, s.w, s.h, 0, first.pages - 1);
     const std::string n = std::to_string(first.pages);
     EXPECT_EQ(last.rows.back().text, "Page Down: back to the first   (" + n + " of " + n + ")") << what;
+  }
+}
+
+TEST(OperatorPageLayout, TheKeysLineIsOnEveryScreenOfAPageThatTakesSeveral) {
+  // The doctor's view on two screens had "D back to the page    Esc close" on its last one
+  // only (issue 48, item 13): the keys' line stands on each, above the footer, once.
+  std::vector<PageLine> lines = walkthrough_page();
+  for (int i = 0; i < 40; ++i)
+    lines.insert(lines.begin() + 1, PageLine(PageTone::warning, "a warning " + std::to_string(i) + " that takes a row"));
+  lines.insert(lines.begin() + 3, PageLine(PageTone::keys, "D back to the page    Esc close"));
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    const std::string what = std::to_string(int(s.w)) + "x" + std::to_string(int(s.h));
+    const int pages = layout_operator_page(*font, lines, s.w, s.h).pages;
+    ASSERT_GT(pages, 1) << what;
+    for (int p = 0; p < pages; ++p) {
+      const PageLayout screen = layout_operator_page(*font, lines, s.w, s.h, 0, p);
+      ASSERT_GE(screen.rows.size(), 2u);
+      EXPECT_EQ(std::count_if(screen.rows.begin(), screen.rows.end(),
+                              [](const PageRow& r) { return r.text == "D back to the page    Esc close"; }),
+                1)
+          << what << " screen " << p + 1;
+      EXPECT_EQ(screen.rows[screen.rows.size() - 2].text, "D back to the page    Esc close") << what;
+    }
+    expect_every_word(*font, lines, s, what);
   }
 }
 
@@ -239,9 +267,10 @@ TEST(OperatorPageGolden, WithThreeWarningsAt16x9And5x4) {
   }
 }
 
-// The page in Arabic (right to left: each row aligned right, the mark column on the right)
-// and Hindi (Devanagari's conjuncts), its texts from the built catalogues, a file's problem in
-// English inside it as the kiosk shows one.
+// The page in Arabic (right to left: each row of Arabic aligned right; a row of English, a
+// file's problem as the kiosk shows one, laid out by its own direction from the left edge,
+// not ragged on the right: issue 48, item 10) and Hindi (Devanagari's conjuncts), its texts
+// from the built catalogues.
 TEST(OperatorPageGolden, InArabicAndHindi) {
   for (const std::string language : {"ar", "hi"}) {
     std::vector<std::string> problems;
@@ -251,7 +280,7 @@ TEST(OperatorPageGolden, InArabicAndHindi) {
         {PageTone::title, fmt::sprintf(tr("Mallet: operator page   quality: %s   language: %s"), "balanced", language)},
         {PageTone::warning, "drop-in /etc/mallet/mallet.d/50-room.toml skipped: /etc/mallet/mallet.d/50-room.toml:3:1: "
                             "[audio] volum: unknown key"},
-        {PageTone::status, tr("Mouse (no Wii Remote)")},
+        {PageTone::status, tr("Mouse")},
         {PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), 80.0)},
         {PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), 0.2)},
         {PageTone::status, tr("R recalibrate    T latency test    D doctor    L language    Q quit    Esc close")},
@@ -270,6 +299,13 @@ TEST(OperatorPageGolden, InArabicAndHindi) {
       for (const render::OverlayVertex& v : overlay.vertices())
         if (v.u != font->solid_u() || v.v != font->solid_v()) right = std::max(right, v.x);
       EXPECT_NEAR(right, page.x + page.width - font->pixel_height() * page.scale, font->pixel_height() * 0.5f);
+      int english = 0;
+      for (const render::TextBox& b : overlay.text_boxes())
+        if (b.text.find("/etc/mallet") != std::string::npos) {
+          ++english;
+          EXPECT_LT(b.x0, page.x + page.width / 3) << "an English row reads from the left: " << b.text;
+        }
+      EXPECT_GE(english, 1);
     }
     use_visitor_language("en");
     render::FrameState state;

@@ -172,5 +172,14 @@ TEST(SystemdNotify, UnderCageTheWatchedPidIsAnAncestorAndStillCounts) {
     EXPECT_EQ(SystemdNotifier(at(socket, usec, bad)).watchdog_interval(), std::nullopt) << bad;
 }
 
+TEST(ReloadCommand, SystemctlOnlyForAKioskSystemdStartedAndASighupForOneStartedByHand) {
+  // A kiosk started by hand was told "systemctl reload mallet", which reloads another one or
+  // none (issue 48, item 13): it is told the signal its own process takes.
+  NotifyEnvironment unit;
+  unit.notify_socket = "/run/systemd/notify";
+  EXPECT_EQ(reload_command(unit, 4242), "systemctl reload mallet");
+  EXPECT_EQ(reload_command(NotifyEnvironment{}, 4242), "kill -HUP 4242");
+}
+
 }  // namespace
 }  // namespace mallet::app

@@ -63,7 +63,7 @@ TEST(TextContrast, TheInvitationAndTheCornerNotesReadOnEveryScene) {
     const render::NoteBox banner =
         render::draw_banner(overlay, hint_text(KioskHint::invitation, c.scene().kind, true), w, h);
     const render::NoteBox mouse =
-        render::draw_corner_note(overlay, "Mouse (no Wii Remote)", render::Corner::bottom_left, w, h);
+        render::draw_corner_note(overlay, "This kiosk closes from the operator page only", render::Corner::bottom_left, w, h);
     const render::NoteBox silent = render::draw_corner_note(overlay, "No sound", render::Corner::bottom_right, w, h);
     const render::NoteBox wall_name = render::draw_wall_name(
         overlay, c.scene(), render::view_projection(c.scene(), w / h), w, h, "Aluminium");
@@ -74,7 +74,7 @@ TEST(TextContrast, TheInvitationAndTheCornerNotesReadOnEveryScene) {
     std::printf("%-10s invitation %.1f:1, mouse note %.1f:1, no-sound note %.1f:1\n", c.name,
                 contrast_in(frame, banner), contrast_in(frame, mouse), contrast_in(frame, silent));
     EXPECT_GE(contrast_in(frame, banner), 4.5) << c.name << ": the invitation";
-    EXPECT_GE(contrast_in(frame, mouse), 4.5) << c.name << ": the mouse note";
+    EXPECT_GE(contrast_in(frame, mouse), 4.5) << c.name << ": the staff's left note (a refused close, the longest)";
     EXPECT_GE(contrast_in(frame, silent), 4.5) << c.name << ": the no-sound note";
     if (c.scene().kind == SceneKind::wall) {
       EXPECT_GE(contrast_in(frame, wall_name), 4.5) << c.name << ": the wall's name";
@@ -111,7 +111,7 @@ TEST(TextOnScreen, TheCornerNotesAndTheInvitationNeverOverlapAnInstrumentAtAnySh
           render::overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
       render::Overlay overlay(*font);
       const render::NoteBox mouse =
-          render::draw_corner_note(overlay, tr("Mouse (no Wii Remote)"), render::Corner::bottom_left, w, h);
+          render::draw_corner_note(overlay, hint_text(KioskHint::close_needs_chord), render::Corner::bottom_left, w, h);
       const render::NoteBox silent =
           render::draw_corner_note(overlay, tr("No sound"), render::Corner::bottom_right, w, h);
       for (const Scene* file_scene : {&test::percussion(), &test::wall()}) {
@@ -132,7 +132,7 @@ TEST(TextOnScreen, TheCornerNotesAndTheInvitationNeverOverlapAnInstrumentAtAnySh
               }
           const std::string what = language + " " + std::to_string(int(w)) + "x" + std::to_string(int(h)) + " " +
                                    scene->name + " target " + std::to_string(t.id);
-          EXPECT_FALSE(overlap(mouse, x0, y0, x1, y1)) << what << ": the mouse note";
+          EXPECT_FALSE(overlap(mouse, x0, y0, x1, y1)) << what << ": the staff's left note (a refused close, the longest)";
           EXPECT_FALSE(overlap(silent, x0, y0, x1, y1)) << what << ": the no-sound note";
           for (const render::NoteBox& invitation : invitations)
             EXPECT_FALSE(overlap(invitation, x0, y0, x1, y1)) << what << ": the invitation";

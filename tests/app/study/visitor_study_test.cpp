@@ -2,12 +2,19 @@
 // accept, agree on the consent screen and strike their answers; one who walks away mid-way
 // leaves the trials done in the day's file; one who declines leaves nothing; and the file
 // holds nothing about a visitor but a random id, the date and the answers.
+#include <algorithm>
 #include <fstream>
 #include <set>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
+#include "app/study/study_stimuli.hpp"
 #include "app/study/visitor_study.hpp"
+#include "core/scene_layout.hpp"
+#include "core/study/protocol_loader.hpp"
+#include "render/scene_view.hpp"
 #include "core/study/results_csv.hpp"
 #include "core/study/study_summary.hpp"
 #include "test_paths.hpp"
@@ -96,6 +103,53 @@ TEST(VisitorStudy, AProtocolWithoutAVisitorTableIsRefusedWhereItIsNamed) {
   } catch (const FileError& e) {
     EXPECT_EQ(std::string(e.what()), "--protocol: names " + o.protocol.string() +
                                          ", which has no [visitor] table (config/study/visitor.toml has one)");
+  }
+}
+
+//! A bar's box on a width×height screen as `scene` is shown there, with a letter's height
+//! of margin below its near end (where its sign hangs: render::draw_bar_signs).
+render::PixelRect bar_on_screen(const Scene& scene, int id, int width, int height) {
+  const Target& t = scene.targets.at(static_cast<std::size_t>(id));
+  render::Box box;
+  box.add({t.x_min, t.top_y - t.thickness_m, -t.length_m / 2});
+  box.add({t.x_max, t.top_y, t.length_m / 2});
+  render::PixelRect r = render::screen_rect(render::view_projection(scene, double(width) / height), width, height, box);
+  r.y1 = std::min(height, r.y1 + height / 12);
+  return r;
+}
+
+TEST(VisitorStudy, TheConsentsAnswersNeverSitWhereTheOffersYesWasAndAreLaidOutForTheScreensShape) {
+  // A visitor strikes the offer's "Yes" (the kiosk's last bar) and strikes again at the same
+  // place, as one does on a xylophone: in portrait the consent's "No" sat right there and
+  // declined at once (issue 48, item 1). Each answer bar of the consent, with its sign, stays
+  // clear of the offer's "Yes" bar and its sign at every shape; on a portrait screen the
+  // study's bars stand close together across the screen's width, shown larger than in the
+  // landscape band (stacked, as the instruments are, they were thin sticks).
+  const Scene& base = test::percussion();
+  const study::StudyProtocol protocol = study::load_study_protocol(test::config_dir() / "study" / "visitor.toml",
+                                                                   base.materials, base.targets.size());
+  for (const auto& [w, h] : {std::pair{1920, 1080}, std::pair{1280, 1024}, std::pair{1080, 1920}, std::pair{2560, 1080}}) {
+    const double aspect = double(w) / h;
+    const std::string shape = std::to_string(w) + "x" + std::to_string(h);
+    const Scene kiosk = laid_out(base, layout_for(base, aspect));
+    const render::PixelRect yes = bar_on_screen(kiosk, static_cast<int>(kiosk.targets.size()) - 1, w, h);
+    const Scene study = study_scene_for(base, protocol, aspect);
+    EXPECT_EQ(study.layout, kiosk.layout) << shape;
+    const std::vector<AnswerBar> bars = answer_bars(study, protocol);
+    ASSERT_GE(bars.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const render::PixelRect answer = bar_on_screen(study, bars[k].target, w, h);
+      EXPECT_FALSE(render::overlap(yes, answer))
+          << shape << ": the consent's " << (k == 0 ? "Yes" : "No") << " bar (" << answer.x0 << "," << answer.y0
+          << ")-(" << answer.x1 << "," << answer.y1 << ") under the offer's Yes (" << yes.x0 << "," << yes.y0
+          << ")-(" << yes.x1 << "," << yes.y1 << ")";
+    }
+    if (h > w) {  // each bar wider on the screen than in the landscape band
+      const render::PixelRect stacked = bar_on_screen(study, bars[0].target, w, h);
+      const render::PixelRect band = bar_on_screen(make_study_scene(base, protocol), bars[0].target, w, h);
+      EXPECT_EQ(study.layout, SceneLayout::portrait);
+      EXPECT_GT(stacked.x1 - stacked.x0, 1.2 * (band.x1 - band.x0)) << shape;
+    }
   }
 }
 

@@ -46,7 +46,8 @@ TEST(VisitorOffer, NoOfferWhereItsCuesCannotBeDelivered) {
   p.conditions = {StudyCondition::visual_only, StudyCondition::tactile_only, StudyCondition::both};
   EXPECT_EQ(undeliverable_cues(p, true), "");
   EXPECT_EQ(undeliverable_cues(p, false),
-            "no audio output, so the actuator cues of its conditions tactile_only, both cannot be delivered");
+            "no audio output, so the taps felt through the stick cannot be given (2 of its 3 conditions); "
+            "`mallet doctor` says why there is no sound");
   p.conditions = {StudyCondition::visual_only};
   EXPECT_EQ(undeliverable_cues(p, false), "") << "the bounce alone needs no sound card";
   p.sound = true;
