@@ -85,7 +85,7 @@ std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioCo
     return output;
   } catch (const std::exception& e) {  // the screen still plays, silently
     journal::error("{}; running without sound", e.what());
-    status = "audio: none (running silent)";
+    status = std::string("audio: none (running silent): ") + e.what();  // why, as `mallet doctor` says it
     return nullptr;
   }
 }

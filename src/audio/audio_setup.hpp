@@ -38,7 +38,7 @@ AudioRig make_audio_rig(const Scene& scene, const AppConfig& config, int sample_
 
 //! Opens and starts the configured audio device for `engine`. Without one (no sound card,
 //! a device that fails to open) it logs why on stderr and returns null: the caller runs
-//! silent. `status` becomes "audio: NAME, LATENCY ms" or "audio: none (running silent)".
+//! silent. `status` becomes "audio: NAME, LATENCY ms" or "audio: none (running silent): WHY".
 //! `capture`: the stream also records these inputs (PortAudioOutput::Options::capture).
 std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioConfig& config, std::string& status,
                                               const std::optional<CaptureSpec>& capture = std::nullopt);

@@ -285,7 +285,12 @@ std::vector<PageLine> doctor_page_lines(const KioskStage& stage, const render::P
   facts.vulkan = judge_renderer(win.ctx->device_name(), props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
                                 win.window->extent().width, win.window->extent().height, frame_ms);
   facts.vulkan.found += " (the kiosk's frames that drew)";
-  facts.audio = stage.output ? judge_audio_output(stage.config, *stage.output) : audio_missing(stage.audio_status);
+  // Why the output did not open, as the command says it (the status line's own prefix aside).
+  const std::string silent = "audio: none (running silent): ";
+  facts.audio = stage.output ? judge_audio_output(stage.config, *stage.output)
+                             : audio_missing(stage.audio_status.rfind(silent, 0) == 0
+                                                 ? stage.audio_status.substr(silent.size())
+                                                 : stage.audio_status);
   facts.wiimote = wiimote_without_remote(stage.config.input.source);  // as `mallet doctor` says it
   facts.camera = {"camera", CheckLevel::ok, "not used: [input] source = \"" + stage.config.input.source + "\"", ""};
   if (stage.device) {

@@ -498,7 +498,9 @@ void WindowKiosk::calibration_frame(Nanos now, std::optional<Vec2> mouse_screen)
   if (states_->state() != KioskState::calibration) {
     // Abandoned (the operator chord): the previous calibration stays, and so does the
     // configured sensitivity if the tuner was trying another.
-    if (calibration_) journal::notice("operator: calibration abandoned, the previous one stays");
+    if (calibration_)  // a mouse's calibration keeps nothing: there is no previous one
+      journal::notice("operator: calibration abandoned{}",
+                      stage_->source == InputSource::mouse ? "" : ", the previous one stays");
     if (calibration_ && calibration_->tuning() && stage_->device)
       stage_->device->request_sensitivity(kiosk_sensitivity(stage_->config, stage_->calibration));
     calibration_.reset();

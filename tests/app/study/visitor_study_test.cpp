@@ -132,7 +132,10 @@ TEST(VisitorStudy, TheConsentsAnswersNeverSitWhereTheOffersYesWasAndAreLaidOutFo
     const double aspect = double(w) / h;
     const std::string shape = std::to_string(w) + "x" + std::to_string(h);
     const Scene kiosk = laid_out(base, layout_for(base, aspect));
-    const render::PixelRect yes = bar_on_screen(kiosk, static_cast<int>(kiosk.targets.size()) - 1, w, h);
+    // The offer's "Yes" bar and the column above it: a strike comes down from above, so a
+    // bar anywhere on that way is struck by a visitor striking "Yes" again.
+    render::PixelRect yes = bar_on_screen(kiosk, static_cast<int>(kiosk.targets.size()) - 1, w, h);
+    yes.y0 = 0;
     const Scene study = study_scene_for(base, protocol, aspect);
     EXPECT_EQ(study.layout, kiosk.layout) << shape;
     const std::vector<AnswerBar> bars = answer_bars(study, protocol);
@@ -146,7 +149,10 @@ TEST(VisitorStudy, TheConsentsAnswersNeverSitWhereTheOffersYesWasAndAreLaidOutFo
     }
     if (h > w) {  // each bar wider on the screen than in the landscape band
       const render::PixelRect stacked = bar_on_screen(study, bars[0].target, w, h);
-      const render::PixelRect band = bar_on_screen(make_study_scene(base, protocol), bars[0].target, w, h);
+      const Scene landscape = make_study_scene(base, protocol);
+      const render::PixelRect band = bar_on_screen(landscape, bars[0].target, w, h);
+      // What the walkthrough met: the landscape band's "No" on the way down to "Yes".
+      EXPECT_TRUE(render::overlap(yes, bar_on_screen(landscape, bars[1].target, w, h))) << shape;
       EXPECT_EQ(study.layout, SceneLayout::portrait);
       EXPECT_GT(stacked.x1 - stacked.x0, 1.2 * (band.x1 - band.x0)) << shape;
     }
