@@ -3,7 +3,8 @@
 # of the shipped visitor protocol: a machine without a sound card is offered no study whose
 # actuator cues it cannot deliver): OUT/visitor-offer-LANG.png, OUT/visitor-consent-LANG.png.
 #   xvfb-run -a -s "-screen 0 1280x720x24" docs/screens/take-visitor-language.sh build/release/mallet docs/screens de
-# (any shape: 16:9 or 9:16 by the screen's; the files are named by LANG only)
+# (any shape: 16:9 or 9:16 by the screen's; the files are named by LANG only). NOTE_NAMES=1
+# turns the bars' note names on ([visual] note_names), to see the offer's "Yes" sign beside them.
 #   needs: xvfb-run (xvfb), xdotool, import (imagemagick)
 set -eu
 mallet=$1; out=$2; lang=$3
@@ -11,6 +12,7 @@ work=$(mktemp -d); export XDG_RUNTIME_DIR=$work/xdg MALLET_STATE_DIR=$work/state
 sed 's/^conditions = .*/conditions = ["visual_only", "none"]/' "$(dirname "$0")/../../config/study/visitor.toml" > $work/v.toml
 grep -q 'conditions = \["visual_only"' $work/v.toml
 printf '[input]\nsource = "mouse"\nmouse = "window"\n[kiosk]\nlanguage = "%s"\n[study]\nvisitor_protocol = "%s"\noffer_every_s = 10\noffer_for_s = 60\nresults_dir = "%s"\n' "$lang" "$work/v.toml" "$work/r" > $work/mallet.toml
+if [ "${NOTE_NAMES:-0}" = 1 ]; then printf '[visual]\nnote_names = true\n' >> $work/mallet.toml; fi
 "$mallet" run --config $work/mallet.toml >"$work/log" 2>&1 & pid=$!
 trap 'kill $pid 2>/dev/null || true; rm -rf "$work"' EXIT
 for _ in $(seq 60); do win=$(xdotool search --class mallet 2>/dev/null | tail -1) && [ -n "$win" ] && break; sleep 0.5; done
