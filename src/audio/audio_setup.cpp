@@ -85,7 +85,9 @@ std::unique_ptr<PortAudioOutput> start_output(AudioEngine& engine, const AudioCo
     return output;
   } catch (const std::exception& e) {  // the screen still plays, silently
     journal::error("{}; running without sound", e.what());
-    status = std::string("audio: none (running silent): ") + e.what();  // why, as `mallet doctor` says it
+    std::string why = e.what();  // why, as `mallet doctor` says it (the line's head once)
+    if (why.rfind("audio: ", 0) == 0) why.erase(0, 7);
+    status = "audio: none (running silent): " + why;
     return nullptr;
   }
 }

@@ -149,7 +149,9 @@ DoctorCheck check_audio(const AppConfig& config, const Scene& scene) {
 }  // namespace
 
 DoctorCheck audio_missing(const std::string& why) {
-  return fail("audio", why,
+  // The check's name says it is audio: the reason without the output's own "audio: " head,
+  // as the page's status line has it after "running silent".
+  return fail("audio", why.rfind("audio: ", 0) == 0 ? why.substr(7) : why,
               "connect the sound card and check that ALSA sees it (`aplay -l`), then choose it with [audio] device "
               "(`mallet audio devices` lists them)");
 }

@@ -28,6 +28,7 @@
 #include "core/strike_line.hpp"
 #include "core/data_paths.hpp"
 #include "render/overlay_text.hpp"
+#include "render/text_shaping.hpp"
 #include "app/kiosk/visitor_words.hpp"
 #include "app/kiosk/input_choice.hpp"
 #include "app/kiosk/kiosk_health.hpp"
@@ -432,6 +433,14 @@ void WindowKiosk::build(KioskSetup setup) {
     journal::info("scene: laid out {} for the screen's {:.2f}:1", to_string(stage_->scene.layout),
                   stage_->laid_out_for_aspect);
   apply_volume();
+}
+
+//! `line` with its head `english` ("input: ") said as `shown` (its translation); as it is when
+//! it does not start so, and in a right-to-left language, where a head in its letters would
+//! turn the whole row of Latin text right to left, ragged again (its rows read from the left).
+std::string page_head(const std::string& line, std::string_view english, std::string_view shown) {
+  if (line.rfind(english, 0) != 0 || render::right_to_left(visitor_language())) return line;
+  return std::string(shown) + line.substr(english.size());
 }
 
 //! "off", or "10 ms ahead".
@@ -879,8 +888,10 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.insert(lines.end(), doctor_.begin(), doctor_.end());
     lines.push_back({PageTone::keys, tr("D back to the page    Esc close")});
   } else {
-    lines.push_back({PageTone::status, input_line(*stage_)});
-    lines.push_back({PageTone::status, stage_->audio_status});
+    // The status lines in the journal's words (an operator searches the log with them), their
+    // heads in the page's language.
+    lines.push_back({PageTone::status, page_head(input_line(*stage_), "input: ", tr("input: "))});
+    lines.push_back({PageTone::status, page_head(stage_->audio_status, "audio: ", tr("audio: "))});
     lines.push_back({PageTone::status, page_figures_->frame});
     lines.push_back({PageTone::status, fmt::sprintf(tr("volume %.0f %%  (Up / Down)"), volume_ * 100)});
     lines.push_back({PageTone::status, fmt::sprintf(tr("actuator gain %.2f  (Left / Right)"), gain_)});
@@ -898,8 +909,8 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
     lines.push_back({PageTone::status, stage_->remote
                                            ? stage_->calibration_status + (tuned.empty() ? "" : ", ") + tuned
                                            : tr("calibration: R runs the screen with the mouse (not saved)")});
-    lines.push_back({PageTone::status, page_figures_->timing});
-    lines.push_back({PageTone::status, stage_->settings_line});
+    lines.push_back({PageTone::status, page_head(page_figures_->timing, "timing: ", tr("timing: "))});
+    lines.push_back({PageTone::status, page_head(stage_->settings_line, "settings: ", tr("settings: "))});
   }
   // Laid out only when its lines, the screen, the latency square or the screen asked for
   // change (at most once a second while nothing else does), not at every frame.
