@@ -1,6 +1,8 @@
 #include "app/study/study_stimuli.hpp"
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 
 namespace mallet::app {
 
@@ -101,12 +103,31 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol) 
   return scene;
 }
 
-Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect) {
+namespace {
+
+//! The answer bars' places mirrored among themselves: the first answer where the last was.
+void mirror_answers(Scene& scene, const std::vector<AnswerBar>& answers) {
+  std::vector<std::pair<double, double>> places;
+  for (const AnswerBar& a : answers) {
+    const Target& t = scene.targets.at(static_cast<std::size_t>(a.target));
+    places.push_back({t.x_min, t.x_max});
+  }
+  for (std::size_t k = 0; k < answers.size(); ++k) {
+    Target& t = scene.targets.at(static_cast<std::size_t>(answers[k].target));
+    std::tie(t.x_min, t.x_max) = places[places.size() - 1 - k];
+  }
+}
+
+}  // namespace
+
+Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect, bool right_to_left) {
   Scene scene = make_study_scene(base, protocol);
-  // Each crossing's scene is made from the base; keys need no bars; a landscape screen shows
-  // the bars spread as made.
-  if (protocol.texture() || protocol.response != study::StudyResponse::strike || !(aspect > 0 && aspect < 1))
+  // Each crossing's scene is made from the base; keys need no bars.
+  if (protocol.texture() || protocol.response != study::StudyResponse::strike) return scene;
+  if (!(aspect > 0 && aspect < 1)) {  // a landscape screen: the bars spread as made
+    if (right_to_left) mirror_answers(scene, answer_bars(scene, protocol));
     return scene;
+  }
   // Portrait: the bars side by side, close, in a band as wide as the screen (stacked, they
   // were thin sticks a third of the height apart): the answers first in their order, the
   // stimulus bar last, on the right, where the offer's "Yes" was (a visitor's second strike
@@ -123,6 +144,7 @@ Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, d
     t.x_min = centre - width / 2;
     t.x_max = centre + width / 2;
   }
+  if (right_to_left) mirror_answers(scene, answers);
   scene.screen_to_world.left_m = stimulus_centre - n * step - width / 2 - width;
   scene.screen_to_world.right_m = right;
   scene.camera.eye_x_m = 0.5 * (scene.screen_to_world.left_m + scene.screen_to_world.right_m);

@@ -30,8 +30,11 @@ Scene make_study_scene(const Scene& base, const study::StudyProtocol& protocol);
 //! the stimulus bar on the right, and the scene is narrowed to them: a band of large bars
 //! across the screen's width, not small ones in a band across its middle (the answers
 //! left of where the kiosk's offer had its "Yes"). A landscape or unknown (0) aspect, a
-//! texture protocol and answers by keys: as made.
-Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect);
+//! texture protocol and answers by keys: as made. `right_to_left` (the study shown in Arabic,
+//! Hebrew): the answer bars' places mirrored among themselves, so that the first answer
+//! ("Yes", "1") is the first read, on the right; the stimulus bar stays where it is.
+Scene study_scene_for(const Scene& base, const study::StudyProtocol& protocol, double aspect,
+                      bool right_to_left = false);
 
 //! The answer bars of a study scene and the answer each gives, in the protocol's order of
 //! answer_choices(); empty unless response = "strike".

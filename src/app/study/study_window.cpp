@@ -34,6 +34,7 @@
 #include "render/overlay.hpp"
 #include "render/pipeline_cache.hpp"
 #include "render/scene_view.hpp"
+#include "render/text_shaping.hpp"
 #include "render/window_target.hpp"
 
 namespace mallet::app {
@@ -398,7 +399,9 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
   start_visitor_language(plan.config.language, problems);
   for (const std::string& p : problems) journal::warning("{}", p.c_str());
   render::ProductWindow win(plan.config.render, window.device, window.size, window.windowed, "Mallet study");
-  const Scene scene = study_scene_for(plan.base, plan.protocol, win.aspect.get());  // for the screen's shape
+  // For the screen's shape, and read in the participant's language's direction.
+  const Scene scene =
+      study_scene_for(plan.base, plan.protocol, win.aspect.get(), render::right_to_left(visitor_language()));
   StudyWindowRun run;
   run.quit_after = static_cast<Nanos>(std::llround(window.quit_after_s * 1e9));
   StudyWindow w(plan, scene, win, run);
@@ -411,7 +414,10 @@ StudyRunResult run_study_window(const StudyOptions& options, const StudyWindowOp
 study::VisitorSessionResult run_visitor_window(render::ProductWindow& win, const StudyPlan& plan,
                                         std::function<std::vector<PointerSample>()> pointer,
                                         std::function<bool()> each_frame) {
-  const Scene scene = study_scene_for(plan.base, plan.protocol, win.aspect.get());  // for the screen's shape
+  // For the screen's shape, and read in the direction of the language it is shown in (the
+  // kiosk's caller has set it: ShownLanguage).
+  const Scene scene =
+      study_scene_for(plan.base, plan.protocol, win.aspect.get(), render::right_to_left(visitor_language()));
   StudyWindowRun run;
   run.answer_timeout = plan.protocol.visitor->answer_timeout;
   run.quit_keys = false;

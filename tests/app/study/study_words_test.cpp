@@ -17,6 +17,7 @@
 #include "core/visitor_catalogues.hpp"
 #include "core/visitor_language.hpp"
 #include "render/render_setup.hpp"
+#include "render/text_shaping.hpp"
 #include "test_paths.hpp"
 
 namespace mallet::app {
@@ -32,13 +33,14 @@ TEST(StudyWords, NoWordOfTheConsentTrialsOrThanksIsDrawnOverAnotherOrOffTheScree
                                std::pair{2560.0f, 1080.0f}}) {
       const std::unique_ptr<render::FontAtlas> font =
           render::overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
-      const Scene scene = study_scene_for(base, protocol, w / h);
-      const std::vector<AnswerBar> bars = answer_bars(scene, protocol);
-      ASSERT_GE(bars.size(), 2u);
-      int stimulus = -1;
-      for (const Target& t : scene.targets)
-        if (!t.hand_strikes && stimulus < 0) stimulus = t.id;
       for (const std::string& language : visitor_languages()) {
+        // As the window lays it out: for the shape, read in the language's direction.
+        const Scene scene = study_scene_for(base, protocol, w / h, render::right_to_left(language));
+        const std::vector<AnswerBar> bars = answer_bars(scene, protocol);
+        ASSERT_GE(bars.size(), 2u);
+        int stimulus = -1;
+        for (const Target& t : scene.targets)
+          if (!t.hand_strikes && stimulus < 0) stimulus = t.id;
         std::vector<std::string> refused;
         start_visitor_language(language, refused);
         ASSERT_TRUE(refused.empty()) << refused.front();

@@ -136,17 +136,24 @@ TEST(VisitorStudy, TheConsentsAnswersNeverSitWhereTheOffersYesWasAndAreLaidOutFo
     // bar anywhere on that way is struck by a visitor striking "Yes" again.
     render::PixelRect yes = bar_on_screen(kiosk, static_cast<int>(kiosk.targets.size()) - 1, w, h);
     yes.y0 = 0;
-    const Scene study = study_scene_for(base, protocol, aspect);
-    EXPECT_EQ(study.layout, kiosk.layout) << shape;
-    const std::vector<AnswerBar> bars = answer_bars(study, protocol);
-    ASSERT_GE(bars.size(), 2u);
-    for (std::size_t k = 0; k < 2; ++k) {
-      const render::PixelRect answer = bar_on_screen(study, bars[k].target, w, h);
-      EXPECT_FALSE(render::overlap(yes, answer))
-          << shape << ": the consent's " << (k == 0 ? "Yes" : "No") << " bar (" << answer.x0 << "," << answer.y0
-          << ")-(" << answer.x1 << "," << answer.y1 << ") under the offer's Yes (" << yes.x0 << "," << yes.y0
-          << ")-(" << yes.x1 << "," << yes.y1 << ")";
+    for (const bool rtl : {false, true}) {  // and in Arabic or Hebrew, "Yes" read first: on the right
+      const Scene mirrored = study_scene_for(base, protocol, aspect, rtl);
+      EXPECT_EQ(mirrored.layout, kiosk.layout) << shape;
+      const std::vector<AnswerBar> answers = answer_bars(mirrored, protocol);
+      ASSERT_GE(answers.size(), 2u);
+      for (std::size_t k = 0; k < 2; ++k) {
+        const render::PixelRect answer = bar_on_screen(mirrored, answers[k].target, w, h);
+        EXPECT_FALSE(render::overlap(yes, answer))
+            << shape << (rtl ? " right to left" : "") << ": the consent's " << (k == 0 ? "Yes" : "No") << " bar ("
+            << answer.x0 << "," << answer.y0 << ")-(" << answer.x1 << "," << answer.y1 << ") under the offer's Yes ("
+            << yes.x0 << "," << yes.y0 << ")-(" << yes.x1 << "," << yes.y1 << ")";
+      }
+      const int first = bar_on_screen(mirrored, answers[0].target, w, h).x0;
+      const int second = bar_on_screen(mirrored, answers[1].target, w, h).x0;
+      EXPECT_EQ(first > second, rtl) << shape << ": the first answer is the first read";
     }
+    const Scene study = study_scene_for(base, protocol, aspect);
+    const std::vector<AnswerBar> bars = answer_bars(study, protocol);
     if (h > w) {  // each bar wider on the screen than in the landscape band
       const render::PixelRect stacked = bar_on_screen(study, bars[0].target, w, h);
       const Scene landscape = make_study_scene(base, protocol);
