@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 #include <string>
@@ -167,6 +168,41 @@ TEST(OperatorPageLayout, ManyWarningsTakeScreensInTurnAndLoseNoWord) {
     const std::string n = std::to_string(first.pages);
     EXPECT_EQ(last.rows.back().text, "Page Down: back to the first   (" + n + " of " + n + ")") << what;
   }
+}
+
+TEST(OperatorPageLayout, NoTextOfThePageOrOfAnyDoctorScreenIsDrawnOverAnotherOrOffTheScreen) {
+  // The overlap contract (issue 48, item 4) on the operator page and on each screen of the
+  // doctor's view, as drawn (the overlay's record of every text's ink), at every shape, in
+  // every shipped language (right-to-left rows mirrored, Latin rows from the left).
+  int screens = 0;
+  for (const Shape s : kShapes) {
+    const auto font = render::overlay_font({static_cast<std::uint32_t>(s.w), static_cast<std::uint32_t>(s.h)});
+    for (const std::string& language : visitor_languages()) {
+      std::vector<std::string> problems;
+      start_visitor_language(language, problems);
+      ASSERT_TRUE(problems.empty()) << problems.front();
+      for (const std::vector<PageLine>& lines : {walkthrough_page(), doctor_page()}) {
+        const int pages = layout_operator_page(*font, lines, s.w, s.h).pages;
+        for (int p = 0; p < pages; ++p) {
+          render::Overlay overlay(*font);
+          draw_operator_page(overlay, layout_operator_page(*font, lines, s.w, s.h, 0, p));
+          const std::vector<render::TextBox>& boxes = overlay.text_boxes();
+          ASSERT_FALSE(boxes.empty());
+          const std::string what = language + " " + std::to_string(int(s.w)) + "x" + std::to_string(int(s.h)) +
+                                   " screen " + std::to_string(p + 1);
+          for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const render::TextBox& a = boxes[i];
+            EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= s.w && a.y1 <= s.h) << what << ": \"" << a.text << "\" leaves it";
+            for (std::size_t j = i + 1; j < boxes.size(); ++j)
+              EXPECT_FALSE(render::overlap(a, boxes[j])) << what << ": \"" << a.text << "\" over \"" << boxes[j].text << "\"";
+          }
+          ++screens;
+        }
+      }
+    }
+  }
+  use_visitor_language("en");
+  std::printf("%d page screens, each text against every other\n", screens);
 }
 
 TEST(OperatorPageLayout, TheKeysLineIsOnEveryScreenOfAPageThatTakesSeveral) {
