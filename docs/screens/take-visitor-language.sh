@@ -21,7 +21,11 @@ for _ in $(seq 60); do grep -q "visitor study: offered" $work/log && break; slee
 sleep 1; import -window root "$out/visitor-offer-$lang.png"
 # Down onto "Yes", the last glockenspiel bar: at 92 % of a 16:9 screen's width and 59 % of its
 # height; on a portrait screen (instruments stacked) at 72 % and 80 %.
-if [ "$h" -gt "$w" ]; then x=$(( w * 72 / 100 )); from=62; to=84; else x=$(( w * 918 / 1000 )); from=40; to=66; fi
+# Wider than 16:9 (21:9) the scene is framed by its height, with room left and right: the
+# bar's place is moved towards the middle by the ratio of the two widths.
+if [ "$h" -gt "$w" ]; then x=$(( w * 72 / 100 )); from=62; to=84
+elif [ $(( w * 9 )) -gt $(( h * 16 )) ]; then x=$(( w / 2 + 418 * 16 * h / 9000 )); from=40; to=66
+else x=$(( w * 918 / 1000 )); from=40; to=66; fi
 for y in $(seq $(( h * from / 100 )) $(( h / 60 )) $(( h * to / 100 ))); do xdotool mousemove "$x" "$y"; sleep 0.03; done
 for _ in $(seq 20); do grep -q "consent screen" $work/log && break; sleep 0.5; done
 sleep 1.5; import -window root "$out/visitor-consent-$lang.png"
