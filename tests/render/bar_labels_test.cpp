@@ -13,6 +13,7 @@
 #include "render/render_setup.hpp"
 #include "render/scene_view.hpp"
 #include "test_paths.hpp"
+#include "text_box_check.hpp"
 
 namespace mallet::render {
 namespace {
@@ -23,8 +24,7 @@ struct Extent {
 
 TEST(BarLabels, EachLabelIsCentredOnItsBarAndNoWiderThanIt) {
   const Scene& scene = test::percussion();
-  for (const auto& [w, h] : {std::pair{1920.0f, 1080.0f}, std::pair{1280.0f, 1024.0f}, std::pair{1080.0f, 1920.0f},
-                             std::pair{2560.0f, 1080.0f}}) {
+  for (const auto& [w, h] : test::kWalkShapes) {
     const std::unique_ptr<FontAtlas> font =
         overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
     const glm::mat4 vp = view_projection(scene, w / h);
@@ -57,8 +57,7 @@ TEST(BarSigns, ASignHangsUnderItsBarsNearEndInTheVisitorsLettersCentredOnItAndOn
   // letters, centred on the bar (unless the screen's edge is nearer), below the bar's own
   // note name, and never off the screen.
   const Scene& scene = test::percussion();
-  for (const auto& [w, h] : {std::pair{1920.0f, 1080.0f}, std::pair{1280.0f, 1024.0f}, std::pair{1080.0f, 1920.0f},
-                             std::pair{2560.0f, 1080.0f}}) {
+  for (const auto& [w, h] : test::kWalkShapes) {
     const std::unique_ptr<FontAtlas> font =
         overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
     const glm::mat4 vp = view_projection(scene, w / h);

@@ -809,7 +809,6 @@ VisitorWords WindowKiosk::visitor_words(Nanos now) {
   // protocol has its words, else the protocol's own (never its words beside another
   // language's).
   const bool offering = (hint == KioskHint::none || hint == KioskHint::invitation) && visitor_offered(now);
-  offer_shown_ = offering;
   std::optional<ShownLanguage> shown;  // the study's language, until the corner notes are written
   if (offering) {
     const study::VisitorProtocol& visitor = *stage_->visitor->visitor;
@@ -845,7 +844,9 @@ void WindowKiosk::draw_overlay(Nanos now, double frame_ms) {
   if (states_->state() == KioskState::calibration) {
     if (calibration_) calibration_->draw(o, w, h);
   } else if (states_->state() != KioskState::operator_page) {
-    draw_visitor_words(o, stage_->scene, visitor_words(now), w, h);
+    const VisitorWords words = visitor_words(now);
+    offer_shown_ = words.called_out.has_value();  // the offer's "Yes": its bar is lit too
+    draw_visitor_words(o, stage_->scene, words, w, h);
   }
   if (states_->state() != KioskState::operator_page) {
     doctor_.clear();

@@ -20,6 +20,7 @@
 #include "golden_match.hpp"
 #include "render/render_setup.hpp"
 #include "test_paths.hpp"
+#include "text_box_check.hpp"
 
 namespace mallet::app {
 namespace {
@@ -186,16 +187,9 @@ TEST(OperatorPageLayout, NoTextOfThePageOrOfAnyDoctorScreenIsDrawnOverAnotherOrO
         for (int p = 0; p < pages; ++p) {
           render::Overlay overlay(*font);
           draw_operator_page(overlay, layout_operator_page(*font, lines, s.w, s.h, 0, p));
-          const std::vector<render::TextBox>& boxes = overlay.text_boxes();
-          ASSERT_FALSE(boxes.empty());
-          const std::string what = language + " " + std::to_string(int(s.w)) + "x" + std::to_string(int(s.h)) +
-                                   " screen " + std::to_string(p + 1);
-          for (std::size_t i = 0; i < boxes.size(); ++i) {
-            const render::TextBox& a = boxes[i];
-            EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= s.w && a.y1 <= s.h) << what << ": \"" << a.text << "\" leaves it";
-            for (std::size_t j = i + 1; j < boxes.size(); ++j)
-              EXPECT_FALSE(render::overlap(a, boxes[j])) << what << ": \"" << a.text << "\" over \"" << boxes[j].text << "\"";
-          }
+          ASSERT_FALSE(overlay.text_boxes().empty());
+          for (const std::string& problem : test::text_box_problems(overlay, s.w, s.h))
+            ADD_FAILURE() << language << " " << s.w << "x" << s.h << " screen " << p + 1 << ": " << problem;
           ++screens;
         }
       }

@@ -21,23 +21,13 @@
 #include "core/visitor_language.hpp"
 #include "render/render_setup.hpp"
 #include "test_paths.hpp"
+#include "text_box_check.hpp"
 
 namespace mallet::app {
 namespace {
 
-//! Every pair of texts drawn over each other, and every text reaching off the screen.
-std::vector<std::string> overlap_problems(const render::Overlay& overlay, float width, float height) {
-  std::vector<std::string> problems;
-  const std::vector<render::TextBox>& boxes = overlay.text_boxes();
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const render::TextBox& a = boxes[i];
-    if (a.x0 < 0 || a.y0 < 0 || a.x1 > width || a.y1 > height)
-      problems.push_back("\"" + a.text + "\" leaves the screen");
-    for (std::size_t j = i + 1; j < boxes.size(); ++j)
-      if (render::overlap(a, boxes[j])) problems.push_back("\"" + a.text + "\" over \"" + boxes[j].text + "\"");
-  }
-  return problems;
-}
+using test::kWalkShapes;
+using test::text_box_problems;
 
 TEST(TextBoxes, NoVisitorWordIsDrawnOverAnotherOrOffTheScreenInAnyStateShapeOrLanguage) {
   const Scene& percussion = test::percussion();
@@ -45,8 +35,7 @@ TEST(TextBoxes, NoVisitorWordIsDrawnOverAnotherOrOffTheScreenInAnyStateShapeOrLa
       test::config_dir() / "study" / "visitor.toml", percussion.materials, percussion.targets.size());
   ASSERT_TRUE(visitor_study.visitor);
   int screens = 0;
-  for (const auto& [w, h] : {std::pair{1920.0f, 1080.0f}, std::pair{1280.0f, 1024.0f}, std::pair{1080.0f, 1920.0f},
-                             std::pair{2560.0f, 1080.0f}}) {
+  for (const auto& [w, h] : kWalkShapes) {
     const std::unique_ptr<render::FontAtlas> font =
         render::overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
     for (const std::string& language : visitor_languages()) {
@@ -84,7 +73,7 @@ TEST(TextBoxes, NoVisitorWordIsDrawnOverAnotherOrOffTheScreenInAnyStateShapeOrLa
           render::Overlay overlay(*font);
           draw_visitor_words(overlay, scene, words, w, h);
           ASSERT_FALSE(overlay.text_boxes().empty());
-          for (const std::string& p : overlap_problems(overlay, w, h))
+          for (const std::string& p : text_box_problems(overlay, w, h))
             ADD_FAILURE() << language << " " << w << "x" << h << " " << scene.name << ", " << what << ": " << p;
           ++screens;
         }
@@ -102,8 +91,7 @@ TEST(TextBoxes, TheCalibrationScreenSaysOneStepAtATimeAndNothingDrawnOverItsWord
   // a link it says what is wrong; while the sensitivity is chosen, that step's words alone,
   // the ring below them; no text over another or off the screen; no preset's name.
   const std::array<float, 4> ring{1.0f, 0.78f, 0.2f, 1.0f};
-  for (const auto& [w, h] : {std::pair{1920.0f, 1080.0f}, std::pair{1280.0f, 1024.0f}, std::pair{1080.0f, 1920.0f},
-                             std::pair{2560.0f, 1080.0f}}) {
+  for (const auto& [w, h] : kWalkShapes) {
     const std::unique_ptr<render::FontAtlas> font =
         render::overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
     for (const std::string& language : visitor_languages()) {
@@ -120,7 +108,7 @@ TEST(TextBoxes, TheCalibrationScreenSaysOneStepAtATimeAndNothingDrawnOverItsWord
         screen.draw(overlay, w, h);
         const std::string what = language + " " + std::to_string(int(w)) + "x" + std::to_string(int(h)) +
                                  (up ? ", choosing the sensitivity" : ", no remote");
-        for (const std::string& p : overlap_problems(overlay, w, h)) ADD_FAILURE() << what << ": " << p;
+        for (const std::string& p : text_box_problems(overlay, w, h)) ADD_FAILURE() << what << ": " << p;
         // The words as drawn, a wrapped text's lines joined again (spaces aside).
         const auto unspaced = [](std::string text) {
           std::erase(text, ' ');
@@ -182,7 +170,7 @@ TEST(TextBoxes, TheOverlayRecordsEachTextsInkAndAnOverlapIsSeen) {
   ASSERT_EQ(overlay.text_boxes().size(), 3u);
   EXPECT_EQ(overlay.text_boxes()[1].text, "C7");
   EXPECT_GT(overlay.text_boxes()[0].x1 - overlay.text_boxes()[0].x0, 100.0f);
-  const std::vector<std::string> p = overlap_problems(overlay, 1280, 720);
+  const std::vector<std::string> p = text_box_problems(overlay, 1280, 720);
   ASSERT_EQ(p.size(), 2u);
   EXPECT_EQ(p[0], "\"Pick up the mallet\" over \"C7\"");
   EXPECT_EQ(p[1], "\"Yes\" leaves the screen");

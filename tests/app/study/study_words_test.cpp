@@ -19,6 +19,7 @@
 #include "render/render_setup.hpp"
 #include "render/text_shaping.hpp"
 #include "test_paths.hpp"
+#include "text_box_check.hpp"
 
 namespace mallet::app {
 namespace {
@@ -29,8 +30,7 @@ TEST(StudyWords, NoWordOfTheConsentTrialsOrThanksIsDrawnOverAnotherOrOffTheScree
   for (const char* file : {"visitor.toml", "strike.toml"}) {
     const study::StudyProtocol protocol =
         study::load_study_protocol(test::config_dir() / "study" / file, base.materials, base.targets.size());
-    for (const auto& [w, h] : {std::pair{1920.0f, 1080.0f}, std::pair{1280.0f, 1024.0f}, std::pair{1080.0f, 1920.0f},
-                               std::pair{2560.0f, 1080.0f}}) {
+    for (const auto& [w, h] : test::kWalkShapes) {
       const std::unique_ptr<render::FontAtlas> font =
           render::overlay_font({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)});
       for (const std::string& language : visitor_languages()) {
@@ -61,16 +61,9 @@ TEST(StudyWords, NoWordOfTheConsentTrialsOrThanksIsDrawnOverAnotherOrOffTheScree
         for (const auto& [what, words] : states) {
           render::Overlay overlay(*font);
           draw_study_words(overlay, scene, words, w, h);
-          const std::vector<render::TextBox>& boxes = overlay.text_boxes();
-          ASSERT_FALSE(boxes.empty());
-          for (std::size_t i = 0; i < boxes.size(); ++i) {
-            const render::TextBox& a = boxes[i];
-            const std::string where = std::string(file) + " " + language + " " + std::to_string(int(w)) + "x" +
-                                      std::to_string(int(h)) + ", " + what + ": \"" + a.text + "\"";
-            EXPECT_TRUE(a.x0 >= 0 && a.y0 >= 0 && a.x1 <= w && a.y1 <= h) << where << " leaves the screen";
-            for (std::size_t j = i + 1; j < boxes.size(); ++j)
-              EXPECT_FALSE(render::overlap(a, boxes[j])) << where << " over \"" << boxes[j].text << "\"";
-          }
+          ASSERT_FALSE(overlay.text_boxes().empty());
+          for (const std::string& p : test::text_box_problems(overlay, w, h))
+            ADD_FAILURE() << file << " " << language << " " << w << "x" << h << ", " << what << ": " << p;
           ++screens;
         }
       }
